@@ -1,0 +1,99 @@
+// Core benchmarks on the workloads of shared/bench/WORKLOADS.md.
+//
+//   build/release/bench/core_bench --benchmark_min_time=1
+//
+// W4: cubic Bezier, 4 control points from LCG seed 3, positions at 10^7
+// parameters t_k = k / (N - 1), single thread; plus the same batch on every
+// pool thread (the W7 idea applied to Bezier) and higher degrees.
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+#include "freeform/core/bezier.h"
+#include "freeform/core/thread_pool.h"
+
+namespace {
+
+// The workloads' LCG: rnd() in [-1, 1).
+class Lcg {
+ public:
+  explicit Lcg(uint64_t seed) : state_(seed) {}
+  double Next() {
+    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double unit = static_cast<double>(state_ >> 11) * 0x1.0p-53;
+    return 2.0 * unit - 1.0;
+  }
+
+ private:
+  uint64_t state_;
+};
+
+std::vector<double> RandomPoints(uint64_t seed, size_t count, int dimension) {
+  Lcg lcg(seed);
+  std::vector<double> points(count * static_cast<size_t>(dimension));
+  for (double& value : points) value = lcg.Next();
+  return points;
+}
+
+std::vector<double> UniformParameters(size_t count) {
+  std::vector<double> parameters(count);
+  for (size_t k = 0; k < count; ++k) {
+    parameters[k] = static_cast<double>(k) / static_cast<double>(count - 1);
+  }
+  return parameters;
+}
+
+void RunBezier(benchmark::State& state, int degree, size_t count, int orders,
+               freeform::ThreadPool* pool) {
+  const std::vector<double> control =
+      RandomPoints(3, static_cast<size_t>(degree + 1), 3);
+  const std::vector<double> parameters = UniformParameters(count);
+  std::vector<std::vector<double>> buffers(
+      static_cast<size_t>(orders), std::vector<double>(count * 3));
+  std::vector<absl::Span<double>> output(buffers.begin(), buffers.end());
+  const freeform::BezierCurveView curve{
+      .control_points = {.dimension = 3, .coordinates = control},
+      .weights = {}};
+  const freeform::ExecutionContext context{.pool = pool};
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        freeform::EvaluateBezierCurve(curve, parameters, output, context));
+    benchmark::ClobberMemory();
+  }
+  double checksum = 0;
+  for (const auto& buffer : buffers) {
+    for (double value : buffer) checksum += value;
+  }
+  state.counters["checksum"] = checksum;
+  state.counters["points/s"] = benchmark::Counter(
+      static_cast<double>(count) * static_cast<double>(state.iterations()),
+      benchmark::Counter::kIsRate);
+}
+
+void BM_W4_CubicBezierPositions(benchmark::State& state) {
+  RunBezier(state, 3, 10'000'000, 1, nullptr);
+}
+BENCHMARK(BM_W4_CubicBezierPositions)->Unit(benchmark::kMillisecond);
+
+void BM_W4_CubicBezierPositionsAllThreads(benchmark::State& state) {
+  freeform::ThreadPool pool(
+      static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  RunBezier(state, 3, 10'000'000, 1, &pool);
+}
+BENCHMARK(BM_W4_CubicBezierPositionsAllThreads)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void BM_BezierDegree(benchmark::State& state) {
+  RunBezier(state, static_cast<int>(state.range(0)), 100'000,
+            static_cast<int>(state.range(1)), nullptr);
+}
+BENCHMARK(BM_BezierDegree)
+    ->ArgsProduct({{3, 7, 15, 30}, {1, 2}})
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

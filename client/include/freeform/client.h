@@ -1,0 +1,133 @@
+// freeform::Client: the C++ client library of the freeform service.
+//
+// Connects to one freeformd or to a list of replicas (client-side
+// round_robin), applies a per-call deadline, retries UNAVAILABLE calls, and
+// returns absl::StatusOr of plain C++ types for the common calls. Errors keep
+// the server's gRPC code; an INVALID_ARGUMENT's google.rpc.BadRequest field
+// violations are available through FieldViolationsOf. For every other RPC
+// use the generated stubs from curves() / surfaces() with NewContext().
+//
+// Thread-safe: one Client may serve many threads at once.
+//
+// Example:
+//   auto client = freeform::Client::Create({.target = "localhost:50051"});
+//   auto samples = (*client)->EvaluateBezier(
+//       2, {0, 0, 1, 2, 3, 2, 4, 0}, {0.0, 0.5, 1.0}, /*derivative_order=*/1);
+//   // samples->Point(0, 1) is (2, 1.5); samples->Point(1, 0) is (3, 6).
+#ifndef FREEFORM_CLIENT_H_
+#define FREEFORM_CLIENT_H_
+
+#include <grpcpp/channel.h>
+#include <grpcpp/client_context.h>
+
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/types/span.h"
+#include "freeform/v1/curve_service.grpc.pb.h"
+#include "freeform/v1/surface_service.grpc.pb.h"
+
+namespace freeform {
+
+struct ClientOptions {
+  // A gRPC target: "host:port", "dns:///name:port", "ipv4:a:p,b:p", ...
+  // Ignored when `replicas` is set.
+  std::string target = "localhost:50051";
+  // Several "host:port" replicas balanced client-side with round_robin.
+  std::vector<std::string> replicas;
+  // Use round_robin over every address `target` resolves to (for a DNS
+  // name with several records, such as a Kubernetes headless Service).
+  bool round_robin = false;
+  // Deadline of each call.
+  std::chrono::milliseconds timeout{30'000};
+  // Largest message the client accepts.
+  int max_receive_message_bytes = 64 << 20;
+  // Retry calls that fail with UNAVAILABLE (up to 4 attempts, backoff).
+  bool retry_unavailable = true;
+  // TLS: on when `use_tls`; root CA (empty = system roots) and an optional
+  // client certificate and key for mutual TLS, all PEM files.
+  bool use_tls = false;
+  std::string root_ca_file;
+  std::string cert_file;
+  std::string key_file;
+};
+
+// Points (and derivatives) of a curve at a batch of parameters.
+struct CurveSamples {
+  int dimension = 0;
+  size_t count = 0;
+  // derivatives[k][r * dimension + j]: derivative k at parameter r.
+  std::vector<std::vector<double>> derivatives;
+
+  // Point returns derivative `order` at parameter index `index`.
+  absl::Span<const double> Point(size_t order, size_t index) const {
+    return absl::MakeConstSpan(derivatives[order])
+        .subspan(index * static_cast<size_t>(dimension),
+                 static_cast<size_t>(dimension));
+  }
+};
+
+// One google.rpc.BadRequest field violation.
+struct FieldViolation {
+  std::string field;
+  std::string description;
+};
+
+// FromGrpcStatus converts a gRPC status; the binary error details travel as
+// the payload FieldViolationsOf reads.
+absl::Status FromGrpcStatus(const grpc::Status& status);
+
+// FieldViolationsOf returns the field violations an error carries (empty
+// when it carries none).
+std::vector<FieldViolation> FieldViolationsOf(const absl::Status& status);
+
+class Client {
+ public:
+  // Create builds a channel from `options` (no connection is made yet).
+  static absl::StatusOr<std::unique_ptr<Client>> Create(
+      const ClientOptions& options);
+  // Wraps an existing channel, for tests and custom setups.
+  Client(std::shared_ptr<grpc::Channel> channel, const ClientOptions& options);
+
+  // EvaluateBezier evaluates the Bezier curve with `control_points`
+  // (dimension coordinates each) at `parameters`, with derivatives up to
+  // `derivative_order`.
+  absl::StatusOr<CurveSamples> EvaluateBezier(
+      int dimension, absl::Span<const double> control_points,
+      absl::Span<const double> parameters, int derivative_order = 0);
+
+  // EvaluateCurve runs CurveService.Evaluate.
+  absl::StatusOr<CurveSamples> EvaluateCurve(
+      const v1::EvaluateCurveRequest& request);
+
+  // EvaluateCurveStreamed runs CurveService.EvaluateStream and joins the
+  // chunks, for answers larger than one message.
+  absl::StatusOr<CurveSamples> EvaluateCurveStreamed(
+      const v1::EvaluateCurveRequest& request);
+
+  // CheckHealth asks grpc.health.v1.Health; OK means SERVING, UNAVAILABLE
+  // means NOT_SERVING; other codes are transport errors.
+  absl::Status CheckHealth(const std::string& service = "");
+
+  // NewContext returns a context with this client's deadline.
+  std::unique_ptr<grpc::ClientContext> NewContext() const;
+
+  v1::CurveService::Stub& curves() { return *curves_; }
+  v1::SurfaceService::Stub& surfaces() { return *surfaces_; }
+  const std::shared_ptr<grpc::Channel>& channel() const { return channel_; }
+
+ private:
+  ClientOptions options_;
+  std::shared_ptr<grpc::Channel> channel_;
+  std::unique_ptr<v1::CurveService::Stub> curves_;
+  std::unique_ptr<v1::SurfaceService::Stub> surfaces_;
+};
+
+}  // namespace freeform
+
+#endif  // FREEFORM_CLIENT_H_

@@ -1,0 +1,227 @@
+#include "freeform/client.h"
+
+#include <grpcpp/create_channel.h>
+#include <grpcpp/security/credentials.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "absl/strings/cord.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "google/rpc/error_details.pb.h"
+#include "google/rpc/status.pb.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+
+namespace freeform {
+namespace {
+
+constexpr absl::string_view kStatusDetailsPayload =
+    "type.googleapis.com/google.rpc.Status";
+
+// Retries UNAVAILABLE with exponential backoff on every freeform method.
+constexpr char kRetryServiceConfig[] = R"({
+  "loadBalancingConfig": [{"%s": {}}],
+  "methodConfig": [{
+    "name": [{"service": "freeform.v1.CurveService"},
+             {"service": "freeform.v1.SurfaceService"}],
+    "retryPolicy": {
+      "maxAttempts": 4,
+      "initialBackoff": "0.05s",
+      "maxBackoff": "1s",
+      "backoffMultiplier": 2,
+      "retryableStatusCodes": ["UNAVAILABLE"]
+    }
+  }]
+})";
+
+absl::StatusOr<std::string> ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return absl::NotFoundError(absl::StrCat("cannot read ", path));
+  std::ostringstream contents;
+  contents << in.rdbuf();
+  return contents.str();
+}
+
+absl::StatusOr<std::shared_ptr<grpc::ChannelCredentials>> Credentials(
+    const ClientOptions& options) {
+  if (!options.use_tls) return grpc::InsecureChannelCredentials();
+  grpc::SslCredentialsOptions ssl;
+  if (!options.root_ca_file.empty()) {
+    absl::StatusOr<std::string> ca = ReadFile(options.root_ca_file);
+    if (!ca.ok()) return ca.status();
+    ssl.pem_root_certs = *ca;
+  }
+  if (!options.cert_file.empty()) {
+    absl::StatusOr<std::string> cert = ReadFile(options.cert_file);
+    if (!cert.ok()) return cert.status();
+    absl::StatusOr<std::string> key = ReadFile(options.key_file);
+    if (!key.ok()) return key.status();
+    ssl.pem_cert_chain = *cert;
+    ssl.pem_private_key = *key;
+  }
+  return grpc::SslCredentials(ssl);
+}
+
+std::string ChannelTarget(const ClientOptions& options) {
+  if (options.replicas.empty()) return options.target;
+  return absl::StrCat("ipv4:", absl::StrJoin(options.replicas, ","));
+}
+
+// Appends one response's derivative arrays to `samples`.
+absl::Status Append(const v1::EvaluateCurveResponse& response,
+                    CurveSamples& samples) {
+  if (samples.derivatives.empty()) {
+    samples.dimension = static_cast<int>(response.dimension());
+    samples.derivatives.resize(static_cast<size_t>(response.derivatives_size()));
+  }
+  if (static_cast<size_t>(response.derivatives_size()) !=
+          samples.derivatives.size() ||
+      response.first_index() != samples.count) {
+    return absl::DataLossError("the server sent inconsistent chunks");
+  }
+  for (int k = 0; k < response.derivatives_size(); ++k) {
+    const auto& coordinates = response.derivatives(k).coordinates();
+    samples.derivatives[static_cast<size_t>(k)].insert(
+        samples.derivatives[static_cast<size_t>(k)].end(), coordinates.begin(),
+        coordinates.end());
+  }
+  samples.count += response.count();
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status FromGrpcStatus(const grpc::Status& status) {
+  if (status.ok()) return absl::OkStatus();
+  absl::Status converted(static_cast<absl::StatusCode>(status.error_code()),
+                         status.error_message());
+  if (!status.error_details().empty()) {
+    converted.SetPayload(kStatusDetailsPayload,
+                         absl::Cord(status.error_details()));
+  }
+  return converted;
+}
+
+std::vector<FieldViolation> FieldViolationsOf(const absl::Status& status) {
+  std::vector<FieldViolation> violations;
+  auto payload = status.GetPayload(kStatusDetailsPayload);
+  google::rpc::Status details;
+  if (!payload.has_value() || !details.ParseFromString(std::string(*payload))) {
+    return violations;
+  }
+  for (const google::protobuf::Any& detail : details.details()) {
+    google::rpc::BadRequest bad_request;
+    if (!detail.UnpackTo(&bad_request)) continue;
+    for (const auto& violation : bad_request.field_violations()) {
+      violations.push_back({violation.field(), violation.description()});
+    }
+  }
+  return violations;
+}
+
+absl::StatusOr<std::unique_ptr<Client>> Client::Create(
+    const ClientOptions& options) {
+  absl::StatusOr<std::shared_ptr<grpc::ChannelCredentials>> credentials =
+      Credentials(options);
+  if (!credentials.ok()) return credentials.status();
+  grpc::ChannelArguments arguments;
+  arguments.SetMaxReceiveMessageSize(options.max_receive_message_bytes);
+  const bool balance = options.round_robin || !options.replicas.empty();
+  const std::string policy = balance ? "round_robin" : "pick_first";
+  std::string config = kRetryServiceConfig;
+  config.replace(config.find("%s"), 2, policy);
+  if (!options.retry_unavailable) {
+    config = absl::StrCat(R"({"loadBalancingConfig": [{")", policy,
+                          R"(": {}}]})");
+  }
+  arguments.SetServiceConfigJSON(config);
+  auto channel = grpc::CreateCustomChannel(ChannelTarget(options), *credentials,
+                                           arguments);
+  return std::make_unique<Client>(std::move(channel), options);
+}
+
+Client::Client(std::shared_ptr<grpc::Channel> channel,
+               const ClientOptions& options)
+    : options_(options),
+      channel_(std::move(channel)),
+      curves_(v1::CurveService::NewStub(channel_)),
+      surfaces_(v1::SurfaceService::NewStub(channel_)) {}
+
+std::unique_ptr<grpc::ClientContext> Client::NewContext() const {
+  auto context = std::make_unique<grpc::ClientContext>();
+  context->set_deadline(std::chrono::system_clock::now() + options_.timeout);
+  return context;
+}
+
+absl::StatusOr<CurveSamples> Client::EvaluateBezier(
+    int dimension, absl::Span<const double> control_points,
+    absl::Span<const double> parameters, int derivative_order) {
+  v1::EvaluateCurveRequest request;
+  v1::Points* points = request.mutable_curve()->mutable_bezier()
+                           ->mutable_control_points();
+  points->set_dimension(static_cast<uint32_t>(dimension));
+  points->mutable_coordinates()->Add(control_points.begin(),
+                                     control_points.end());
+  request.mutable_parameters()->mutable_list()->mutable_values()->Add(
+      parameters.begin(), parameters.end());
+  request.set_derivative_order(static_cast<uint32_t>(derivative_order));
+  return EvaluateCurve(request);
+}
+
+absl::StatusOr<CurveSamples> Client::EvaluateCurve(
+    const v1::EvaluateCurveRequest& request) {
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  v1::EvaluateCurveResponse response;
+  if (grpc::Status status = curves_->Evaluate(context.get(), request, &response);
+      !status.ok()) {
+    return FromGrpcStatus(status);
+  }
+  CurveSamples samples;
+  if (absl::Status status = Append(response, samples); !status.ok()) {
+    return status;
+  }
+  return samples;
+}
+
+absl::StatusOr<CurveSamples> Client::EvaluateCurveStreamed(
+    const v1::EvaluateCurveRequest& request) {
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  std::unique_ptr<grpc::ClientReader<v1::EvaluateCurveResponse>> reader =
+      curves_->EvaluateStream(context.get(), request);
+  CurveSamples samples;
+  v1::EvaluateCurveResponse response;
+  absl::Status appended;
+  while (reader->Read(&response)) {
+    appended = Append(response, samples);
+    if (!appended.ok()) {
+      context->TryCancel();
+      break;
+    }
+  }
+  grpc::Status status = reader->Finish();
+  if (!appended.ok()) return appended;
+  if (!status.ok()) return FromGrpcStatus(status);
+  return samples;
+}
+
+absl::Status Client::CheckHealth(const std::string& service) {
+  auto stub = grpc::health::v1::Health::NewStub(channel_);
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  grpc::health::v1::HealthCheckRequest request;
+  request.set_service(service);
+  grpc::health::v1::HealthCheckResponse response;
+  if (grpc::Status status = stub->Check(context.get(), request, &response);
+      !status.ok()) {
+    return FromGrpcStatus(status);
+  }
+  if (response.status() != grpc::health::v1::HealthCheckResponse::SERVING) {
+    return absl::UnavailableError(absl::StrCat(
+        "not serving: ",
+        grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
+            response.status())));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace freeform

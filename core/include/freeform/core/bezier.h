@@ -1,0 +1,95 @@
+// Bezier curves: evaluation with derivatives, polynomial and rational.
+//
+// A Bezier curve of degree n has n + 1 control points P_i of any dimension
+// and lives on t in [0, 1]: C(t) = sum_i B(n,i,t) P_i with the Bernstein
+// polynomials B(n,i,t) = binom(n,i) (1-t)^(n-i) t^i. With weights w_i it is
+// rational, C(t) = sum_i w_i P_i B(n,i,t) / sum_i w_i B(n,i,t), and is
+// evaluated in homogeneous form (w_i P_i, w_i) and projected, with
+// derivatives by the quotient rule (The NURBS Book, eq. 4.8). A control
+// point with weight 0 is a point at infinity: its coordinates are read as the
+// direction P (homogeneous (P, 0)), as in the course notes' half circle
+// (1,0,1), (0,1,0), (-1,0,1).
+//
+// Batch outputs are one buffer per derivative order: derivative k of the
+// point at parameter index r, coordinate j, is output[k][r * dimension + j],
+// so a caller can hand in the final storage (a response message's arrays)
+// and nothing is copied.
+//
+// All functions are thread-safe; they allocate per call or per chunk of
+// parameters, never per point.
+#ifndef FREEFORM_CORE_BEZIER_H_
+#define FREEFORM_CORE_BEZIER_H_
+
+#include <cstddef>
+
+#include "absl/status/status.h"
+#include "absl/types/span.h"
+#include "freeform/core/points.h"
+#include "freeform/core/thread_pool.h"
+
+namespace freeform {
+
+// A Bezier curve whose control points (and optional weights) live in caller
+// memory.
+struct BezierCurveView {
+  PointsView control_points;
+  // Empty: polynomial. Otherwise one weight per control point.
+  absl::Span<const double> weights;
+
+  int degree() const { return static_cast<int>(control_points.size()) - 1; }
+  bool rational() const { return !weights.empty(); }
+};
+
+// ValidateBezierCurve checks the control points (at least one, finite) and
+// the weights: one per control point, finite, >= 0, and the first and last
+// positive so that the denominator stays positive on [0, 1] (with
+// nonnegative weights it can only vanish at an end). Errors name
+// "control_points...", "weights" or "weights[i]".
+absl::Status ValidateBezierCurve(const BezierCurveView& curve);
+
+// Per-order output buffers of a batch evaluation: output[k] receives the
+// k-th derivative at every parameter (count * dimension doubles).
+using CurveOutput = absl::Span<const absl::Span<double>>;
+
+// ValidateCurveOutput checks that `output` has at least one buffer (the
+// positions) and that every buffer holds count * dimension doubles.
+absl::Status ValidateCurveOutput(CurveOutput output, size_t count,
+                                 int dimension);
+
+// EvaluateBezierCurve writes derivatives 0..output.size()-1 of `curve` at
+// every parameter into `output` using the de Casteljau algorithm.
+// Parameters must lie in [0, 1]. Derivatives of order above the degree of a
+// polynomial curve are zero. Fails with INVALID_ARGUMENT for an invalid
+// curve, a parameter outside [0, 1] ("parameters[i]") or wrongly sized
+// output, and with CANCELLED / DEADLINE_EXCEEDED when the context's token
+// stops the batch (the output is then partly written).
+absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
+                                 absl::Span<const double> parameters,
+                                 CurveOutput output,
+                                 const ExecutionContext& context = {});
+
+// DeCasteljauDerivatives evaluates one point: it writes C^(k)(t) for
+// k = 0..max_order of the polynomial curve with n + 1 control points of
+// `dimension` coordinates at `control` into derivatives[k * dimension + j].
+// `scratch` must hold 2 * (n + 1) * dimension doubles. The k-th derivative
+// is n!/(n-k)! times the k-th forward difference of the de Casteljau points
+// of level n - k (Farin, "Curves and Surfaces for CAGD", section 5.3).
+void DeCasteljauDerivatives(const double* control, int n, int dimension,
+                            double t, int max_order, double* scratch,
+                            double* derivatives);
+
+// ProjectHomogeneousDerivatives turns derivatives of a homogeneous curve
+// (dimension + 1 values per order, weight last) into the derivatives of its
+// projection: C^(k) = (A^(k) - sum_{i=1..k} binom(k,i) w^(i) C^(k-i)) / w.
+// Reads `homogeneous[k * (dimension + 1) + j]`, writes
+// `derivatives[k * dimension + j]` for k = 0..max_order.
+void ProjectHomogeneousDerivatives(const double* homogeneous, int dimension,
+                                   int max_order, double* derivatives);
+
+// BernsteinBasis writes B(n,i,t), i = 0..n, into values (n + 1 doubles) by
+// the triangular recurrence B(j,i) = (1-t) B(j-1,i) + t B(j-1,i-1).
+void BernsteinBasis(int n, double t, absl::Span<double> values);
+
+}  // namespace freeform
+
+#endif  // FREEFORM_CORE_BEZIER_H_

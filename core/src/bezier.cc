@@ -1,0 +1,203 @@
+#include "freeform/core/bezier.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "freeform/core/status.h"
+
+namespace freeform {
+namespace {
+
+// Homogeneous control points (w_i P_i, w_i), dimension + 1 values each.
+std::vector<double> Homogenize(const BezierCurveView& curve) {
+  const size_t dimension = static_cast<size_t>(curve.control_points.dimension);
+  const size_t count = curve.control_points.size();
+  std::vector<double> homogeneous(count * (dimension + 1));
+  for (size_t i = 0; i < count; ++i) {
+    const double* point = curve.control_points.point(i);
+    double* out = &homogeneous[i * (dimension + 1)];
+    const double weight = curve.weights[i];
+    // A zero weight makes the point a direction: (P, 0), the point at
+    // infinity in the direction P.
+    const double scale = weight == 0.0 ? 1.0 : weight;
+    for (size_t j = 0; j < dimension; ++j) out[j] = scale * point[j];
+    out[dimension] = weight;
+  }
+  return homogeneous;
+}
+
+}  // namespace
+
+absl::Status ValidateBezierCurve(const BezierCurveView& curve) {
+  if (absl::Status status = ValidatePoints(curve.control_points,
+                                           "control_points");
+      !status.ok()) {
+    return status;
+  }
+  if (!curve.rational()) return absl::OkStatus();
+  const size_t count = curve.control_points.size();
+  if (curve.weights.size() != count) {
+    return InvalidFieldError(
+        "weights", absl::StrCat("has ", curve.weights.size(),
+                                " weights for ", count, " control points"));
+  }
+  for (size_t i = 0; i < count; ++i) {
+    const double weight = curve.weights[i];
+    if (!std::isfinite(weight) || weight < 0) {
+      return InvalidFieldError(
+          IndexedField("weights", i),
+          absl::StrCat("weights must be finite and >= 0, got ", weight));
+    }
+  }
+  if (curve.weights.front() == 0 || curve.weights.back() == 0) {
+    const size_t end = curve.weights.front() == 0 ? 0 : count - 1;
+    return InvalidFieldError(
+        IndexedField("weights", end),
+        absl::StrCat("an end weight must be positive: with weight 0 the "
+                     "curve is infinite at t = ",
+                     end == 0 ? 0 : 1));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status ValidateCurveOutput(CurveOutput output, size_t count,
+                                 int dimension) {
+  if (output.empty()) {
+    return absl::InvalidArgumentError("output needs at least one buffer");
+  }
+  const size_t expected = count * static_cast<size_t>(dimension);
+  for (size_t k = 0; k < output.size(); ++k) {
+    if (output[k].size() != expected) {
+      return absl::InvalidArgumentError(
+          absl::StrCat("output[", k, "] holds ", output[k].size(),
+                       " values, expected ", expected));
+    }
+  }
+  return absl::OkStatus();
+}
+
+void DeCasteljauDerivatives(const double* control, int n, int dimension,
+                            double t, int max_order, double* scratch,
+                            double* derivatives) {
+  const size_t dim = static_cast<size_t>(dimension);
+  double* levels = scratch;
+  double* differences = scratch + static_cast<size_t>(n + 1) * dim;
+  std::copy(control, control + static_cast<size_t>(n + 1) * dim, levels);
+  const int top = std::min(max_order, n);
+  std::fill(derivatives + static_cast<size_t>(top + 1) * dim,
+            derivatives + static_cast<size_t>(max_order + 1) * dim, 0.0);
+  const double s = 1.0 - t;
+  for (int m = n;; --m) {
+    // `levels` now holds the m + 1 de Casteljau points of level n - m.
+    if (m <= top) {
+      const size_t points = static_cast<size_t>(m + 1) * dim;
+      std::copy(levels, levels + points, differences);
+      double factor = 1.0;
+      for (int r = 1; r <= m; ++r) {
+        factor *= n - r + 1;
+        for (size_t x = 0; x < static_cast<size_t>(m + 1 - r) * dim; ++x) {
+          differences[x] = differences[x + dim] - differences[x];
+        }
+      }
+      double* out = derivatives + static_cast<size_t>(m) * dim;
+      for (size_t j = 0; j < dim; ++j) out[j] = factor * differences[j];
+    }
+    if (m == 0) break;
+    for (size_t x = 0; x < static_cast<size_t>(m) * dim; ++x) {
+      levels[x] = s * levels[x] + t * levels[x + dim];
+    }
+  }
+}
+
+void ProjectHomogeneousDerivatives(const double* homogeneous, int dimension,
+                                   int max_order, double* derivatives) {
+  const size_t dim = static_cast<size_t>(dimension);
+  const size_t stride = dim + 1;
+  const double weight = homogeneous[dim];
+  for (int k = 0; k <= max_order; ++k) {
+    double* out = derivatives + static_cast<size_t>(k) * dim;
+    const double* numerator = homogeneous + static_cast<size_t>(k) * stride;
+    for (size_t j = 0; j < dim; ++j) out[j] = numerator[j];
+    double binomial = 1.0;  // binom(k, i)
+    for (int i = 1; i <= k; ++i) {
+      binomial = binomial * (k - i + 1) / i;
+      const double weight_derivative =
+          homogeneous[static_cast<size_t>(i) * stride + dim];
+      const double* lower = derivatives + static_cast<size_t>(k - i) * dim;
+      for (size_t j = 0; j < dim; ++j) {
+        out[j] -= binomial * weight_derivative * lower[j];
+      }
+    }
+    for (size_t j = 0; j < dim; ++j) out[j] /= weight;
+  }
+}
+
+void BernsteinBasis(int n, double t, absl::Span<double> values) {
+  const double s = 1.0 - t;
+  values[0] = 1.0;
+  for (int j = 1; j <= n; ++j) {
+    double carry = 0.0;  // t * B(j-1, i-1)
+    for (int i = 0; i < j; ++i) {
+      const double previous = values[static_cast<size_t>(i)];
+      values[static_cast<size_t>(i)] = s * previous + carry;
+      carry = t * previous;
+    }
+    values[static_cast<size_t>(j)] = carry;
+  }
+}
+
+absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
+                                 absl::Span<const double> parameters,
+                                 CurveOutput output,
+                                 const ExecutionContext& context) {
+  if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = ValidateInRange(parameters, 0.0, 1.0,
+                                            "parameters");
+      !status.ok()) {
+    return status;
+  }
+  const int dimension = curve.control_points.dimension;
+  if (absl::Status status =
+          ValidateCurveOutput(output, parameters.size(), dimension);
+      !status.ok()) {
+    return status;
+  }
+  const int n = curve.degree();
+  const int max_order = static_cast<int>(output.size()) - 1;
+  const bool rational = curve.rational();
+  const int work_dimension = rational ? dimension + 1 : dimension;
+  const std::vector<double> homogeneous =
+      rational ? Homogenize(curve) : std::vector<double>();
+  const double* control = rational ? homogeneous.data()
+                                   : curve.control_points.coordinates.data();
+  const size_t dim = static_cast<size_t>(dimension);
+  const size_t orders = output.size();
+
+  return ParallelFor(parameters.size(), context, [&](size_t begin,
+                                                     size_t end) {
+    const size_t work = static_cast<size_t>(work_dimension);
+    const size_t levels = 2 * static_cast<size_t>(n + 1) * work;
+    std::vector<double> scratch(levels + orders * work + orders * dim);
+    double* raw = scratch.data() + levels;
+    double* projected = raw + orders * work;
+    for (size_t r = begin; r < end; ++r) {
+      DeCasteljauDerivatives(control, n, work_dimension, parameters[r],
+                             max_order, scratch.data(), raw);
+      const double* result = raw;
+      if (rational) {
+        ProjectHomogeneousDerivatives(raw, dimension, max_order, projected);
+        result = projected;
+      }
+      for (size_t k = 0; k < orders; ++k) {
+        std::copy(result + k * dim, result + (k + 1) * dim,
+                  output[k].data() + r * dim);
+      }
+    }
+  });
+}
+
+}  // namespace freeform

@@ -1,0 +1,112 @@
+#include "convert.h"
+
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "freeform/core/status.h"
+
+namespace freeform::server {
+namespace {
+
+absl::Status CheckCount(size_t count, size_t max_count,
+                        absl::string_view field) {
+  if (count == 0) {
+    return InvalidFieldError(field, "needs at least one parameter");
+  }
+  if (count > max_count) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        field, ": ", count, " parameters exceed the server's limit of ",
+        max_count, " (--max_parameters)"));
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<double> RangeEnd(bool has_value, double value, double fallback,
+                                double lo, double hi, absl::string_view field) {
+  if (!has_value) return fallback;
+  if (!std::isfinite(value)) {
+    return InvalidFieldError(field, absl::StrCat("must be finite, got ", value));
+  }
+  if (value < lo || value > hi) {
+    return InvalidFieldError(field, absl::StrCat(value,
+                                                 " is outside the domain [",
+                                                 lo, ", ", hi, "]"));
+  }
+  return value;
+}
+
+}  // namespace
+
+PointsView ViewOf(const v1::Points& points) {
+  return PointsView{
+      .dimension = static_cast<int>(std::min<uint32_t>(
+          points.dimension(), static_cast<uint32_t>(kMaxDimension + 1))),
+      .coordinates = absl::MakeConstSpan(points.coordinates().data(),
+                                         points.coordinates_size())};
+}
+
+BezierCurveView ViewOf(const v1::BezierCurve& curve) {
+  return BezierCurveView{
+      .control_points = ViewOf(curve.control_points()),
+      .weights = absl::MakeConstSpan(curve.weights().data(),
+                                     curve.weights_size())};
+}
+
+absl::StatusOr<ParameterSet> ParameterSet::Resolve(
+    const v1::Parameters& parameters, double lo, double hi, size_t max_count) {
+  ParameterSet set;
+  switch (parameters.kind_case()) {
+    case v1::Parameters::kList: {
+      const auto& values = parameters.list().values();
+      if (absl::Status status =
+              CheckCount(static_cast<size_t>(values.size()), max_count,
+                         "list.values");
+          !status.ok()) {
+        return status;
+      }
+      set.list_ = absl::MakeConstSpan(values.data(), values.size());
+      if (absl::Status status =
+              ValidateInRange(set.list_, lo, hi, "list.values");
+          !status.ok()) {
+        return status;
+      }
+      set.count_ = set.list_.size();
+      return set;
+    }
+    case v1::Parameters::kRange: {
+      const v1::UniformRange& range = parameters.range();
+      if (absl::Status status =
+              CheckCount(range.count(), max_count, "range.count");
+          !status.ok()) {
+        return status;
+      }
+      absl::StatusOr<double> start = RangeEnd(
+          range.has_start(), range.start(), lo, lo, hi, "range.start");
+      if (!start.ok()) return start.status();
+      absl::StatusOr<double> end =
+          RangeEnd(range.has_end(), range.end(), hi, lo, hi, "range.end");
+      if (!end.ok()) return end.status();
+      set.is_range_ = true;
+      set.start_ = *start;
+      set.end_ = *end;
+      set.count_ = range.count();
+      return set;
+    }
+    case v1::Parameters::KIND_NOT_SET:
+      break;
+  }
+  return InvalidFieldError("", "set either a parameter list or a range");
+}
+
+absl::Span<const double> ParameterSet::Values(
+    size_t begin, size_t end, std::vector<double>& storage) const {
+  if (!is_range_) return list_.subspan(begin, end - begin);
+  storage.resize(end - begin);
+  const double last = count_ > 1 ? static_cast<double>(count_ - 1) : 1.0;
+  for (size_t k = begin; k < end; ++k) {
+    storage[k - begin] = std::lerp(start_, end_, static_cast<double>(k) / last);
+  }
+  return storage;
+}
+
+}  // namespace freeform::server

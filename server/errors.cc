@@ -1,0 +1,40 @@
+#include "errors.h"
+
+#include <optional>
+#include <string>
+
+#include "absl/strings/str_cat.h"
+#include "freeform/core/status.h"
+#include "google/rpc/error_details.pb.h"
+#include "google/rpc/status.pb.h"
+
+namespace freeform::server {
+
+grpc::Status ToGrpcStatus(const absl::Status& status,
+                          absl::string_view field_prefix) {
+  if (status.ok()) return grpc::Status::OK;
+  const absl::Status prefixed = PrefixFieldPath(status, field_prefix);
+  const auto code = static_cast<grpc::StatusCode>(prefixed.code());
+  const std::string message(prefixed.message());
+  std::optional<std::string> field = FieldPathOf(prefixed);
+  if (!field.has_value()) return grpc::Status(code, message);
+
+  google::rpc::BadRequest bad_request;
+  google::rpc::BadRequest::FieldViolation* violation =
+      bad_request.add_field_violations();
+  violation->set_field(*field);
+  violation->set_description(FieldRuleOf(prefixed));
+  google::rpc::Status details;
+  details.set_code(static_cast<int>(code));
+  details.set_message(message);
+  details.add_details()->PackFrom(bad_request);
+  return grpc::Status(code, message, details.SerializeAsString());
+}
+
+absl::Status NotYetImplemented(absl::string_view what, absl::string_view issue) {
+  return absl::UnimplementedError(absl::StrCat(
+      what, " is not implemented yet in this freeformd (it lands with ", issue,
+      ")"));
+}
+
+}  // namespace freeform::server

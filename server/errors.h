@@ -1,0 +1,30 @@
+// Translation of core errors into gRPC statuses with google.rpc details.
+//
+// An INVALID_ARGUMENT that carries a field path (see core/status.h) becomes a
+// grpc::Status whose binary details hold a google.rpc.Status with one
+// google.rpc.BadRequest field violation: `field` is the path into the
+// request, `description` the rule that broke. Other codes map one for one.
+// Thread-safe.
+#ifndef FREEFORM_SERVER_ERRORS_H_
+#define FREEFORM_SERVER_ERRORS_H_
+
+#include <grpcpp/support/status.h>
+
+#include "absl/strings/string_view.h"
+
+#include "absl/status/status.h"
+
+namespace freeform::server {
+
+// ToGrpcStatus converts `status`, prefixing its field path with
+// `field_prefix` (for example "curve.bezier").
+grpc::Status ToGrpcStatus(const absl::Status& status,
+                          absl::string_view field_prefix = "");
+
+// UnimplementedError says that `what` is not offered yet and which issue
+// brings it.
+absl::Status NotYetImplemented(absl::string_view what, absl::string_view issue);
+
+}  // namespace freeform::server
+
+#endif  // FREEFORM_SERVER_ERRORS_H_

@@ -1,0 +1,116 @@
+// freeformd: the freeform gRPC server.
+//
+//   freeformd --listen=0.0.0.0:50051 --threads=0 --log_level=info
+//
+// Prints "freeformd listening on HOST:PORT" on stdout once it serves (with
+// --listen=127.0.0.1:0 the kernel picks the port). SIGTERM or SIGINT: health
+// turns NOT_SERVING, in-flight RPCs get --grace_period to finish, exit 0.
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+#include <string>
+
+#include "absl/flags/flag.h"
+#include "absl/flags/parse.h"
+#include "absl/flags/usage.h"
+#include "absl/strings/str_cat.h"
+#include "absl/time/time.h"
+#include "server.h"
+#include "spdlog/sinks/stdout_sinks.h"
+#include "spdlog/spdlog.h"
+
+ABSL_FLAG(std::string, listen, "0.0.0.0:50051",
+          "Address to listen on; port 0 picks a free port (printed on stdout)");
+ABSL_FLAG(int, threads, 0, "Math threads; 0 = one per hardware thread");
+ABSL_FLAG(std::string, log_level, "info",
+          "trace, debug, info, warn, error, critical or off");
+ABSL_FLAG(std::string, log_format, "text", "text or json");
+ABSL_FLAG(absl::Duration, grace_period, absl::Seconds(10),
+          "Time in-flight RPCs get to finish on SIGTERM/SIGINT");
+ABSL_FLAG(std::string, tls_cert, "", "PEM certificate chain (enables TLS)");
+ABSL_FLAG(std::string, tls_key, "", "PEM private key");
+ABSL_FLAG(std::string, tls_client_ca, "",
+          "PEM CA that must sign client certificates (mutual TLS)");
+ABSL_FLAG(int64_t, max_message_bytes, 64 << 20, "Largest gRPC message");
+ABSL_FLAG(uint64_t, max_control_points, 1'000'000,
+          "Most control or data points per request");
+ABSL_FLAG(int, max_degree, 64, "Highest polynomial degree");
+ABSL_FLAG(int, max_dimension, 64, "Highest point dimension (at least 16)");
+ABSL_FLAG(int, max_derivative_order, 16, "Highest derivative order");
+ABSL_FLAG(uint64_t, max_parameters, 10'000'000,
+          "Most evaluation parameters per request");
+ABSL_FLAG(uint64_t, max_output_values, 64'000'000,
+          "Most output numbers per request (streams included)");
+ABSL_FLAG(int, max_concurrent_heavy, 64,
+          "Large requests running at once; more get RESOURCE_EXHAUSTED");
+
+namespace {
+
+void ConfigureLogging() {
+  auto logger = spdlog::stderr_logger_mt("freeformd");
+  if (absl::GetFlag(FLAGS_log_format) == "json") {
+    logger->set_pattern(
+        R"({"time":"%Y-%m-%dT%H:%M:%S.%fZ","level":"%l","message":"%v"})",
+        spdlog::pattern_time_type::utc);
+  } else {
+    logger->set_pattern("%Y-%m-%dT%H:%M:%S.%f %^%l%$ %v");
+  }
+  logger->set_level(spdlog::level::from_str(absl::GetFlag(FLAGS_log_level)));
+  spdlog::set_default_logger(logger);
+}
+
+freeform::server::ServerOptions OptionsFromFlags() {
+  freeform::server::ServerOptions options;
+  options.listen_address = absl::GetFlag(FLAGS_listen);
+  options.threads = absl::GetFlag(FLAGS_threads);
+  options.tls = {.cert_file = absl::GetFlag(FLAGS_tls_cert),
+                 .key_file = absl::GetFlag(FLAGS_tls_key),
+                 .client_ca_file = absl::GetFlag(FLAGS_tls_client_ca)};
+  freeform::server::ServiceLimits& limits = options.limits;
+  limits.max_message_bytes = absl::GetFlag(FLAGS_max_message_bytes);
+  limits.max_control_points = absl::GetFlag(FLAGS_max_control_points);
+  limits.max_degree = absl::GetFlag(FLAGS_max_degree);
+  limits.max_dimension = absl::GetFlag(FLAGS_max_dimension);
+  limits.max_derivative_order = absl::GetFlag(FLAGS_max_derivative_order);
+  limits.max_parameters = absl::GetFlag(FLAGS_max_parameters);
+  limits.max_output_values = absl::GetFlag(FLAGS_max_output_values);
+  limits.max_concurrent_heavy = absl::GetFlag(FLAGS_max_concurrent_heavy);
+  return options;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  absl::SetProgramUsageMessage("freeform curve and surface gRPC server");
+  absl::ParseCommandLine(argc, argv);
+  ConfigureLogging();
+
+  // Block the stop signals in every thread; this thread waits for them.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGTERM);
+  sigaddset(&stop_signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+
+  auto server = freeform::server::FreeformServer::Start(OptionsFromFlags());
+  if (!server.ok()) {
+    spdlog::critical("cannot start: {}", server.status().ToString());
+    return 1;
+  }
+  const std::string listen = absl::GetFlag(FLAGS_listen);
+  const std::string host = listen.substr(0, listen.rfind(':'));
+  std::cout << "freeformd listening on " << host << ":" << (*server)->port()
+            << std::endl;
+  spdlog::info("serving on {}:{} with {} math threads", host,
+               (*server)->port(), (*server)->pool_size());
+
+  int signal_number = 0;
+  sigwait(&stop_signals, &signal_number);
+  const absl::Duration grace = absl::GetFlag(FLAGS_grace_period);
+  spdlog::info("signal {}: draining for up to {}", signal_number,
+               absl::FormatDuration(grace));
+  (*server)->Shutdown(absl::ToChronoMilliseconds(grace));
+  (*server)->Wait();
+  spdlog::info("stopped");
+  return 0;
+}

@@ -1,0 +1,117 @@
+#include "server.h"
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/security/server_credentials.h>
+#include <grpcpp/server_builder.h>
+
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "absl/strings/str_cat.h"
+#include "curve_service.h"
+#include "surface_service.h"
+
+namespace freeform::server {
+namespace {
+
+absl::StatusOr<std::string> ReadFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return absl::NotFoundError(absl::StrCat("cannot read ", path));
+  std::ostringstream contents;
+  contents << in.rdbuf();
+  return contents.str();
+}
+
+absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> Credentials(
+    const TlsOptions& tls) {
+  if (tls.cert_file.empty() && tls.key_file.empty()) {
+    return grpc::InsecureServerCredentials();
+  }
+  if (tls.cert_file.empty() || tls.key_file.empty()) {
+    return absl::InvalidArgumentError("TLS needs both a cert and a key file");
+  }
+  absl::StatusOr<std::string> cert = ReadFile(tls.cert_file);
+  if (!cert.ok()) return cert.status();
+  absl::StatusOr<std::string> key = ReadFile(tls.key_file);
+  if (!key.ok()) return key.status();
+  grpc::SslServerCredentialsOptions options;
+  options.pem_key_cert_pairs.push_back({*key, *cert});
+  if (!tls.client_ca_file.empty()) {
+    absl::StatusOr<std::string> ca = ReadFile(tls.client_ca_file);
+    if (!ca.ok()) return ca.status();
+    options.pem_root_certs = *ca;
+    options.client_certificate_request =
+        GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
+  }
+  return grpc::SslServerCredentials(options);
+}
+
+}  // namespace
+
+absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
+    const ServerOptions& options) {
+  absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> credentials =
+      Credentials(options.tls);
+  if (!credentials.ok()) return credentials.status();
+
+  std::unique_ptr<FreeformServer> server(new FreeformServer());
+  const int threads =
+      options.threads > 0
+          ? options.threads
+          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  server->pool_ = std::make_unique<ThreadPool>(threads);
+  server->curve_service_ =
+      std::make_unique<CurveServiceImpl>(server->pool_.get(), options.limits);
+  server->surface_service_ =
+      std::make_unique<SurfaceServiceImpl>(server->pool_.get(), options.limits);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  const int max_message = static_cast<int>(options.limits.max_message_bytes);
+  server->max_message_bytes_ = max_message;
+  builder.SetMaxReceiveMessageSize(max_message);
+  builder.SetMaxSendMessageSize(max_message);
+  builder.AddListeningPort(options.listen_address, *credentials,
+                           &server->port_);
+  builder.RegisterService(server->curve_service_.get());
+  builder.RegisterService(server->surface_service_.get());
+  server->server_ = builder.BuildAndStart();
+  if (server->server_ == nullptr || server->port_ == 0) {
+    return absl::UnavailableError(
+        absl::StrCat("cannot listen on ", options.listen_address));
+  }
+  if (grpc::HealthCheckServiceInterface* health =
+          server->server_->GetHealthCheckService();
+      health != nullptr) {
+    for (const char* name : {"", "freeform.v1.CurveService",
+                             "freeform.v1.SurfaceService"}) {
+      health->SetServingStatus(name, true);
+    }
+  }
+  return server;
+}
+
+FreeformServer::~FreeformServer() { Shutdown(std::chrono::milliseconds(0)); }
+
+std::shared_ptr<grpc::Channel> FreeformServer::InProcessChannel() {
+  grpc::ChannelArguments arguments;
+  arguments.SetMaxReceiveMessageSize(max_message_bytes_);
+  return server_->InProcessChannel(arguments);
+}
+
+void FreeformServer::Shutdown(std::chrono::milliseconds grace) {
+  if (shut_down_.exchange(true)) return;
+  if (grpc::HealthCheckServiceInterface* health =
+          server_->GetHealthCheckService();
+      health != nullptr) {
+    health->Shutdown();  // every service reports NOT_SERVING from now on
+  }
+  server_->Shutdown(std::chrono::system_clock::now() + grace);
+}
+
+void FreeformServer::Wait() { server_->Wait(); }
+
+}  // namespace freeform::server

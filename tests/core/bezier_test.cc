@@ -1,0 +1,354 @@
+#include "freeform/core/bezier.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "freeform/core/status.h"
+
+namespace freeform {
+namespace {
+
+using ::testing::DoubleNear;
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::Pointwise;
+
+// Evaluates with `orders` derivative buffers and returns them.
+std::vector<std::vector<double>> Evaluate(const BezierCurveView& curve,
+                                          const std::vector<double>& params,
+                                          int orders,
+                                          const ExecutionContext& context = {}) {
+  std::vector<std::vector<double>> buffers(
+      static_cast<size_t>(orders),
+      std::vector<double>(params.size() *
+                          static_cast<size_t>(curve.control_points.dimension)));
+  std::vector<absl::Span<double>> output(buffers.begin(), buffers.end());
+  const absl::Status status =
+      EvaluateBezierCurve(curve, params, output, context);
+  EXPECT_TRUE(status.ok()) << status;
+  return buffers;
+}
+
+BezierCurveView View(const std::vector<double>& coordinates, int dimension,
+                     const std::vector<double>& weights = {}) {
+  return BezierCurveView{
+      .control_points = {.dimension = dimension, .coordinates = coordinates},
+      .weights = weights};
+}
+
+std::vector<double> RandomValues(std::mt19937_64& rng, size_t count) {
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  std::vector<double> values(count);
+  for (double& value : values) value = uniform(rng);
+  return values;
+}
+
+long double Binomial(int n, int k) {
+  long double result = 1;
+  for (int i = 1; i <= k; ++i) result = result * (n - k + i) / i;
+  return result;
+}
+
+// Reference: the k-th derivative as the Bernstein sum of the k-th forward
+// differences, n!/(n-k)! sum_i (Delta^k P)_i B(n-k, i, t), in long double
+// with explicit binomials and powers (independent of de Casteljau).
+std::vector<long double> ReferenceDerivative(const std::vector<double>& points,
+                                             int dimension, int k, double t) {
+  const int n = static_cast<int>(points.size()) / dimension - 1;
+  std::vector<long double> result(static_cast<size_t>(dimension), 0.0L);
+  if (k > n) return result;
+  long double factor = 1;
+  for (int q = 0; q < k; ++q) factor *= n - q;
+  for (int i = 0; i <= n - k; ++i) {
+    const long double basis = Binomial(n - k, i) *
+                              std::pow(1.0L - t, n - k - i) *
+                              std::pow(static_cast<long double>(t), i);
+    for (int j = 0; j < dimension; ++j) {
+      long double difference = 0;  // (Delta^k P)_i
+      for (int r = 0; r <= k; ++r) {
+        const long double sign = ((k - r) % 2 == 0) ? 1.0L : -1.0L;
+        difference += sign * Binomial(k, r) *
+                      points[static_cast<size_t>((i + r) * dimension + j)];
+      }
+      result[static_cast<size_t>(j)] += factor * difference * basis;
+    }
+  }
+  return result;
+}
+
+// The worked example of the issue and the de Casteljau slides: the cubic
+// with control points (0,0), (1,2), (3,2), (4,0).
+TEST(BezierTest, CubicWorkedExample) {
+  const std::vector<double> points = {0, 0, 1, 2, 3, 2, 4, 0};
+  const auto result = Evaluate(View(points, 2), {0.0, 0.5, 1.0}, 3);
+  EXPECT_THAT(result[0], ElementsAre(0, 0, 2, 1.5, 4, 0));
+  // C'(0) = 3 (P1 - P0) = (3, 6); C'(1) = 3 (P3 - P2) = (3, -6);
+  // C'(1/2) = 3 (P1 - P0 + 2 (P2 - P1) + P3 - P2) / 4 = (4.5, 0).
+  EXPECT_THAT(result[1], ElementsAre(3, 6, 4.5, 0, 3, -6));
+  // C''(t) = 6 ((1-t)(P2 - 2 P1 + P0) + t (P3 - 2 P2 + P1)).
+  EXPECT_THAT(result[2], ElementsAre(6, -12, 0, -12, -6, -12));
+}
+
+TEST(BezierTest, LinearAndConstantCurves) {
+  const std::vector<double> line = {1, 5};  // 1D: from 1 to 5
+  const auto result = Evaluate(View(line, 1), {0.25}, 3);
+  EXPECT_DOUBLE_EQ(result[0][0], 2.0);
+  EXPECT_DOUBLE_EQ(result[1][0], 4.0);
+  EXPECT_EQ(result[2][0], 0.0);
+  const std::vector<double> point = {7, 8, 9};
+  const auto constant = Evaluate(View(point, 3), {0.3}, 2);
+  EXPECT_THAT(constant[0], ElementsAre(7, 8, 9));
+  EXPECT_THAT(constant[1], ElementsAre(0, 0, 0));
+}
+
+// de Casteljau derivatives agree with the forward-difference Bernstein sum
+// (the rule Q_i = n (P_{i+1} - P_i) applied k times) for degrees 1..20 and
+// dimensions 1..16.
+TEST(BezierTest, DerivativesMatchHodographReference) {
+  std::mt19937_64 rng(42);
+  for (int n = 1; n <= 20; ++n) {
+    const int dimension = 1 + (n * 5) % 16;
+    const std::vector<double> points = RandomValues(
+        rng, static_cast<size_t>((n + 1) * dimension));
+    const std::vector<double> params = {0.0, 0.1, 0.37, 0.5, 0.81, 1.0};
+    const int orders = std::min(n + 2, 6);
+    const auto result = Evaluate(View(points, dimension), params, orders);
+    for (int k = 0; k < orders; ++k) {
+      const double scale = std::pow(2.0 * n, k);  // derivative magnitude
+      for (size_t r = 0; r < params.size(); ++r) {
+        const auto expected = ReferenceDerivative(points, dimension, k, params[r]);
+        for (int j = 0; j < dimension; ++j) {
+          EXPECT_NEAR(result[static_cast<size_t>(k)][r * dimension + j],
+                      static_cast<double>(expected[static_cast<size_t>(j)]),
+                      1e-13 * scale)
+              << "n=" << n << " k=" << k << " t=" << params[r];
+        }
+      }
+    }
+  }
+}
+
+TEST(BezierTest, EndpointInterpolationAndSymmetry) {
+  std::mt19937_64 rng(7);
+  for (int n = 1; n <= 20; ++n) {
+    const int dimension = 3;
+    std::vector<double> points =
+        RandomValues(rng, static_cast<size_t>((n + 1) * dimension));
+    const auto ends = Evaluate(View(points, dimension), {0.0, 1.0}, 1);
+    for (int j = 0; j < dimension; ++j) {
+      EXPECT_EQ(ends[0][j], points[j]);
+      EXPECT_EQ(ends[0][dimension + j], points[n * dimension + j]);
+    }
+    // Reversing the control points reverses the parameter.
+    std::vector<double> reversed(points.size());
+    for (int i = 0; i <= n; ++i) {
+      std::copy_n(points.begin() + (n - i) * dimension, dimension,
+                  reversed.begin() + i * dimension);
+    }
+    const std::vector<double> params = {0.1, 0.25, 0.6, 0.9};
+    std::vector<double> mirrored;
+    for (double t : params) mirrored.push_back(1.0 - t);
+    const auto forward = Evaluate(View(points, dimension), params, 1);
+    const auto backward = Evaluate(View(reversed, dimension), mirrored, 1);
+    EXPECT_THAT(forward[0], Pointwise(DoubleNear(1e-14), backward[0]));
+  }
+}
+
+TEST(BezierTest, BernsteinBasisPartitionOfUnityAndSymmetry) {
+  for (int n = 0; n <= 30; ++n) {
+    std::vector<double> values(static_cast<size_t>(n + 1));
+    std::vector<double> mirrored(static_cast<size_t>(n + 1));
+    for (double t : {0.0, 0.13, 0.5, 0.77, 1.0}) {
+      BernsteinBasis(n, t, absl::MakeSpan(values));
+      BernsteinBasis(n, 1.0 - t, absl::MakeSpan(mirrored));
+      double sum = 0;
+      for (int i = 0; i <= n; ++i) {
+        sum += values[static_cast<size_t>(i)];
+        EXPECT_GE(values[static_cast<size_t>(i)], 0.0);
+        EXPECT_NEAR(values[static_cast<size_t>(i)],
+                    mirrored[static_cast<size_t>(n - i)], 1e-15);
+        const long double explicit_value = Binomial(n, i) *
+                                           std::pow(1.0L - t, n - i) *
+                                           std::pow((long double)t, i);
+        EXPECT_NEAR(values[static_cast<size_t>(i)],
+                    static_cast<double>(explicit_value), 1e-15);
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-14);
+    }
+  }
+}
+
+// The basis sum sum_i B(n,i,t) P_i and de Casteljau agree.
+TEST(BezierTest, DeCasteljauAgreesWithBasisSum) {
+  std::mt19937_64 rng(11);
+  const int n = 12;
+  const int dimension = 2;
+  const std::vector<double> points =
+      RandomValues(rng, static_cast<size_t>((n + 1) * dimension));
+  std::vector<double> params;
+  for (int r = 0; r <= 100; ++r) params.push_back(r / 100.0);
+  const auto result = Evaluate(View(points, dimension), params, 1);
+  std::vector<double> basis(n + 1);
+  for (size_t r = 0; r < params.size(); ++r) {
+    BernsteinBasis(n, params[r], absl::MakeSpan(basis));
+    for (int j = 0; j < dimension; ++j) {
+      double sum = 0;
+      for (int i = 0; i <= n; ++i) sum += basis[i] * points[i * dimension + j];
+      EXPECT_NEAR(result[0][r * dimension + j], sum, 1e-14);
+    }
+  }
+}
+
+// Affine invariance: mapping the control points maps the curve.
+TEST(BezierTest, AffineInvariance) {
+  std::mt19937_64 rng(5);
+  const std::vector<double> points = RandomValues(rng, 8 * 2);
+  std::vector<double> mapped(points.size());
+  for (size_t i = 0; i < points.size(); i += 2) {
+    mapped[i] = 2 * points[i] - 3 * points[i + 1] + 1;
+    mapped[i + 1] = 0.5 * points[i] + points[i + 1] - 4;
+  }
+  const std::vector<double> params = {0.0, 0.2, 0.45, 0.7, 1.0};
+  const auto original = Evaluate(View(points, 2), params, 1)[0];
+  const auto image = Evaluate(View(mapped, 2), params, 1)[0];
+  for (size_t i = 0; i < original.size(); i += 2) {
+    EXPECT_NEAR(image[i], 2 * original[i] - 3 * original[i + 1] + 1, 1e-14);
+    EXPECT_NEAR(image[i + 1], 0.5 * original[i] + original[i + 1] - 4, 1e-14);
+  }
+}
+
+// A rational quadratic with weights (1, sqrt(2)/2, 1) is a quarter of the
+// unit circle: points on the circle, C . C' = 0 and C' . C' + C . C'' = 0.
+TEST(BezierTest, RationalQuarterCircle) {
+  const std::vector<double> points = {1, 0, 1, 1, 0, 1};
+  const std::vector<double> weights = {1, std::numbers::sqrt2 / 2, 1};
+  std::vector<double> params;
+  for (int r = 0; r <= 1000; ++r) params.push_back(r / 1000.0);
+  const auto result = Evaluate(View(points, 2, weights), params, 3);
+  for (size_t r = 0; r < params.size(); ++r) {
+    const double* c = &result[0][2 * r];
+    const double* d1 = &result[1][2 * r];
+    const double* d2 = &result[2][2 * r];
+    EXPECT_NEAR(std::hypot(c[0], c[1]), 1.0, 1e-15);
+    EXPECT_NEAR(c[0] * d1[0] + c[1] * d1[1], 0.0, 1e-14);
+    EXPECT_NEAR(d1[0] * d1[0] + d1[1] * d1[1] + c[0] * d2[0] + c[1] * d2[1],
+                0.0, 1e-13);
+  }
+  // C'(0) = (w1 / w0) * 2 (P1 - P0) = sqrt(2) * (0, 1).
+  EXPECT_NEAR(result[1][0], 0.0, 1e-15);
+  EXPECT_NEAR(result[1][1], std::numbers::sqrt2, 1e-15);
+}
+
+// With all weights equal a rational curve is the polynomial one.
+TEST(BezierTest, EqualWeightsGiveThePolynomialCurve) {
+  std::mt19937_64 rng(3);
+  const std::vector<double> points = RandomValues(rng, 6 * 3);
+  const std::vector<double> weights(6, 2.5);
+  const std::vector<double> params = {0.0, 0.3, 0.5, 0.99};
+  const auto polynomial = Evaluate(View(points, 3), params, 4);
+  const auto rational = Evaluate(View(points, 3, weights), params, 4);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_THAT(rational[k], Pointwise(DoubleNear(1e-11), polynomial[k]));
+  }
+}
+
+TEST(BezierTest, PoolResultsEqualSerialResults) {
+  std::mt19937_64 rng(9);
+  const std::vector<double> points = RandomValues(rng, 10 * 4);
+  std::vector<double> params(100'003);
+  for (size_t r = 0; r < params.size(); ++r) {
+    params[r] = static_cast<double>(r) / static_cast<double>(params.size() - 1);
+  }
+  ThreadPool pool(4);
+  const auto serial = Evaluate(View(points, 4), params, 3);
+  const auto parallel = Evaluate(View(points, 4), params, 3,
+                                 ExecutionContext{.pool = &pool, .grain = 1000});
+  EXPECT_EQ(serial, parallel);
+}
+
+TEST(BezierTest, CancelledTokenStopsTheBatch) {
+  const std::vector<double> points = {0, 0, 1, 1, 2, 0};
+  std::vector<double> params(50'000, 0.5);
+  std::vector<double> out(params.size() * 2);
+  std::vector<absl::Span<double>> output = {absl::MakeSpan(out)};
+  CancellationToken token;
+  token.Cancel();
+  ThreadPool pool(2);
+  const absl::Status status = EvaluateBezierCurve(
+      View(points, 2), params, output,
+      ExecutionContext{.pool = &pool, .cancellation = &token, .grain = 100});
+  EXPECT_EQ(status.code(), absl::StatusCode::kCancelled);
+}
+
+struct InvalidCase {
+  std::vector<double> coordinates;
+  int dimension;
+  std::vector<double> weights;
+  std::vector<double> params;
+  std::string field;
+};
+
+TEST(BezierTest, InvalidInputNamesTheField) {
+  const double nan = std::nan("");
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<InvalidCase> cases = {
+      {{0, 0, 1}, 2, {}, {0.5}, "control_points.coordinates"},
+      {{}, 2, {}, {0.5}, "control_points.coordinates"},
+      {{0, nan, 1, 1}, 2, {}, {0.5}, "control_points.coordinates[1]"},
+      {{0, 0, 1, inf}, 2, {}, {0.5}, "control_points.coordinates[3]"},
+      {{0, 0}, 0, {}, {0.5}, "control_points.dimension"},
+      {{0, 0, 1, 1}, 2, {1}, {0.5}, "weights"},
+      {{0, 0, 1, 1, 2, 2}, 2, {1, -1, 1}, {0.5}, "weights[1]"},
+      {{0, 0, 1, 1, 2, 2}, 2, {1, nan, 1}, {0.5}, "weights[1]"},
+      {{0, 0, 1, 1, 2, 2}, 2, {0, 1, 1}, {0.5}, "weights[0]"},
+      {{0, 0, 1, 1, 2, 2}, 2, {1, 1, 0}, {0.5}, "weights[2]"},
+      {{0, 0, 1, 1}, 2, {}, {0.5, 1.5}, "parameters[1]"},
+      {{0, 0, 1, 1}, 2, {}, {nan}, "parameters[0]"},
+  };
+  for (const InvalidCase& c : cases) {
+    std::vector<double> out(c.params.size() * std::max(c.dimension, 1));
+    std::vector<absl::Span<double>> output = {absl::MakeSpan(out)};
+    const absl::Status status = EvaluateBezierCurve(
+        View(c.coordinates, c.dimension, c.weights), c.params, output);
+    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << c.field;
+    EXPECT_EQ(FieldPathOf(status).value_or(""), c.field) << status;
+  }
+}
+
+// A zero interior weight is a point at infinity whose coordinates give its
+// direction: the course notes' half circle, homogeneous points (1,0,1),
+// (0,1,0), (-1,0,1), is the upper half of the unit circle.
+TEST(BezierTest, ZeroInteriorWeightIsAPointAtInfinity) {
+  const std::vector<double> points = {1, 0, 0, 1, -1, 0};
+  const std::vector<double> weights = {1, 0, 1};
+  std::vector<double> params;
+  for (int r = 0; r <= 1000; ++r) params.push_back(r / 1000.0);
+  const auto result = Evaluate(View(points, 2, weights), params, 2);
+  for (size_t r = 0; r < params.size(); ++r) {
+    const double* c = &result[0][2 * r];
+    const double* d1 = &result[1][2 * r];
+    EXPECT_NEAR(std::hypot(c[0], c[1]), 1.0, 1e-15);
+    EXPECT_GE(c[1], 0.0);
+    EXPECT_NEAR(c[0] * d1[0] + c[1] * d1[1], 0.0, 1e-14);
+  }
+  EXPECT_NEAR(result[0][1000], 0.0, 1e-15);  // C(1/2) = (0, 1)
+  EXPECT_NEAR(result[0][1001], 1.0, 1e-15);
+}
+
+TEST(BezierTest, WronglySizedOutputIsRejected) {
+  const std::vector<double> points = {0, 0, 1, 1};
+  std::vector<double> out(3);
+  std::vector<absl::Span<double>> output = {absl::MakeSpan(out)};
+  const absl::Status status =
+      EvaluateBezierCurve(View(points, 2), std::vector<double>{0.5}, output);
+  EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_THAT(status.message(), HasSubstr("output[0]"));
+}
+
+}  // namespace
+}  // namespace freeform

@@ -1,0 +1,132 @@
+#include "freeform/core/thread_pool.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <mutex>
+#include <set>
+#include <thread>
+#include <vector>
+
+namespace freeform {
+namespace {
+
+TEST(ParallelForTest, CoversEveryIndexExactlyOnce) {
+  ThreadPool pool(3);
+  for (size_t count : {0u, 1u, 7u, 100u, 10'007u}) {
+    for (size_t grain : {1u, 3u, 64u, 100'000u}) {
+      std::vector<std::atomic<int>> hits(count);
+      const absl::Status status = ParallelFor(
+          count, ExecutionContext{.pool = &pool, .grain = grain},
+          [&](size_t begin, size_t end) {
+            ASSERT_LE(end - begin, grain);
+            for (size_t i = begin; i < end; ++i) hits[i].fetch_add(1);
+          });
+      ASSERT_TRUE(status.ok());
+      for (size_t i = 0; i < count; ++i) ASSERT_EQ(hits[i].load(), 1) << i;
+    }
+  }
+}
+
+TEST(ParallelForTest, RunsInlineWithoutPool) {
+  std::set<std::thread::id> threads;
+  ASSERT_TRUE(ParallelFor(1000, ExecutionContext{.grain = 10},
+                          [&](size_t, size_t) {
+                            threads.insert(std::this_thread::get_id());
+                          })
+                  .ok());
+  EXPECT_EQ(threads, std::set<std::thread::id>{std::this_thread::get_id()});
+}
+
+TEST(ParallelForTest, UsesEveryPoolThread) {
+  constexpr int kThreads = 4;
+  ThreadPool pool(kThreads);
+  std::mutex mutex;
+  std::set<std::thread::id> threads;
+  std::atomic<int> arrived{0};
+  // Each of the first kThreads + 1 chunks waits until that many chunks have
+  // started, so the batch can only finish if every worker and the caller
+  // took one.
+  ASSERT_TRUE(ParallelFor(kThreads + 1, ExecutionContext{.pool = &pool,
+                                                          .grain = 1},
+                          [&](size_t, size_t) {
+                            {
+                              std::lock_guard<std::mutex> lock(mutex);
+                              threads.insert(std::this_thread::get_id());
+                            }
+                            arrived.fetch_add(1);
+                            while (arrived.load() < kThreads + 1) {
+                              std::this_thread::yield();
+                            }
+                          })
+                  .ok());
+  EXPECT_EQ(threads.size(), static_cast<size_t>(kThreads + 1));
+}
+
+TEST(ParallelForTest, CancellationSkipsRemainingChunks) {
+  ThreadPool pool(2);
+  CancellationToken token;
+  std::atomic<size_t> ran{0};
+  const absl::Status status = ParallelFor(
+      1000, ExecutionContext{.pool = &pool, .cancellation = &token, .grain = 1},
+      [&](size_t, size_t) {
+        if (ran.fetch_add(1) == 10) token.Cancel();
+      });
+  EXPECT_EQ(status.code(), absl::StatusCode::kCancelled);
+  EXPECT_LT(ran.load(), 1000u);
+}
+
+TEST(ParallelForTest, PassedDeadlineReportsDeadlineExceeded) {
+  CancellationToken token;
+  token.SetDeadline(CancellationToken::Clock::now() -
+                    std::chrono::milliseconds(1));
+  size_t ran = 0;
+  const absl::Status status =
+      ParallelFor(100, ExecutionContext{.cancellation = &token, .grain = 1},
+                  [&](size_t, size_t) { ++ran; });
+  EXPECT_EQ(status.code(), absl::StatusCode::kDeadlineExceeded);
+  EXPECT_EQ(ran, 0u);
+}
+
+TEST(ParallelForTest, FinishedBatchIsOkEvenIfTheDeadlinePassesLater) {
+  CancellationToken token;
+  token.SetDeadline(CancellationToken::Clock::now() +
+                    std::chrono::milliseconds(50));
+  ASSERT_TRUE(ParallelFor(10, ExecutionContext{.cancellation = &token},
+                          [](size_t, size_t) {})
+                  .ok());
+}
+
+TEST(ThreadPoolTest, FullQueueRefusesAndParallelForStillFinishes) {
+  ThreadPool pool(1, /*max_queued=*/1);
+  std::atomic<bool> release{false};
+  ASSERT_TRUE(pool.TrySchedule([&] {
+    while (!release.load()) std::this_thread::yield();
+  }));
+  // The worker is busy; one slot in the queue.
+  while (!pool.TrySchedule([] {})) std::this_thread::yield();
+  EXPECT_FALSE(pool.TrySchedule([] {}));
+  // ParallelFor cannot get helpers but the caller does all the chunks.
+  std::atomic<size_t> sum{0};
+  ASSERT_TRUE(ParallelFor(100, ExecutionContext{.pool = &pool, .grain = 7},
+                          [&](size_t begin, size_t end) {
+                            sum.fetch_add(end - begin);
+                          })
+                  .ok());
+  EXPECT_EQ(sum.load(), 100u);
+  release.store(true);
+}
+
+TEST(ThreadPoolTest, DestructorRunsQueuedTasks) {
+  std::atomic<int> ran{0};
+  {
+    ThreadPool pool(2);
+    for (int i = 0; i < 50; ++i) {
+      ASSERT_TRUE(pool.TrySchedule([&] { ran.fetch_add(1); }));
+    }
+  }
+  EXPECT_EQ(ran.load(), 50);
+}
+
+}  // namespace
+}  // namespace freeform

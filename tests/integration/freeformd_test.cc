@@ -1,0 +1,220 @@
+// The real freeformd binary on a free port, driven through the client
+// library and through the freeform CLI.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <thread>
+
+#include "absl/strings/str_cat.h"
+#include "freeform/client.h"
+
+namespace freeform {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+// A freeformd child process listening on 127.0.0.1 with a kernel-chosen port.
+class ServerProcess {
+ public:
+  ServerProcess() {
+    int out[2];
+    EXPECT_EQ(pipe(out), 0);
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(out[1], STDOUT_FILENO);
+      close(out[0]);
+      close(out[1]);
+      execl(FREEFORMD_PATH, FREEFORMD_PATH, "--listen=127.0.0.1:0",
+            "--threads=2", "--grace_period=5s", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    close(out[1]);
+    stdout_ = fdopen(out[0], "r");
+    std::array<char, 256> line{};
+    if (fgets(line.data(), line.size(), stdout_) != nullptr) {
+      const std::string text(line.data());
+      const size_t colon = text.rfind(':');
+      if (text.find("listening on") != std::string::npos &&
+          colon != std::string::npos) {
+        port_ = std::stoi(text.substr(colon + 1));
+      }
+    }
+  }
+  ~ServerProcess() {
+    if (pid_ > 0 && !exited_) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+    if (stdout_ != nullptr) fclose(stdout_);
+  }
+
+  int port() const { return port_; }
+  std::string address() const { return absl::StrCat("127.0.0.1:", port_); }
+
+  // Sends `signal` and returns the exit status (or -1 after `timeout`).
+  int StopWith(int signal, std::chrono::seconds timeout) {
+    kill(pid_, signal);
+    const auto give_up = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < give_up) {
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        exited_ = true;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* stdout_ = nullptr;
+  int port_ = 0;
+  bool exited_ = false;
+};
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string output;  // stdout, then stderr
+};
+
+CommandResult RunCommand(const std::string& command) {
+  CommandResult result;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  size_t read = 0;
+  while ((read = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    result.output.append(buffer.data(), read);
+  }
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string WriteTempFile(const std::string& contents) {
+  char path[] = "/tmp/freeform_request_XXXXXX";
+  const int fd = mkstemp(path);
+  EXPECT_GE(fd, 0);
+  EXPECT_EQ(write(fd, contents.data(), contents.size()),
+            static_cast<ssize_t>(contents.size()));
+  close(fd);
+  return path;
+}
+
+constexpr char kCubicRequest[] = R"({
+  "curve": {"bezier": {"control_points": {
+      "dimension": 2, "coordinates": [0, 0, 1, 2, 3, 2, 4, 0]}}},
+  "parameters": {"list": {"values": [0, 0.5, 1]}},
+  "derivative_order": 1
+})";
+
+class FreeformdTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_GT(server_.port(), 0) << "freeformd did not report its port";
+    ClientOptions options;
+    options.target = server_.address();
+    options.timeout = std::chrono::seconds(10);
+    auto client = Client::Create(options);
+    ASSERT_TRUE(client.ok()) << client.status();
+    client_ = *std::move(client);
+  }
+
+  std::string Cli(const std::string& arguments) const {
+    return absl::StrCat(FREEFORM_CLI_PATH, " ", arguments, " --address ",
+                        server_.address());
+  }
+
+  ServerProcess server_;
+  std::unique_ptr<Client> client_;
+};
+
+TEST_F(FreeformdTest, ClientEvaluatesTheWorkedCubic) {
+  absl::StatusOr<CurveSamples> samples = client_->EvaluateBezier(
+      2, {0, 0, 1, 2, 3, 2, 4, 0}, {0.0, 0.5, 1.0}, 1);
+  ASSERT_TRUE(samples.ok()) << samples.status();
+  EXPECT_THAT(samples->derivatives[0], ElementsAre(0, 0, 2, 1.5, 4, 0));
+  EXPECT_THAT(samples->Point(1, 0), ElementsAre(3, 6));
+}
+
+TEST_F(FreeformdTest, CliEvalPrintsPointsAndDerivatives) {
+  const std::string file = WriteTempFile(kCubicRequest);
+  CommandResult json = RunCommand(Cli(absl::StrCat("eval --file ", file)));
+  EXPECT_EQ(json.exit_code, 0) << json.output;
+  EXPECT_THAT(json.output, HasSubstr("\"coordinates\": [\n    0,\n    0,\n    2,\n    1.5,\n    4,\n    0\n"));
+
+  CommandResult csv = RunCommand(
+      Cli(absl::StrCat("eval --format csv < ", file)));
+  EXPECT_EQ(csv.exit_code, 0) << csv.output;
+  EXPECT_EQ(csv.output,
+            "index,x0,x1,d1x0,d1x1\n0,0,0,3,6\n1,2,1.5,4.5,0\n2,4,0,3,-6\n");
+  unlink(file.c_str());
+}
+
+TEST_F(FreeformdTest, CliReportsFieldViolationsAndServerStaysUp) {
+  const std::string bad_requests[] = {
+      R"({"curve": {"bezier": {"control_points": {"dimension": 2,
+          "coordinates": [0, 0, 1]}}}, "parameters": {"list": {"values": [0]}}})",
+      R"({"curve": {"bezier": {"control_points": {"dimension": 2,
+          "coordinates": [0, "NaN", 1, 1]}}},
+          "parameters": {"list": {"values": [0]}}})",
+      R"({"curve": {"bezier": {"control_points": {"dimension": 2}}},
+          "parameters": {"list": {"values": [0]}}})",
+  };
+  const std::string fields[] = {"curve.bezier.control_points.coordinates",
+                                "curve.bezier.control_points.coordinates[1]",
+                                "curve.bezier.control_points.coordinates"};
+  for (size_t i = 0; i < std::size(bad_requests); ++i) {
+    const std::string file = WriteTempFile(bad_requests[i]);
+    CommandResult result = RunCommand(Cli(absl::StrCat("eval --file ", file)));
+    EXPECT_EQ(result.exit_code, 1) << result.output;
+    EXPECT_THAT(result.output, HasSubstr("INVALID_ARGUMENT"));
+    EXPECT_THAT(result.output, HasSubstr(absl::StrCat("field ", fields[i], ":")));
+    unlink(file.c_str());
+  }
+  EXPECT_TRUE(client_->CheckHealth().ok());
+}
+
+TEST_F(FreeformdTest, CliHealth) {
+  CommandResult result = RunCommand(Cli("health"));
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_EQ(result.output, "SERVING\n");
+}
+
+TEST_F(FreeformdTest, LargeBatchStreamsAndMatchesUnary) {
+  v1::EvaluateCurveRequest request;
+  v1::Points* points =
+      request.mutable_curve()->mutable_bezier()->mutable_control_points();
+  points->set_dimension(3);
+  for (int i = 0; i < 3 * 8; ++i) points->add_coordinates(std::sin(i));
+  request.mutable_parameters()->mutable_range()->set_count(1'000'000);
+  absl::StatusOr<CurveSamples> unary = client_->EvaluateCurve(request);
+  absl::StatusOr<CurveSamples> streamed = client_->EvaluateCurveStreamed(request);
+  ASSERT_TRUE(unary.ok()) << unary.status();
+  ASSERT_TRUE(streamed.ok()) << streamed.status();
+  EXPECT_EQ(unary->derivatives, streamed->derivatives);
+}
+
+TEST_F(FreeformdTest, SigtermDrainsAndExitsZero) {
+  EXPECT_TRUE(client_->CheckHealth().ok());
+  EXPECT_EQ(server_.StopWith(SIGTERM, std::chrono::seconds(10)), 0);
+}
+
+TEST_F(FreeformdTest, SigintExitsZero) {
+  EXPECT_EQ(server_.StopWith(SIGINT, std::chrono::seconds(10)), 0);
+}
+
+}  // namespace
+}  // namespace freeform
