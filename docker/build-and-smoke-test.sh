@@ -9,7 +9,8 @@
 #   4. checks docker/haproxy.cfg with `haproxy -c` (compose hostnames
 #      replaced by 127.0.0.1, since they only resolve inside compose);
 #   5. builds docker/Dockerfile, runs the image with -p 127.0.0.1:PORT:50051,
-#      waits for `freeform health` to say SERVING, runs the image's
+#      waits for `freeform health` (through the published port) to say
+#      SERVING, evaluates a cubic with `freeform eval`, runs the image's
 #      HEALTHCHECK, checks the server runs as a non-root user;
 #   6. stops it with SIGTERM (`podman stop`) and checks it exits promptly
 #      with status 0; removes the container.
@@ -17,6 +18,7 @@
 # Usage (Debian 12, as root, from anywhere):   docker/build-and-smoke-test.sh
 #
 # Environment:
+#   FREEFORM_REPO        repository root (default: the parent of docker/)
 #   FREEFORM_PODMAN_DIR  podman storage (default /var/tmp/freeform-podman)
 #   IMAGE                image tag to build (default localhost/freeform:smoke)
 #   PORT                 host port on 127.0.0.1 (default: a free one)
@@ -26,7 +28,7 @@
 #   SKIP_BUILD=1         reuse an existing $IMAGE instead of building it
 set -euo pipefail
 
-readonly REPO_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+readonly REPO_ROOT="${FREEFORM_REPO:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}"
 readonly STATE_DIR="${FREEFORM_PODMAN_DIR:-/var/tmp/freeform-podman}"
 readonly IMAGE="${IMAGE:-localhost/freeform:smoke}"
 readonly BASE_IMAGE="docker.io/library/debian:bookworm"
@@ -169,23 +171,28 @@ if [ -z "${PORT:-}" ]; then
   PORT="$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])' 2>/dev/null \
           || echo $((20000 + RANDOM % 20000)))"
 fi
-# --health-cmd none: no systemd timer here; the HEALTHCHECK is run by hand below.
-pm run -d --name "$CONTAINER" -p "127.0.0.1:${PORT}:50051" "$IMAGE" >/dev/null
+# No systemd here to run the HEALTHCHECK on a timer: it is run by hand below.
+# (podman still logs that it cannot reach systemd: kept out of the way.)
+pm run -d --name "$CONTAINER" --health-interval=disable -p "127.0.0.1:${PORT}:50051" "$IMAGE" \
+  >/dev/null 2>"$WORK_DIR/run.err" || { cat "$WORK_DIR/run.err" >&2; die "podman run failed"; }
 log "started $CONTAINER on 127.0.0.1:$PORT"
 
+# The CLI talks to the published port: the host build's if there is one,
+# else the image's own, in a throwaway container on the host's network.
 host_cli="$REPO_ROOT/build/release/client/freeform"
-health() {
+cli() {
   if [ -x "$host_cli" ]; then
-    timeout 5 "$host_cli" health --address "127.0.0.1:$PORT"
+    timeout 10 "$host_cli" "$@" --address "127.0.0.1:$PORT"
   else
-    timeout 5 podman --root "$STATE_DIR/root" --runroot "$STATE_DIR/runroot" \
-      exec "$CONTAINER" freeform health --address 127.0.0.1:50051
+    timeout 20 podman --root "$STATE_DIR/root" --runroot "$STATE_DIR/runroot" \
+      run --rm -i --network=host --entrypoint /opt/freeform/bin/freeform "$IMAGE" \
+      "$@" --address "127.0.0.1:$PORT"
   fi
 }
-[ -x "$host_cli" ] && log "health via host CLI $host_cli" || log "health via the CLI inside the container"
+if [ -x "$host_cli" ]; then log "client: host CLI $host_cli"; else log "client: the image's CLI (--network=host)"; fi
 
 deadline=$((SECONDS + START_TIMEOUT))
-until out="$(health 2>&1)" && grep -q SERVING <<<"$out" && ! grep -q NOT_SERVING <<<"$out"; do
+until out="$(cli health </dev/null 2>&1)" && grep -q SERVING <<<"$out" && ! grep -q NOT_SERVING <<<"$out"; do
   if [ "$(pm inspect --format '{{.State.Running}}' "$CONTAINER")" != true ]; then
     pm logs "$CONTAINER" >&2 || true
     die "container exited before serving"
@@ -195,7 +202,14 @@ until out="$(health 2>&1)" && grep -q SERVING <<<"$out" && ! grep -q NOT_SERVING
 done
 log "health: $out"
 
-pm logs "$CONTAINER" 2>&1 | grep -q "freeformd listening on 0.0.0.0:50051" \
+# The worked cubic of the integration tests: B(0.5) = (2, 1.5).
+request='{"curve": {"bezier": {"control_points": {"dimension": 2, "coordinates": [0, 0, 1, 2, 3, 2, 4, 0]}}},
+          "parameters": {"list": {"values": [0, 0.5, 1]}}, "derivative_order": 1}'
+out="$(cli eval --file - <<<"$request" 2>&1)" || die "freeform eval failed: $out"
+grep -q '"coordinates":\[0,0,2,1.5,4,0\]' <<<"$out" || die "unexpected eval answer: $out"
+log "eval: $out"
+
+grep -q "freeformd listening on 0.0.0.0:50051" <<<"$(pm logs "$CONTAINER" 2>&1)" \
   || { pm logs "$CONTAINER" >&2; die "no 'freeformd listening on 0.0.0.0:50051' line in the logs"; }
 
 uid="$(pm exec "$CONTAINER" id -u)"
@@ -214,7 +228,8 @@ fi
 log "podman stop (SIGTERM, kill after ${STOP_TIMEOUT} s)"
 start=$SECONDS
 timeout $((STOP_TIMEOUT + 30)) podman --root "$STATE_DIR/root" --runroot "$STATE_DIR/runroot" \
-  stop -t "$STOP_TIMEOUT" "$CONTAINER" >/dev/null
+  stop -t "$STOP_TIMEOUT" "$CONTAINER" >/dev/null 2>"$WORK_DIR/stop.err" \
+  || { cat "$WORK_DIR/stop.err" >&2; die "podman stop failed"; }
 elapsed=$((SECONDS - start))
 code="$(pm inspect --format '{{.State.ExitCode}}' "$CONTAINER")"
 log "stopped in ${elapsed} s, exit status $code"

@@ -61,11 +61,10 @@ absl::StatusOr<Message> ParseJson(const std::string& file) {
 
 std::string ToJson(const google::protobuf::Message& message) {
   google::protobuf::util::JsonPrintOptions options;
-  options.add_whitespace = true;
   options.preserve_proto_field_names = true;
   std::string json;
   (void)google::protobuf::util::MessageToJsonString(message, &json, options);
-  return json;
+  return json + "\n";
 }
 
 int ReportError(const absl::Status& status) {

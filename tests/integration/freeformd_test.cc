@@ -153,7 +153,11 @@ TEST_F(FreeformdTest, CliEvalPrintsPointsAndDerivatives) {
   const std::string file = WriteTempFile(kCubicRequest);
   CommandResult json = RunCommand(Cli(absl::StrCat("eval --file ", file)));
   EXPECT_EQ(json.exit_code, 0) << json.output;
-  EXPECT_THAT(json.output, HasSubstr("\"coordinates\": [\n    0,\n    0,\n    2,\n    1.5,\n    4,\n    0\n"));
+  EXPECT_EQ(json.output,
+            R"({"dimension":2,"count":3,"derivatives":[)"
+            R"({"dimension":2,"coordinates":[0,0,2,1.5,4,0]},)"
+            R"({"dimension":2,"coordinates":[3,6,4.5,0,3,-6]}]})"
+            "\n");
 
   CommandResult csv = RunCommand(
       Cli(absl::StrCat("eval --format csv < ", file)));
