@@ -50,8 +50,8 @@ void RunBezier(benchmark::State& state, int degree, size_t count, int orders,
   const std::vector<double> control =
       RandomPoints(3, static_cast<size_t>(degree + 1), 3);
   const std::vector<double> parameters = UniformParameters(count);
-  std::vector<std::vector<double>> buffers(
-      static_cast<size_t>(orders), std::vector<double>(count * 3));
+  std::vector<std::vector<double>> buffers(static_cast<size_t>(orders),
+                                           std::vector<double>(count * 3));
   std::vector<absl::Span<double>> output(buffers.begin(), buffers.end());
   const freeform::BezierCurveView curve{
       .control_points = {.dimension = 3, .coordinates = control},

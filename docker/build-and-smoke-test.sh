@@ -185,7 +185,7 @@ cli() {
     timeout 10 "$host_cli" "$@" --address "127.0.0.1:$PORT"
   else
     timeout 20 podman --root "$STATE_DIR/root" --runroot "$STATE_DIR/runroot" \
-      run --rm -i --network=host --entrypoint /opt/freeform/bin/freeform "$IMAGE" \
+      run --rm -i --network=host --no-healthcheck --entrypoint /opt/freeform/bin/freeform "$IMAGE" \
       "$@" --address "127.0.0.1:$PORT"
   fi
 }
@@ -206,6 +206,7 @@ log "health: $out"
 request='{"curve": {"bezier": {"control_points": {"dimension": 2, "coordinates": [0, 0, 1, 2, 3, 2, 4, 0]}}},
           "parameters": {"list": {"values": [0, 0.5, 1]}}, "derivative_order": 1}'
 out="$(cli eval --file - <<<"$request" 2>&1)" || die "freeform eval failed: $out"
+out="$(tr -d ' \t\n' <<<"$out")"
 grep -q '"coordinates":\[0,0,2,1.5,4,0\]' <<<"$out" || die "unexpected eval answer: $out"
 log "eval: $out"
 

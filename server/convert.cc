@@ -25,12 +25,13 @@ absl::StatusOr<double> RangeEnd(bool has_value, double value, double fallback,
                                 double lo, double hi, absl::string_view field) {
   if (!has_value) return fallback;
   if (!std::isfinite(value)) {
-    return InvalidFieldError(field, absl::StrCat("must be finite, got ", value));
+    return InvalidFieldError(field,
+                             absl::StrCat("must be finite, got ", value));
   }
   if (value < lo || value > hi) {
-    return InvalidFieldError(field, absl::StrCat(value,
-                                                 " is outside the domain [",
-                                                 lo, ", ", hi, "]"));
+    return InvalidFieldError(
+        field,
+        absl::StrCat(value, " is outside the domain [", lo, ", ", hi, "]"));
   }
   return value;
 }
@@ -46,10 +47,9 @@ PointsView ViewOf(const v1::Points& points) {
 }
 
 BezierCurveView ViewOf(const v1::BezierCurve& curve) {
-  return BezierCurveView{
-      .control_points = ViewOf(curve.control_points()),
-      .weights = absl::MakeConstSpan(curve.weights().data(),
-                                     curve.weights_size())};
+  return BezierCurveView{.control_points = ViewOf(curve.control_points()),
+                         .weights = absl::MakeConstSpan(curve.weights().data(),
+                                                        curve.weights_size())};
 }
 
 absl::StatusOr<ParameterSet> ParameterSet::Resolve(
@@ -58,9 +58,8 @@ absl::StatusOr<ParameterSet> ParameterSet::Resolve(
   switch (parameters.kind_case()) {
     case v1::Parameters::kList: {
       const auto& values = parameters.list().values();
-      if (absl::Status status =
-              CheckCount(static_cast<size_t>(values.size()), max_count,
-                         "list.values");
+      if (absl::Status status = CheckCount(static_cast<size_t>(values.size()),
+                                           max_count, "list.values");
           !status.ok()) {
         return status;
       }
@@ -80,8 +79,8 @@ absl::StatusOr<ParameterSet> ParameterSet::Resolve(
           !status.ok()) {
         return status;
       }
-      absl::StatusOr<double> start = RangeEnd(
-          range.has_start(), range.start(), lo, lo, hi, "range.start");
+      absl::StatusOr<double> start =
+          RangeEnd(range.has_start(), range.start(), lo, lo, hi, "range.start");
       if (!start.ok()) return start.status();
       absl::StatusOr<double> end =
           RangeEnd(range.has_end(), range.end(), hi, lo, hi, "range.end");

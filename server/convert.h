@@ -32,8 +32,8 @@ BezierCurveView ViewOf(const v1::BezierCurve& curve);
 class ParameterSet {
  public:
   // Resolve checks `parameters` against the domain [lo, hi] and the count
-  // limit. Field paths are relative to the Parameters message ("list.values[3]",
-  // "range.count"); an empty message is an error naming "".
+  // limit. Field paths are relative to the Parameters message
+  // ("list.values[3]", "range.count"); an empty message is an error naming "".
   static absl::StatusOr<ParameterSet> Resolve(const v1::Parameters& parameters,
                                               double lo, double hi,
                                               size_t max_count);

@@ -28,7 +28,8 @@ struct PreparedCurve {
 
 absl::Status CheckDimension(uint32_t dimension, const ServiceLimits& limits,
                             absl::string_view field) {
-  if (dimension < 1 || dimension > static_cast<uint32_t>(limits.max_dimension)) {
+  if (dimension < 1 ||
+      dimension > static_cast<uint32_t>(limits.max_dimension)) {
     return InvalidFieldError(
         absl::StrCat(field, ".dimension"),
         absl::StrCat("dimension must be between 1 and ", limits.max_dimension,
@@ -47,8 +48,9 @@ absl::Status CheckControlPointCount(size_t count, int degree,
   }
   if (degree > limits.max_degree) {
     return InvalidFieldError(
-        field, absl::StrCat("degree ", degree, " exceeds the server's limit of ",
-                            limits.max_degree, " (--max_degree)"));
+        field,
+        absl::StrCat("degree ", degree, " exceeds the server's limit of ",
+                     limits.max_degree, " (--max_degree)"));
   }
   return absl::OkStatus();
 }
@@ -56,8 +58,8 @@ absl::Status CheckControlPointCount(size_t count, int degree,
 // Fields in errors are relative to the BezierCurve message.
 absl::StatusOr<PreparedCurve> PrepareBezier(const v1::BezierCurve& message,
                                             const ServiceLimits& limits) {
-  if (absl::Status status = CheckDimension(
-          message.control_points().dimension(), limits, "control_points");
+  if (absl::Status status = CheckDimension(message.control_points().dimension(),
+                                           limits, "control_points");
       !status.ok()) {
     return status;
   }
@@ -124,8 +126,8 @@ absl::StatusOr<EvaluationPlan> PlanEvaluation(
       static_cast<uint32_t>(limits.max_derivative_order)) {
     return InvalidFieldError(
         "derivative_order",
-        absl::StrCat("must be at most ", limits.max_derivative_order,
-                     ", got ", request.derivative_order()));
+        absl::StrCat("must be at most ", limits.max_derivative_order, ", got ",
+                     request.derivative_order()));
   }
   switch (request.bezier_algorithm()) {
     case v1::BEZIER_ALGORITHM_AUTO:
@@ -149,10 +151,10 @@ absl::StatusOr<EvaluationPlan> PlanEvaluation(
                       .orders = request.derivative_order() + 1u};
   const size_t values = plan.parameters.size() * plan.ValuesPerParameter();
   if (values > limits.max_output_values) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        "parameters: the answer would hold ", values,
-        " numbers, over the server's limit of ", limits.max_output_values,
-        " (--max_output_values)"));
+    return absl::ResourceExhaustedError(
+        absl::StrCat("parameters: the answer would hold ", values,
+                     " numbers, over the server's limit of ",
+                     limits.max_output_values, " (--max_output_values)"));
   }
   return plan;
 }
@@ -197,10 +199,10 @@ grpc::Status CurveServiceImpl::Evaluate(grpc::ServerContext* context,
         const size_t count = plan->parameters.size();
         const size_t bytes = count * plan->ValuesPerParameter() * 8;
         if (bytes > static_cast<size_t>(limits_.max_message_bytes)) {
-          return absl::ResourceExhaustedError(absl::StrCat(
-              "parameters: the answer would take ", bytes,
-              " bytes, over the message limit of ", limits_.max_message_bytes,
-              "; use EvaluateStream"));
+          return absl::ResourceExhaustedError(
+              absl::StrCat("parameters: the answer would take ", bytes,
+                           " bytes, over the message limit of ",
+                           limits_.max_message_bytes, "; use EvaluateStream"));
         }
         absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
             admission_.Admit(count > limits_.grain);
@@ -225,12 +227,13 @@ grpc::Status CurveServiceImpl::EvaluateStream(
         absl::StatusOr<EvaluationPlan> plan = PlanEvaluation(*request, limits_);
         if (!plan.ok()) return plan.status();
         const size_t per_parameter_bytes = plan->ValuesPerParameter() * 8;
-        const size_t max_chunk = std::max<size_t>(
-            1, static_cast<size_t>(limits_.max_message_bytes) / 2 /
-                   per_parameter_bytes);
-        const size_t chunk = std::min(
-            max_chunk, request->chunk_size() > 0 ? request->chunk_size()
-                                                 : limits_.default_stream_chunk);
+        const size_t max_chunk =
+            std::max<size_t>(1, static_cast<size_t>(limits_.max_message_bytes) /
+                                    2 / per_parameter_bytes);
+        const size_t chunk =
+            std::min(max_chunk, request->chunk_size() > 0
+                                    ? request->chunk_size()
+                                    : limits_.default_stream_chunk);
         absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
             admission_.Admit(plan->parameters.size() > limits_.grain);
         if (!ticket.ok()) return ticket.status();
@@ -264,7 +267,8 @@ grpc::Status CurveServiceImpl::EvaluateStream(
 grpc::Status CurveServiceImpl::EvaluateBasis(
     grpc::ServerContext* context, const v1::EvaluateBasisRequest* request,
     v1::EvaluateBasisResponse*) {
-  return RunUnimplemented("CurveService.EvaluateBasis", context, *request, "issue #3");
+  return RunUnimplemented("CurveService.EvaluateBasis", context, *request,
+                          "issue #3");
 }
 
 grpc::Status CurveServiceImpl::Split(grpc::ServerContext* context,
@@ -276,43 +280,50 @@ grpc::Status CurveServiceImpl::Split(grpc::ServerContext* context,
 grpc::Status CurveServiceImpl::InsertKnots(
     grpc::ServerContext* context, const v1::InsertKnotsRequest* request,
     v1::InsertKnotsResponse*) {
-  return RunUnimplemented("CurveService.InsertKnots", context, *request, "issue #5");
+  return RunUnimplemented("CurveService.InsertKnots", context, *request,
+                          "issue #5");
 }
 
 grpc::Status CurveServiceImpl::Decompose(
     grpc::ServerContext* context, const v1::DecomposeCurveRequest* request,
     v1::DecomposeCurveResponse*) {
-  return RunUnimplemented("CurveService.Decompose", context, *request, "issue #5");
+  return RunUnimplemented("CurveService.Decompose", context, *request,
+                          "issue #5");
 }
 
 grpc::Status CurveServiceImpl::Subdivide(grpc::ServerContext* context,
                                          const v1::SubdivideRequest* request,
                                          v1::SubdivideResponse*) {
-  return RunUnimplemented("CurveService.Subdivide", context, *request, "issue #5");
+  return RunUnimplemented("CurveService.Subdivide", context, *request,
+                          "issue #5");
 }
 
 grpc::Status CurveServiceImpl::Tessellate(
     grpc::ServerContext* context, const v1::TessellateCurveRequest* request,
     v1::TessellateCurveResponse*) {
-  return RunUnimplemented("CurveService.Tessellate", context, *request, "issue #5");
+  return RunUnimplemented("CurveService.Tessellate", context, *request,
+                          "issue #5");
 }
 
 grpc::Status CurveServiceImpl::ElevateDegree(
     grpc::ServerContext* context, const v1::ElevateCurveDegreeRequest* request,
     v1::ElevateCurveDegreeResponse*) {
-  return RunUnimplemented("CurveService.ElevateDegree", context, *request, "issue #6");
+  return RunUnimplemented("CurveService.ElevateDegree", context, *request,
+                          "issue #6");
 }
 
 grpc::Status CurveServiceImpl::ReduceDegree(
     grpc::ServerContext* context, const v1::ReduceCurveDegreeRequest* request,
     v1::ReduceCurveDegreeResponse*) {
-  return RunUnimplemented("CurveService.ReduceDegree", context, *request, "issue #6");
+  return RunUnimplemented("CurveService.ReduceDegree", context, *request,
+                          "issue #6");
 }
 
 grpc::Status CurveServiceImpl::Interpolate(
     grpc::ServerContext* context, const v1::InterpolateCurveRequest* request,
     v1::InterpolateCurveResponse*) {
-  return RunUnimplemented("CurveService.Interpolate", context, *request, "issue #7");
+  return RunUnimplemented("CurveService.Interpolate", context, *request,
+                          "issue #7");
 }
 
 }  // namespace freeform::server

@@ -31,7 +31,8 @@ grpc::Status ToGrpcStatus(const absl::Status& status,
   return grpc::Status(code, message, details.SerializeAsString());
 }
 
-absl::Status NotYetImplemented(absl::string_view what, absl::string_view issue) {
+absl::Status NotYetImplemented(absl::string_view what,
+                               absl::string_view issue) {
   return absl::UnimplementedError(absl::StrCat(
       what, " is not implemented yet in this freeformd (it lands with ", issue,
       ")"));

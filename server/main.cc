@@ -101,8 +101,8 @@ int main(int argc, char** argv) {
   const std::string host = listen.substr(0, listen.rfind(':'));
   std::cout << "freeformd listening on " << host << ":" << (*server)->port()
             << std::endl;
-  spdlog::info("serving on {}:{} with {} math threads", host,
-               (*server)->port(), (*server)->pool_size());
+  spdlog::info("serving on {}:{} with {} math threads", host, (*server)->port(),
+               (*server)->pool_size());
 
   int signal_number = 0;
   sigwait(&stop_signals, &signal_number);

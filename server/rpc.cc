@@ -48,12 +48,13 @@ grpc::Status RunRpc(
       response != nullptr && status.ok()
           ? response->ByteSizeLong()
           : (streamed_bytes != nullptr ? *streamed_bytes : 0);
-  spdlog::info("rpc method={} peer={} request_bytes={} response_bytes={} "
-               "status={} micros={}{}{}",
-               std::string(method), context->peer(), request.ByteSizeLong(),
-               response_bytes, absl::StatusCodeToString(result.code()),
-               micros, status.ok() ? "" : " error=\"",
-               status.ok() ? "" : status.error_message() + "\"");
+  spdlog::info(
+      "rpc method={} peer={} request_bytes={} response_bytes={} "
+      "status={} micros={}{}{}",
+      std::string(method), context->peer(), request.ByteSizeLong(),
+      response_bytes, absl::StatusCodeToString(result.code()), micros,
+      status.ok() ? "" : " error=\"",
+      status.ok() ? "" : status.error_message() + "\"");
   return status;
 }
 

@@ -11,10 +11,9 @@
 #include <google/protobuf/message.h>
 #include <grpcpp/server_context.h>
 
-#include "absl/strings/string_view.h"
-
 #include "absl/functional/function_ref.h"
 #include "absl/status/status.h"
+#include "absl/strings/string_view.h"
 #include "freeform/core/cancellation.h"
 
 namespace freeform::server {
@@ -22,12 +21,12 @@ namespace freeform::server {
 // RunRpc runs `handler` for `method`. Field paths in the handler's errors
 // must be full paths into the request. `response` may be null for streaming
 // RPCs (the logged size is then `*streamed_bytes`, when given).
-grpc::Status RunRpc(absl::string_view method, grpc::ServerContext* context,
-                    const google::protobuf::Message& request,
-                    const google::protobuf::Message* response,
-                    absl::FunctionRef<absl::Status(const CancellationToken&)>
-                        handler,
-                    const size_t* streamed_bytes = nullptr);
+grpc::Status RunRpc(
+    absl::string_view method, grpc::ServerContext* context,
+    const google::protobuf::Message& request,
+    const google::protobuf::Message* response,
+    absl::FunctionRef<absl::Status(const CancellationToken&)> handler,
+    const size_t* streamed_bytes = nullptr);
 
 // RunUnimplemented answers UNIMPLEMENTED for `method`, saying which issue
 // brings it, and logs the call like RunRpc.

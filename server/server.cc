@@ -5,24 +5,15 @@
 #include <grpcpp/security/server_credentials.h>
 #include <grpcpp/server_builder.h>
 
-#include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "curve_service.h"
+#include "freeform/core/file.h"
 #include "surface_service.h"
 
 namespace freeform::server {
 namespace {
-
-absl::StatusOr<std::string> ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return absl::NotFoundError(absl::StrCat("cannot read ", path));
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  return contents.str();
-}
 
 absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> Credentials(
     const TlsOptions& tls) {
@@ -32,14 +23,14 @@ absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> Credentials(
   if (tls.cert_file.empty() || tls.key_file.empty()) {
     return absl::InvalidArgumentError("TLS needs both a cert and a key file");
   }
-  absl::StatusOr<std::string> cert = ReadFile(tls.cert_file);
+  absl::StatusOr<std::string> cert = ReadFileToString(tls.cert_file);
   if (!cert.ok()) return cert.status();
-  absl::StatusOr<std::string> key = ReadFile(tls.key_file);
+  absl::StatusOr<std::string> key = ReadFileToString(tls.key_file);
   if (!key.ok()) return key.status();
   grpc::SslServerCredentialsOptions options;
   options.pem_key_cert_pairs.push_back({*key, *cert});
   if (!tls.client_ca_file.empty()) {
-    absl::StatusOr<std::string> ca = ReadFile(tls.client_ca_file);
+    absl::StatusOr<std::string> ca = ReadFileToString(tls.client_ca_file);
     if (!ca.ok()) return ca.status();
     options.pem_root_certs = *ca;
     options.client_certificate_request =
@@ -86,8 +77,8 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   if (grpc::HealthCheckServiceInterface* health =
           server->server_->GetHealthCheckService();
       health != nullptr) {
-    for (const char* name : {"", "freeform.v1.CurveService",
-                             "freeform.v1.SurfaceService"}) {
+    for (const char* name :
+         {"", "freeform.v1.CurveService", "freeform.v1.SurfaceService"}) {
       health->SetServingStatus(name, true);
     }
   }

@@ -10,16 +10,15 @@
 // its field violations), 2 for unusable input.
 #include <google/protobuf/util/json_util.h>
 
-#include <fstream>
 #include <iostream>
 #include <iterator>
-#include <sstream>
 #include <string>
 
 #include "CLI/CLI.hpp"
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
+#include "freeform/core/file.h"
 
 namespace {
 
@@ -34,11 +33,7 @@ absl::StatusOr<std::string> ReadInput(const std::string& file) {
   if (file.empty() || file == "-") {
     return std::string(std::istreambuf_iterator<char>(std::cin), {});
   }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return absl::NotFoundError(absl::StrCat("cannot read ", file));
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  return contents.str();
+  return freeform::ReadFileToString(file);
 }
 
 template <typename Message>
@@ -51,10 +46,9 @@ absl::StatusOr<Message> ParseJson(const std::string& file) {
   const auto status =
       google::protobuf::util::JsonStringToMessage(*json, &message, options);
   if (!status.ok()) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("the request is not valid JSON for ",
-                     Message::descriptor()->full_name(), ": ",
-                     status.ToString()));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "the request is not valid JSON for ",
+        Message::descriptor()->full_name(), ": ", status.ToString()));
   }
   return message;
 }
@@ -72,8 +66,8 @@ int ReportError(const absl::Status& status) {
             << status.message() << "\n";
   for (const freeform::FieldViolation& violation :
        freeform::FieldViolationsOf(status)) {
-    std::cerr << "  field " << violation.field << ": "
-              << violation.description << "\n";
+    std::cerr << "  field " << violation.field << ": " << violation.description
+              << "\n";
   }
   return 1;
 }
@@ -159,11 +153,13 @@ int RunHealth(const CommonFlags& flags, const std::string& service) {
 }
 
 void AddCommonFlags(CLI::App& command, CommonFlags& flags) {
-  command.add_option("-a,--address", flags.address,
-                     "Server address (host:port or any gRPC target)")
+  command
+      .add_option("-a,--address", flags.address,
+                  "Server address (host:port or any gRPC target)")
       ->capture_default_str();
-  command.add_option("--timeout", flags.timeout_seconds,
-                     "Deadline of the call in seconds")
+  command
+      .add_option("--timeout", flags.timeout_seconds,
+                  "Deadline of the call in seconds")
       ->capture_default_str();
   command.add_flag("--tls", flags.use_tls, "Connect with TLS");
   command.add_option("--tls_root_ca", flags.root_ca,
@@ -177,8 +173,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   CommonFlags flags;
 
-  CLI::App* eval = app.add_subcommand(
-      "eval", "Evaluate a curve: CurveService.Evaluate");
+  CLI::App* eval =
+      app.add_subcommand("eval", "Evaluate a curve: CurveService.Evaluate");
   std::string file;
   bool stream = false;
   std::string format = "json";

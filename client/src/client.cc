@@ -3,12 +3,10 @@
 #include <grpcpp/create_channel.h>
 #include <grpcpp/security/credentials.h>
 
-#include <fstream>
-#include <sstream>
-
 #include "absl/strings/cord.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "freeform/core/file.h"
 #include "google/rpc/error_details.pb.h"
 #include "google/rpc/status.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
@@ -35,27 +33,19 @@ constexpr char kRetryServiceConfig[] = R"({
   }]
 })";
 
-absl::StatusOr<std::string> ReadFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return absl::NotFoundError(absl::StrCat("cannot read ", path));
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  return contents.str();
-}
-
 absl::StatusOr<std::shared_ptr<grpc::ChannelCredentials>> Credentials(
     const ClientOptions& options) {
   if (!options.use_tls) return grpc::InsecureChannelCredentials();
   grpc::SslCredentialsOptions ssl;
   if (!options.root_ca_file.empty()) {
-    absl::StatusOr<std::string> ca = ReadFile(options.root_ca_file);
+    absl::StatusOr<std::string> ca = ReadFileToString(options.root_ca_file);
     if (!ca.ok()) return ca.status();
     ssl.pem_root_certs = *ca;
   }
   if (!options.cert_file.empty()) {
-    absl::StatusOr<std::string> cert = ReadFile(options.cert_file);
+    absl::StatusOr<std::string> cert = ReadFileToString(options.cert_file);
     if (!cert.ok()) return cert.status();
-    absl::StatusOr<std::string> key = ReadFile(options.key_file);
+    absl::StatusOr<std::string> key = ReadFileToString(options.key_file);
     if (!key.ok()) return key.status();
     ssl.pem_cert_chain = *cert;
     ssl.pem_private_key = *key;
@@ -73,7 +63,8 @@ absl::Status Append(const v1::EvaluateCurveResponse& response,
                     CurveSamples& samples) {
   if (samples.derivatives.empty()) {
     samples.dimension = static_cast<int>(response.dimension());
-    samples.derivatives.resize(static_cast<size_t>(response.derivatives_size()));
+    samples.derivatives.resize(
+        static_cast<size_t>(response.derivatives_size()));
   }
   if (static_cast<size_t>(response.derivatives_size()) !=
           samples.derivatives.size() ||
@@ -132,8 +123,8 @@ absl::StatusOr<std::unique_ptr<Client>> Client::Create(
   std::string config = kRetryServiceConfig;
   config.replace(config.find("%s"), 2, policy);
   if (!options.retry_unavailable) {
-    config = absl::StrCat(R"({"loadBalancingConfig": [{")", policy,
-                          R"(": {}}]})");
+    config =
+        absl::StrCat(R"({"loadBalancingConfig": [{")", policy, R"(": {}}]})");
   }
   arguments.SetServiceConfigJSON(config);
   auto channel = grpc::CreateCustomChannel(ChannelTarget(options), *credentials,
@@ -158,8 +149,8 @@ absl::StatusOr<CurveSamples> Client::EvaluateBezier(
     int dimension, absl::Span<const double> control_points,
     absl::Span<const double> parameters, int derivative_order) {
   v1::EvaluateCurveRequest request;
-  v1::Points* points = request.mutable_curve()->mutable_bezier()
-                           ->mutable_control_points();
+  v1::Points* points =
+      request.mutable_curve()->mutable_bezier()->mutable_control_points();
   points->set_dimension(static_cast<uint32_t>(dimension));
   points->mutable_coordinates()->Add(control_points.begin(),
                                      control_points.end());
@@ -173,7 +164,8 @@ absl::StatusOr<CurveSamples> Client::EvaluateCurve(
     const v1::EvaluateCurveRequest& request) {
   std::unique_ptr<grpc::ClientContext> context = NewContext();
   v1::EvaluateCurveResponse response;
-  if (grpc::Status status = curves_->Evaluate(context.get(), request, &response);
+  if (grpc::Status status =
+          curves_->Evaluate(context.get(), request, &response);
       !status.ok()) {
     return FromGrpcStatus(status);
   }
@@ -216,10 +208,10 @@ absl::Status Client::CheckHealth(const std::string& service) {
     return FromGrpcStatus(status);
   }
   if (response.status() != grpc::health::v1::HealthCheckResponse::SERVING) {
-    return absl::UnavailableError(absl::StrCat(
-        "not serving: ",
-        grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
-            response.status())));
+    return absl::UnavailableError(
+        absl::StrCat("not serving: ",
+                     grpc::health::v1::HealthCheckResponse::ServingStatus_Name(
+                         response.status())));
   }
   return absl::OkStatus();
 }

@@ -31,8 +31,8 @@ std::vector<double> Homogenize(const BezierCurveView& curve) {
 }  // namespace
 
 absl::Status ValidateBezierCurve(const BezierCurveView& curve) {
-  if (absl::Status status = ValidatePoints(curve.control_points,
-                                           "control_points");
+  if (absl::Status status =
+          ValidatePoints(curve.control_points, "control_points");
       !status.ok()) {
     return status;
   }
@@ -40,8 +40,8 @@ absl::Status ValidateBezierCurve(const BezierCurveView& curve) {
   const size_t count = curve.control_points.size();
   if (curve.weights.size() != count) {
     return InvalidFieldError(
-        "weights", absl::StrCat("has ", curve.weights.size(),
-                                " weights for ", count, " control points"));
+        "weights", absl::StrCat("has ", curve.weights.size(), " weights for ",
+                                count, " control points"));
   }
   for (size_t i = 0; i < count; ++i) {
     const double weight = curve.weights[i];
@@ -155,8 +155,7 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
   if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
     return status;
   }
-  if (absl::Status status = ValidateInRange(parameters, 0.0, 1.0,
-                                            "parameters");
+  if (absl::Status status = ValidateInRange(parameters, 0.0, 1.0, "parameters");
       !status.ok()) {
     return status;
   }
@@ -172,13 +171,12 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
   const int work_dimension = rational ? dimension + 1 : dimension;
   const std::vector<double> homogeneous =
       rational ? Homogenize(curve) : std::vector<double>();
-  const double* control = rational ? homogeneous.data()
-                                   : curve.control_points.coordinates.data();
+  const double* control =
+      rational ? homogeneous.data() : curve.control_points.coordinates.data();
   const size_t dim = static_cast<size_t>(dimension);
   const size_t orders = output.size();
 
-  return ParallelFor(parameters.size(), context, [&](size_t begin,
-                                                     size_t end) {
+  return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
     const size_t work = static_cast<size_t>(work_dimension);
     const size_t levels = 2 * static_cast<size_t>(n + 1) * work;
     std::vector<double> scratch(levels + orders * work + orders * dim);

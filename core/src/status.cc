@@ -10,7 +10,8 @@ constexpr absl::string_view kFieldPathPayload = "type.freeform.dev/field_path";
 
 }  // namespace
 
-absl::Status InvalidFieldError(absl::string_view field, absl::string_view rule) {
+absl::Status InvalidFieldError(absl::string_view field,
+                               absl::string_view rule) {
   absl::Status status =
       absl::InvalidArgumentError(absl::StrCat(field, ": ", rule));
   status.SetPayload(kFieldPathPayload, absl::Cord(field));

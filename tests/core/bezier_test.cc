@@ -19,10 +19,9 @@ using ::testing::HasSubstr;
 using ::testing::Pointwise;
 
 // Evaluates with `orders` derivative buffers and returns them.
-std::vector<std::vector<double>> Evaluate(const BezierCurveView& curve,
-                                          const std::vector<double>& params,
-                                          int orders,
-                                          const ExecutionContext& context = {}) {
+std::vector<std::vector<double>> Evaluate(
+    const BezierCurveView& curve, const std::vector<double>& params, int orders,
+    const ExecutionContext& context = {}) {
   std::vector<std::vector<double>> buffers(
       static_cast<size_t>(orders),
       std::vector<double>(params.size() *
@@ -113,15 +112,16 @@ TEST(BezierTest, DerivativesMatchHodographReference) {
   std::mt19937_64 rng(42);
   for (int n = 1; n <= 20; ++n) {
     const int dimension = 1 + (n * 5) % 16;
-    const std::vector<double> points = RandomValues(
-        rng, static_cast<size_t>((n + 1) * dimension));
+    const std::vector<double> points =
+        RandomValues(rng, static_cast<size_t>((n + 1) * dimension));
     const std::vector<double> params = {0.0, 0.1, 0.37, 0.5, 0.81, 1.0};
     const int orders = std::min(n + 2, 6);
     const auto result = Evaluate(View(points, dimension), params, orders);
     for (int k = 0; k < orders; ++k) {
       const double scale = std::pow(2.0 * n, k);  // derivative magnitude
       for (size_t r = 0; r < params.size(); ++r) {
-        const auto expected = ReferenceDerivative(points, dimension, k, params[r]);
+        const auto expected =
+            ReferenceDerivative(points, dimension, k, params[r]);
         for (int j = 0; j < dimension; ++j) {
           EXPECT_NEAR(result[static_cast<size_t>(k)][r * dimension + j],
                       static_cast<double>(expected[static_cast<size_t>(j)]),
@@ -266,8 +266,9 @@ TEST(BezierTest, PoolResultsEqualSerialResults) {
   }
   ThreadPool pool(4);
   const auto serial = Evaluate(View(points, 4), params, 3);
-  const auto parallel = Evaluate(View(points, 4), params, 3,
-                                 ExecutionContext{.pool = &pool, .grain = 1000});
+  const auto parallel =
+      Evaluate(View(points, 4), params, 3,
+               ExecutionContext{.pool = &pool, .grain = 1000});
   EXPECT_EQ(serial, parallel);
 }
 

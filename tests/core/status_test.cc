@@ -14,15 +14,13 @@ TEST(FieldErrorTest, CarriesPathAndRule) {
 }
 
 TEST(FieldErrorTest, PrefixJoinsPaths) {
-  const absl::Status status =
-      PrefixFieldPath(InvalidFieldError("weights[2]", "negative"),
-                      "curve.bezier");
+  const absl::Status status = PrefixFieldPath(
+      InvalidFieldError("weights[2]", "negative"), "curve.bezier");
   EXPECT_EQ(FieldPathOf(status), "curve.bezier.weights[2]");
   EXPECT_EQ(status.message(), "curve.bezier.weights[2]: negative");
   EXPECT_EQ(FieldPathOf(PrefixFieldPath(InvalidFieldError("[3]", "x"), "v")),
             "v[3]");
-  EXPECT_EQ(FieldPathOf(PrefixFieldPath(InvalidFieldError("", "x"), "v")),
-            "v");
+  EXPECT_EQ(FieldPathOf(PrefixFieldPath(InvalidFieldError("", "x"), "v")), "v");
 }
 
 TEST(FieldErrorTest, OtherErrorsPassUnchanged) {

@@ -16,12 +16,13 @@ TEST(ParallelForTest, CoversEveryIndexExactlyOnce) {
   for (size_t count : {0u, 1u, 7u, 100u, 10'007u}) {
     for (size_t grain : {1u, 3u, 64u, 100'000u}) {
       std::vector<std::atomic<int>> hits(count);
-      const absl::Status status = ParallelFor(
-          count, ExecutionContext{.pool = &pool, .grain = grain},
-          [&](size_t begin, size_t end) {
-            ASSERT_LE(end - begin, grain);
-            for (size_t i = begin; i < end; ++i) hits[i].fetch_add(1);
-          });
+      const absl::Status status =
+          ParallelFor(count, ExecutionContext{.pool = &pool, .grain = grain},
+                      [&](size_t begin, size_t end) {
+                        ASSERT_LE(end - begin, grain);
+                        for (size_t i = begin; i < end; ++i)
+                          hits[i].fetch_add(1);
+                      });
       ASSERT_TRUE(status.ok());
       for (size_t i = 0; i < count; ++i) ASSERT_EQ(hits[i].load(), 1) << i;
     }
@@ -30,11 +31,10 @@ TEST(ParallelForTest, CoversEveryIndexExactlyOnce) {
 
 TEST(ParallelForTest, RunsInlineWithoutPool) {
   std::set<std::thread::id> threads;
-  ASSERT_TRUE(ParallelFor(1000, ExecutionContext{.grain = 10},
-                          [&](size_t, size_t) {
-                            threads.insert(std::this_thread::get_id());
-                          })
-                  .ok());
+  ASSERT_TRUE(
+      ParallelFor(1000, ExecutionContext{.grain = 10}, [&](size_t, size_t) {
+        threads.insert(std::this_thread::get_id());
+      }).ok());
   EXPECT_EQ(threads, std::set<std::thread::id>{std::this_thread::get_id()});
 }
 
@@ -47,8 +47,8 @@ TEST(ParallelForTest, UsesEveryPoolThread) {
   // Each of the first kThreads + 1 chunks waits until that many chunks have
   // started, so the batch can only finish if every worker and the caller
   // took one.
-  ASSERT_TRUE(ParallelFor(kThreads + 1, ExecutionContext{.pool = &pool,
-                                                          .grain = 1},
+  ASSERT_TRUE(ParallelFor(kThreads + 1,
+                          ExecutionContext{.pool = &pool, .grain = 1},
                           [&](size_t, size_t) {
                             {
                               std::lock_guard<std::mutex> lock(mutex);
@@ -108,11 +108,10 @@ TEST(ThreadPoolTest, FullQueueRefusesAndParallelForStillFinishes) {
   EXPECT_FALSE(pool.TrySchedule([] {}));
   // ParallelFor cannot get helpers but the caller does all the chunks.
   std::atomic<size_t> sum{0};
-  ASSERT_TRUE(ParallelFor(100, ExecutionContext{.pool = &pool, .grain = 7},
-                          [&](size_t begin, size_t end) {
-                            sum.fetch_add(end - begin);
-                          })
-                  .ok());
+  ASSERT_TRUE(
+      ParallelFor(100, ExecutionContext{.pool = &pool, .grain = 7},
+                  [&](size_t begin, size_t end) { sum.fetch_add(end - begin); })
+          .ok());
   EXPECT_EQ(sum.load(), 100u);
   release.store(true);
 }

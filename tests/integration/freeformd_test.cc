@@ -1,12 +1,11 @@
 // The real freeformd binary on a free port, driven through the client
 // library and through the freeform CLI.
 #include <fcntl.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include <array>
 #include <chrono>
@@ -142,8 +141,8 @@ class FreeformdTest : public ::testing::Test {
 };
 
 TEST_F(FreeformdTest, ClientEvaluatesTheWorkedCubic) {
-  absl::StatusOr<CurveSamples> samples = client_->EvaluateBezier(
-      2, {0, 0, 1, 2, 3, 2, 4, 0}, {0.0, 0.5, 1.0}, 1);
+  absl::StatusOr<CurveSamples> samples =
+      client_->EvaluateBezier(2, {0, 0, 1, 2, 3, 2, 4, 0}, {0.0, 0.5, 1.0}, 1);
   ASSERT_TRUE(samples.ok()) << samples.status();
   EXPECT_THAT(samples->derivatives[0], ElementsAre(0, 0, 2, 1.5, 4, 0));
   EXPECT_THAT(samples->Point(1, 0), ElementsAre(3, 6));
@@ -153,14 +152,13 @@ TEST_F(FreeformdTest, CliEvalPrintsPointsAndDerivatives) {
   const std::string file = WriteTempFile(kCubicRequest);
   CommandResult json = RunCommand(Cli(absl::StrCat("eval --file ", file)));
   EXPECT_EQ(json.exit_code, 0) << json.output;
-  EXPECT_EQ(json.output,
-            R"({"dimension":2,"count":3,"derivatives":[)"
-            R"({"dimension":2,"coordinates":[0,0,2,1.5,4,0]},)"
-            R"({"dimension":2,"coordinates":[3,6,4.5,0,3,-6]}]})"
-            "\n");
+  EXPECT_EQ(json.output, R"({"dimension":2,"count":3,"derivatives":[)"
+                         R"({"dimension":2,"coordinates":[0,0,2,1.5,4,0]},)"
+                         R"({"dimension":2,"coordinates":[3,6,4.5,0,3,-6]}]})"
+                         "\n");
 
-  CommandResult csv = RunCommand(
-      Cli(absl::StrCat("eval --format csv < ", file)));
+  CommandResult csv =
+      RunCommand(Cli(absl::StrCat("eval --format csv < ", file)));
   EXPECT_EQ(csv.exit_code, 0) << csv.output;
   EXPECT_EQ(csv.output,
             "index,x0,x1,d1x0,d1x1\n0,0,0,3,6\n1,2,1.5,4.5,0\n2,4,0,3,-6\n");
@@ -185,7 +183,8 @@ TEST_F(FreeformdTest, CliReportsFieldViolationsAndServerStaysUp) {
     CommandResult result = RunCommand(Cli(absl::StrCat("eval --file ", file)));
     EXPECT_EQ(result.exit_code, 1) << result.output;
     EXPECT_THAT(result.output, HasSubstr("INVALID_ARGUMENT"));
-    EXPECT_THAT(result.output, HasSubstr(absl::StrCat("field ", fields[i], ":")));
+    EXPECT_THAT(result.output,
+                HasSubstr(absl::StrCat("field ", fields[i], ":")));
     unlink(file.c_str());
   }
   EXPECT_TRUE(client_->CheckHealth().ok());
@@ -205,7 +204,8 @@ TEST_F(FreeformdTest, LargeBatchStreamsAndMatchesUnary) {
   for (int i = 0; i < 3 * 8; ++i) points->add_coordinates(std::sin(i));
   request.mutable_parameters()->mutable_range()->set_count(1'000'000);
   absl::StatusOr<CurveSamples> unary = client_->EvaluateCurve(request);
-  absl::StatusOr<CurveSamples> streamed = client_->EvaluateCurveStreamed(request);
+  absl::StatusOr<CurveSamples> streamed =
+      client_->EvaluateCurveStreamed(request);
   ASSERT_TRUE(unary.ok()) << unary.status();
   ASSERT_TRUE(streamed.ok()) << streamed.status();
   EXPECT_EQ(unary->derivatives, streamed->derivatives);

@@ -29,8 +29,8 @@ class CurveServiceTest : public ::testing::Test {
     auto server = FreeformServer::Start(options);
     ASSERT_TRUE(server.ok()) << server.status();
     server_ = *std::move(server);
-    client_ = std::make_unique<Client>(server_->InProcessChannel(),
-                                       ClientOptions{});
+    client_ =
+        std::make_unique<Client>(server_->InProcessChannel(), ClientOptions{});
   }
 
   static v1::EvaluateCurveRequest CubicRequest() {
@@ -38,7 +38,8 @@ class CurveServiceTest : public ::testing::Test {
     v1::Points* points =
         request.mutable_curve()->mutable_bezier()->mutable_control_points();
     points->set_dimension(2);
-    for (double value : {0, 0, 1, 2, 3, 2, 4, 0}) points->add_coordinates(value);
+    for (double value : {0, 0, 1, 2, 3, 2, 4, 0})
+      points->add_coordinates(value);
     for (double t : {0.0, 0.5, 1.0}) {
       request.mutable_parameters()->mutable_list()->add_values(t);
     }
@@ -75,8 +76,8 @@ TEST_F(CurveServiceTest, EvaluatesTheWorkedCubic) {
 }
 
 TEST_F(CurveServiceTest, ConvenienceCallMatches) {
-  absl::StatusOr<CurveSamples> samples = client_->EvaluateBezier(
-      2, {0, 0, 1, 2, 3, 2, 4, 0}, {0.0, 0.5, 1.0}, 1);
+  absl::StatusOr<CurveSamples> samples =
+      client_->EvaluateBezier(2, {0, 0, 1, 2, 3, 2, 4, 0}, {0.0, 0.5, 1.0}, 1);
   ASSERT_TRUE(samples.ok()) << samples.status();
   EXPECT_THAT(samples->Point(0, 1), ElementsAre(2, 1.5));
   EXPECT_THAT(samples->Point(1, 0), ElementsAre(3, 6));
@@ -100,7 +101,8 @@ TEST_F(CurveServiceTest, StreamEqualsUnary) {
   request.set_derivative_order(2);
   request.set_chunk_size(7'000);
   absl::StatusOr<CurveSamples> unary = client_->EvaluateCurve(request);
-  absl::StatusOr<CurveSamples> streamed = client_->EvaluateCurveStreamed(request);
+  absl::StatusOr<CurveSamples> streamed =
+      client_->EvaluateCurveStreamed(request);
   ASSERT_TRUE(unary.ok()) << unary.status();
   ASSERT_TRUE(streamed.ok()) << streamed.status();
   EXPECT_EQ(streamed->count, 100'001u);
@@ -126,27 +128,37 @@ TEST_F(CurveServiceTest, RationalCurveStaysOnTheCircle) {
 
 TEST_F(CurveServiceTest, InvalidRequestsNameTheField) {
   v1::EvaluateCurveRequest request = CubicRequest();
-  request.mutable_curve()->mutable_bezier()->mutable_control_points()
+  request.mutable_curve()
+      ->mutable_bezier()
+      ->mutable_control_points()
       ->add_coordinates(9);  // 9 values for dimension 2
   ExpectInvalid(request, "curve.bezier.control_points.coordinates");
 
   request = CubicRequest();
-  request.mutable_curve()->mutable_bezier()->mutable_control_points()
+  request.mutable_curve()
+      ->mutable_bezier()
+      ->mutable_control_points()
       ->set_coordinates(3, std::nan(""));
   ExpectInvalid(request, "curve.bezier.control_points.coordinates[3]");
 
   request = CubicRequest();
-  request.mutable_curve()->mutable_bezier()->mutable_control_points()
+  request.mutable_curve()
+      ->mutable_bezier()
+      ->mutable_control_points()
       ->clear_coordinates();
   ExpectInvalid(request, "curve.bezier.control_points.coordinates");
 
   request = CubicRequest();
-  request.mutable_curve()->mutable_bezier()->mutable_control_points()
+  request.mutable_curve()
+      ->mutable_bezier()
+      ->mutable_control_points()
       ->set_dimension(0);
   ExpectInvalid(request, "curve.bezier.control_points.dimension");
 
   request = CubicRequest();
-  request.mutable_curve()->mutable_bezier()->mutable_control_points()
+  request.mutable_curve()
+      ->mutable_bezier()
+      ->mutable_control_points()
       ->set_dimension(1'000'000);
   ExpectInvalid(request, "curve.bezier.control_points.dimension");
 
@@ -198,8 +210,7 @@ TEST_F(CurveServiceTest, HugeRequestsAreResourceExhausted) {
   request.mutable_parameters()->mutable_range()->set_count(4'000'000'000u);
   absl::StatusOr<CurveSamples> result = client_->EvaluateCurve(request);
   EXPECT_EQ(result.status().code(), absl::StatusCode::kResourceExhausted);
-  EXPECT_THAT(std::string(result.status().message()),
-              HasSubstr("parameters"));
+  EXPECT_THAT(std::string(result.status().message()), HasSubstr("parameters"));
 }
 
 TEST_F(CurveServiceTest, UnaryAnswerOverTheMessageLimitPointsToTheStream) {
@@ -236,7 +247,8 @@ TEST_F(CurveServiceTest, DeadlineStopsALargeBatch) {
   // Give the server a moment, then check it answers promptly again.
   absl::StatusOr<CurveSamples> next = client_->EvaluateCurve(CubicRequest());
   EXPECT_TRUE(next.ok()) << next.status();
-  EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(5));
+  EXPECT_LT(std::chrono::steady_clock::now() - started,
+            std::chrono::seconds(5));
 }
 
 TEST_F(CurveServiceTest, PendingRpcsSayWhichIssueBringsThem) {
@@ -249,8 +261,8 @@ TEST_F(CurveServiceTest, PendingRpcsSayWhichIssueBringsThem) {
   grpc::ClientContext context;
   v1::ElevateCurveDegreeRequest elevate;
   v1::ElevateCurveDegreeResponse elevated;
-  grpc::Status status = client_->curves().ElevateDegree(&context, elevate,
-                                                       &elevated);
+  grpc::Status status =
+      client_->curves().ElevateDegree(&context, elevate, &elevated);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::UNIMPLEMENTED);
   EXPECT_THAT(status.error_message(), HasSubstr("issue #6"));
 

@@ -8,9 +8,9 @@
 #define FREEFORM_CORE_POINTS_H_
 
 #include <cstddef>
-#include "absl/strings/string_view.h"
 
 #include "absl/status/status.h"
+#include "absl/strings/string_view.h"
 #include "absl/types/span.h"
 
 namespace freeform {
