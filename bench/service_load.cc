@@ -36,8 +36,8 @@ freeform::v1::EvaluateCurveRequest CubicRequest(uint32_t count) {
   auto* points =
       request.mutable_curve()->mutable_bezier()->mutable_control_points();
   points->set_dimension(3);
-  for (double value : {0.1, -0.4, 0.9, 0.5, 0.3, -0.2, -0.7, 0.8, 0.05, 0.6,
-                       -0.9, 0.35}) {
+  for (double value :
+       {0.1, -0.4, 0.9, 0.5, 0.3, -0.2, -0.7, 0.8, 0.05, 0.6, -0.9, 0.35}) {
     points->add_coordinates(value);
   }
   if (count == 1) {

@@ -19,8 +19,8 @@ int main(int argc, char** argv) {
   for (size_t r = 0; r < samples->count; ++r) {
     auto point = samples->Point(0, r);
     auto tangent = samples->Point(1, r);
-    std::printf("C = (%g, %g)  C' = (%g, %g)\n", point[0], point[1],
-                tangent[0], tangent[1]);
+    std::printf("C = (%g, %g)  C' = (%g, %g)\n", point[0], point[1], tangent[0],
+                tangent[1]);
   }
   return 0;
 }
