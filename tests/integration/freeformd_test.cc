@@ -16,6 +16,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
+#include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
 
 namespace freeform {
 namespace {
@@ -209,6 +210,29 @@ TEST_F(FreeformdTest, LargeBatchStreamsAndMatchesUnary) {
   ASSERT_TRUE(unary.ok()) << unary.status();
   ASSERT_TRUE(streamed.ok()) << streamed.status();
   EXPECT_EQ(unary->derivatives, streamed->derivatives);
+}
+
+TEST_F(FreeformdTest, ReflectionListsTheServices) {
+  namespace reflection = grpc::reflection::v1alpha;
+  auto stub = reflection::ServerReflection::NewStub(client_->channel());
+  std::unique_ptr<grpc::ClientContext> context = client_->NewContext();
+  auto stream = stub->ServerReflectionInfo(context.get());
+  reflection::ServerReflectionRequest request;
+  request.set_list_services("");
+  ASSERT_TRUE(stream->Write(request));
+  stream->WritesDone();
+  reflection::ServerReflectionResponse response;
+  ASSERT_TRUE(stream->Read(&response));
+  std::vector<std::string> names;
+  for (const auto& service : response.list_services_response().service()) {
+    names.push_back(service.name());
+  }
+  EXPECT_THAT(names, ::testing::IsSupersetOf({"freeform.v1.CurveService",
+                                              "freeform.v1.SurfaceService",
+                                              "grpc.health.v1.Health"}));
+  while (stream->Read(&response)) {
+  }
+  EXPECT_TRUE(stream->Finish().ok());
 }
 
 TEST_F(FreeformdTest, SigtermDrainsAndExitsZero) {
