@@ -12,6 +12,8 @@ packages=(
   golang-github-gogo-googleapis-dev
   # grpc/health/v1/health.proto for the client's health check.
   grpc-proto
+  # Certificates for the TLS tests.
+  openssl
 )
 
 missing=()

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
@@ -27,7 +28,11 @@ using ::testing::HasSubstr;
 // A freeformd child process listening on 127.0.0.1 with a kernel-chosen port.
 class ServerProcess {
  public:
-  ServerProcess() {
+  explicit ServerProcess(std::vector<std::string> extra_flags = {}) {
+    std::vector<std::string> arguments = {FREEFORMD_PATH,
+                                          "--listen=127.0.0.1:0", "--threads=2",
+                                          "--grace_period=5s"};
+    arguments.insert(arguments.end(), extra_flags.begin(), extra_flags.end());
     int out[2];
     EXPECT_EQ(pipe(out), 0);
     pid_ = fork();
@@ -35,8 +40,10 @@ class ServerProcess {
       dup2(out[1], STDOUT_FILENO);
       close(out[0]);
       close(out[1]);
-      execl(FREEFORMD_PATH, FREEFORMD_PATH, "--listen=127.0.0.1:0",
-            "--threads=2", "--grace_period=5s", static_cast<char*>(nullptr));
+      std::vector<char*> argv;
+      for (std::string& argument : arguments) argv.push_back(argument.data());
+      argv.push_back(nullptr);
+      execv(FREEFORMD_PATH, argv.data());
       _exit(127);
     }
     close(out[1]);
@@ -242,6 +249,96 @@ TEST_F(FreeformdTest, SigtermDrainsAndExitsZero) {
 
 TEST_F(FreeformdTest, SigintExitsZero) {
   EXPECT_EQ(server_.StopWith(SIGINT, std::chrono::seconds(10)), 0);
+}
+
+// Certificates made by openssl for one test run: a CA, a server certificate
+// for 127.0.0.1 and a client certificate, all signed by the CA.
+class Certificates {
+ public:
+  Certificates() {
+    char pattern[] = "/tmp/freeform_tls_XXXXXX";
+    directory_ = mkdtemp(pattern);
+    const std::string script = absl::StrCat(
+        "cd ", directory_, " && set -e && ",
+        "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=test-ca "
+        "-keyout ca.key -out ca.pem && ",
+        "printf 'subjectAltName=IP:127.0.0.1,DNS:localhost' > san.ext && ",
+        "openssl req -newkey rsa:2048 -nodes -subj /CN=localhost "
+        "-keyout server.key -out server.csr && ",
+        "openssl x509 -req -in server.csr -CA ca.pem -CAkey ca.key "
+        "-CAcreateserial -days 2 -extfile san.ext -out server.pem && ",
+        "openssl req -newkey rsa:2048 -nodes -subj /CN=client "
+        "-keyout client.key -out client.csr && ",
+        "openssl x509 -req -in client.csr -CA ca.pem -CAkey ca.key "
+        "-CAcreateserial -days 2 -out client.pem");
+    ok_ = RunCommand(script).exit_code == 0;
+  }
+  ~Certificates() { RunCommand(absl::StrCat("rm -rf ", directory_)); }
+
+  bool ok() const { return ok_; }
+  std::string Path(const std::string& name) const {
+    return absl::StrCat(directory_, "/", name);
+  }
+
+ private:
+  std::string directory_;
+  bool ok_ = false;
+};
+
+ClientOptions TlsClientOptions(const Certificates& certificates, int port) {
+  ClientOptions options;
+  options.target = absl::StrCat("127.0.0.1:", port);
+  options.timeout = std::chrono::seconds(10);
+  options.use_tls = true;
+  options.root_ca_file = certificates.Path("ca.pem");
+  return options;
+}
+
+TEST(FreeformdTlsTest, ServesOverTls) {
+  Certificates certificates;
+  ASSERT_TRUE(certificates.ok());
+  ServerProcess server({"--tls_cert=" + certificates.Path("server.pem"),
+                        "--tls_key=" + certificates.Path("server.key")});
+  ASSERT_GT(server.port(), 0);
+  auto client = Client::Create(TlsClientOptions(certificates, server.port()));
+  ASSERT_TRUE(client.ok());
+  absl::StatusOr<CurveSamples> samples =
+      (*client)->EvaluateBezier(1, {0, 1, 2}, {0.5});
+  ASSERT_TRUE(samples.ok()) << samples.status();
+  EXPECT_THAT(samples->derivatives[0], ElementsAre(1.0));
+  // A plaintext client cannot talk to the TLS port.
+  ClientOptions plain;
+  plain.target = server.address();
+  plain.timeout = std::chrono::seconds(2);
+  plain.retry_unavailable = false;
+  auto plain_client = Client::Create(plain);
+  ASSERT_TRUE(plain_client.ok());
+  EXPECT_FALSE((*plain_client)->EvaluateBezier(1, {0, 1}, {0.5}).ok());
+}
+
+TEST(FreeformdTlsTest, MutualTlsRequiresAClientCertificate) {
+  Certificates certificates;
+  ASSERT_TRUE(certificates.ok());
+  ServerProcess server({"--tls_cert=" + certificates.Path("server.pem"),
+                        "--tls_key=" + certificates.Path("server.key"),
+                        "--tls_client_ca=" + certificates.Path("ca.pem")});
+  ASSERT_GT(server.port(), 0);
+  ClientOptions anonymous = TlsClientOptions(certificates, server.port());
+  anonymous.timeout = std::chrono::seconds(2);
+  anonymous.retry_unavailable = false;
+  auto rejected = Client::Create(anonymous);
+  ASSERT_TRUE(rejected.ok());
+  EXPECT_FALSE((*rejected)->EvaluateBezier(1, {0, 1}, {0.5}).ok());
+
+  ClientOptions identified = TlsClientOptions(certificates, server.port());
+  identified.cert_file = certificates.Path("client.pem");
+  identified.key_file = certificates.Path("client.key");
+  auto accepted = Client::Create(identified);
+  ASSERT_TRUE(accepted.ok());
+  absl::StatusOr<CurveSamples> samples =
+      (*accepted)->EvaluateBezier(1, {0, 1}, {0.25});
+  ASSERT_TRUE(samples.ok()) << samples.status();
+  EXPECT_THAT(samples->derivatives[0], ElementsAre(0.25));
 }
 
 }  // namespace
