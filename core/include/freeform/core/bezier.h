@@ -10,10 +10,7 @@
 // direction P (homogeneous (P, 0)), as in the course notes' half circle
 // (1,0,1), (0,1,0), (-1,0,1).
 //
-// Batch outputs are one buffer per derivative order: derivative k of the
-// point at parameter index r, coordinate j, is output[k][r * dimension + j],
-// so a caller can hand in the final storage (a response message's arrays)
-// and nothing is copied.
+// Batch outputs are one buffer per derivative order (see curve_output.h).
 //
 // All functions are thread-safe; they allocate per call or per chunk of
 // parameters, never per point.
@@ -24,6 +21,7 @@
 
 #include "absl/status/status.h"
 #include "absl/types/span.h"
+#include "freeform/core/curve_output.h"
 #include "freeform/core/points.h"
 #include "freeform/core/thread_pool.h"
 
@@ -46,15 +44,6 @@ struct BezierCurveView {
 // nonnegative weights it can only vanish at an end). Errors name
 // "control_points...", "weights" or "weights[i]".
 absl::Status ValidateBezierCurve(const BezierCurveView& curve);
-
-// Per-order output buffers of a batch evaluation: output[k] receives the
-// k-th derivative at every parameter (count * dimension doubles).
-using CurveOutput = absl::Span<const absl::Span<double>>;
-
-// ValidateCurveOutput checks that `output` has at least one buffer (the
-// positions) and that every buffer holds count * dimension doubles.
-absl::Status ValidateCurveOutput(CurveOutput output, size_t count,
-                                 int dimension);
 
 // EvaluateBezierCurve writes derivatives 0..output.size()-1 of `curve` at
 // every parameter into `output` using the de Casteljau algorithm.
