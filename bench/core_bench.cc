@@ -46,7 +46,9 @@ std::vector<double> UniformParameters(size_t count) {
 }
 
 void RunBezier(benchmark::State& state, int degree, size_t count, int orders,
-               freeform::ThreadPool* pool) {
+               freeform::ThreadPool* pool,
+               freeform::BezierAlgorithm algorithm =
+                   freeform::BezierAlgorithm::kAuto) {
   const std::vector<double> control =
       RandomPoints(3, static_cast<size_t>(degree + 1), 3);
   const std::vector<double> parameters = UniformParameters(count);
@@ -59,7 +61,8 @@ void RunBezier(benchmark::State& state, int degree, size_t count, int orders,
   const freeform::ExecutionContext context{.pool = pool};
   for (auto _ : state) {
     benchmark::DoNotOptimize(
-        freeform::EvaluateBezierCurve(curve, parameters, output, context));
+        freeform::EvaluateBezierCurve(curve, parameters, output, context,
+                                      algorithm));
     benchmark::ClobberMemory();
   }
   double checksum = 0;
@@ -86,12 +89,15 @@ BENCHMARK(BM_W4_CubicBezierPositionsAllThreads)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// Arguments: degree, derivative orders (1 = positions), algorithm
+// (1 de Casteljau, 2 Horner, 3 ladder).
 void BM_BezierDegree(benchmark::State& state) {
   RunBezier(state, static_cast<int>(state.range(0)), 100'000,
-            static_cast<int>(state.range(1)), nullptr);
+            static_cast<int>(state.range(1)), nullptr,
+            static_cast<freeform::BezierAlgorithm>(state.range(2)));
 }
 BENCHMARK(BM_BezierDegree)
-    ->ArgsProduct({{3, 7, 15, 30}, {1, 2}})
+    ->ArgsProduct({{3, 7, 15, 30}, {1, 2}, {1, 2, 3}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

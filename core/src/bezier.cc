@@ -132,10 +132,83 @@ void BernsteinBasis(int n, double t, absl::Span<double> values) {
   }
 }
 
+namespace {
+
+// The k-th hodograph of control points P (n + 1 points): the Bezier control
+// points n!/(n-k)! Delta^k P_i, i = 0..n-k, of the k-th derivative (the
+// rule Q_i = n (P_{i+1} - P_i) applied k times), each multiplied by
+// binom(n-k, i) for the O(n) schemes. Index [k][i * dimension + j].
+std::vector<std::vector<double>> ScaledHodographs(const double* control, int n,
+                                                  int dimension, int top) {
+  const size_t dim = static_cast<size_t>(dimension);
+  std::vector<double> differences(control,
+                                  control + static_cast<size_t>(n + 1) * dim);
+  std::vector<std::vector<double>> hodographs;
+  for (int k = 0; k <= top; ++k) {
+    const int degree = n - k;
+    if (k > 0) {
+      for (size_t x = 0; x < static_cast<size_t>(degree + 1) * dim; ++x) {
+        differences[x] = (degree + 1) * (differences[x + dim] - differences[x]);
+      }
+    }
+    std::vector<double> scaled(differences.begin(),
+                               differences.begin() + (degree + 1) * dim);
+    double binomial = 1.0;  // binom(degree, i)
+    for (int i = 0; i <= degree; ++i) {
+      if (i > 0) binomial = binomial * (degree - i + 1) / i;
+      for (size_t j = 0; j < dim; ++j) scaled[i * dim + j] *= binomial;
+    }
+    hodographs.push_back(std::move(scaled));
+  }
+  return hodographs;
+}
+
+}  // namespace
+
+void HornerBezierPoint(const double* scaled, int n, int dimension, double t,
+                       double* point) {
+  const size_t dim = static_cast<size_t>(dimension);
+  const double s = 1.0 - t;
+  // Factor out (1-t)^n or t^n so the Horner variable stays in [0, 1].
+  const bool from_start = t < 0.5;
+  const double ratio = from_start ? t / s : s / t;
+  double scale = 1.0;
+  for (int i = 0; i < n; ++i) scale *= from_start ? s : t;
+  for (size_t j = 0; j < dim; ++j) {
+    double sum =
+        from_start ? scaled[static_cast<size_t>(n) * dim + j] : scaled[j];
+    for (int i = 1; i <= n; ++i) {
+      const size_t index = from_start ? static_cast<size_t>(n - i) : i;
+      sum = sum * ratio + scaled[index * dim + j];
+    }
+    point[j] = sum * scale;
+  }
+}
+
+void LadderBezierPoint(const double* scaled, int n, int dimension, double t,
+                       double* point) {
+  const size_t dim = static_cast<size_t>(dimension);
+  const double s = 1.0 - t;
+  for (size_t j = 0; j < dim; ++j) point[j] = scaled[j];
+  double power = 1.0;  // t^k
+  for (int k = 1; k <= n; ++k) {
+    power *= t;
+    const double* rung = scaled + static_cast<size_t>(k) * dim;
+    for (size_t j = 0; j < dim; ++j) point[j] = s * point[j] + power * rung[j];
+  }
+}
+
+BezierAlgorithm ResolveBezierAlgorithm(BezierAlgorithm algorithm, int degree) {
+  if (algorithm != BezierAlgorithm::kAuto) return algorithm;
+  return degree <= kHornerMaxAutoDegree ? BezierAlgorithm::kHorner
+                                        : BezierAlgorithm::kDeCasteljau;
+}
+
 absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
                                  absl::Span<const double> parameters,
                                  CurveOutput output,
-                                 const ExecutionContext& context) {
+                                 const ExecutionContext& context,
+                                 BezierAlgorithm algorithm) {
   if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
     return status;
   }
@@ -158,17 +231,34 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
   const double* control =
       rational ? homogeneous.data() : curve.control_points.coordinates.data();
   const size_t dim = static_cast<size_t>(dimension);
+  const size_t work = static_cast<size_t>(work_dimension);
   const size_t orders = output.size();
+  const int top = std::min(max_order, n);  // higher orders are zero
+  const BezierAlgorithm resolved = ResolveBezierAlgorithm(algorithm, n);
+  const std::vector<std::vector<double>> hodographs =
+      resolved == BezierAlgorithm::kDeCasteljau
+          ? std::vector<std::vector<double>>()
+          : ScaledHodographs(control, n, work_dimension, top);
+  const auto point_scheme = resolved == BezierAlgorithm::kLadder
+                                ? &LadderBezierPoint
+                                : &HornerBezierPoint;
 
   return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
-    const size_t work = static_cast<size_t>(work_dimension);
     const size_t levels = 2 * static_cast<size_t>(n + 1) * work;
-    std::vector<double> scratch(levels + orders * work + orders * dim);
+    std::vector<double> scratch(levels + orders * work + orders * dim, 0.0);
     double* raw = scratch.data() + levels;
     double* projected = raw + orders * work;
     for (size_t r = begin; r < end; ++r) {
-      DeCasteljauDerivatives(control, n, work_dimension, parameters[r],
-                             max_order, scratch.data(), raw);
+      if (resolved == BezierAlgorithm::kDeCasteljau) {
+        DeCasteljauDerivatives(control, n, work_dimension, parameters[r],
+                               max_order, scratch.data(), raw);
+      } else {
+        for (int k = 0; k <= top; ++k) {
+          point_scheme(hodographs[static_cast<size_t>(k)].data(), n - k,
+                       work_dimension, parameters[r],
+                       raw + static_cast<size_t>(k) * work);
+        }
+      }
       const double* result = raw;
       if (rational) {
         ProjectHomogeneousDerivatives(raw, dimension, max_order, projected);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -21,14 +22,15 @@ using ::testing::Pointwise;
 // Evaluates with `orders` derivative buffers and returns them.
 std::vector<std::vector<double>> Evaluate(
     const BezierCurveView& curve, const std::vector<double>& params, int orders,
-    const ExecutionContext& context = {}) {
+    const ExecutionContext& context = {},
+    BezierAlgorithm algorithm = BezierAlgorithm::kAuto) {
   std::vector<std::vector<double>> buffers(
       static_cast<size_t>(orders),
       std::vector<double>(params.size() *
                           static_cast<size_t>(curve.control_points.dimension)));
   std::vector<absl::Span<double>> output(buffers.begin(), buffers.end());
   const absl::Status status =
-      EvaluateBezierCurve(curve, params, output, context);
+      EvaluateBezierCurve(curve, params, output, context, algorithm);
   EXPECT_TRUE(status.ok()) << status;
   return buffers;
 }
@@ -105,9 +107,13 @@ TEST(BezierTest, LinearAndConstantCurves) {
   EXPECT_THAT(constant[1], ElementsAre(0, 0, 0));
 }
 
-// de Casteljau derivatives agree with the forward-difference Bernstein sum
-// (the rule Q_i = n (P_{i+1} - P_i) applied k times) for degrees 1..20 and
-// dimensions 1..16.
+constexpr BezierAlgorithm kAlgorithms[] = {BezierAlgorithm::kDeCasteljau,
+                                           BezierAlgorithm::kHorner,
+                                           BezierAlgorithm::kLadder};
+
+// Derivatives by every scheme agree with the forward-difference Bernstein
+// sum (the rule Q_i = n (P_{i+1} - P_i) applied k times) for degrees 1..20
+// and dimensions 1..16.
 TEST(BezierTest, DerivativesMatchHodographReference) {
   std::mt19937_64 rng(42);
   for (int n = 1; n <= 20; ++n) {
@@ -116,21 +122,62 @@ TEST(BezierTest, DerivativesMatchHodographReference) {
         RandomValues(rng, static_cast<size_t>((n + 1) * dimension));
     const std::vector<double> params = {0.0, 0.1, 0.37, 0.5, 0.81, 1.0};
     const int orders = std::min(n + 2, 6);
-    const auto result = Evaluate(View(points, dimension), params, orders);
-    for (int k = 0; k < orders; ++k) {
-      const double scale = std::pow(2.0 * n, k);  // derivative magnitude
-      for (size_t r = 0; r < params.size(); ++r) {
-        const auto expected =
-            ReferenceDerivative(points, dimension, k, params[r]);
-        for (int j = 0; j < dimension; ++j) {
-          EXPECT_NEAR(result[static_cast<size_t>(k)][r * dimension + j],
-                      static_cast<double>(expected[static_cast<size_t>(j)]),
-                      1e-13 * scale)
-              << "n=" << n << " k=" << k << " t=" << params[r];
+    for (BezierAlgorithm algorithm : kAlgorithms) {
+      const auto result =
+          Evaluate(View(points, dimension), params, orders, {}, algorithm);
+      for (int k = 0; k < orders; ++k) {
+        const double scale = std::pow(2.0 * n, k);  // derivative magnitude
+        for (size_t r = 0; r < params.size(); ++r) {
+          const auto expected =
+              ReferenceDerivative(points, dimension, k, params[r]);
+          for (int j = 0; j < dimension; ++j) {
+            EXPECT_NEAR(result[static_cast<size_t>(k)][r * dimension + j],
+                        static_cast<double>(expected[static_cast<size_t>(j)]),
+                        1e-13 * scale)
+                << "n=" << n << " k=" << k << " t=" << params[r]
+                << " algorithm=" << static_cast<int>(algorithm);
+          }
         }
       }
     }
   }
+}
+
+// The three schemes agree on rational curves too (homogeneous evaluation).
+TEST(BezierTest, SchemesAgreeOnRationalCurves) {
+  std::mt19937_64 rng(17);
+  for (int n = 1; n <= 15; ++n) {
+    const std::vector<double> points =
+        RandomValues(rng, static_cast<size_t>((n + 1) * 2));
+    std::vector<double> weights = RandomValues(rng, static_cast<size_t>(n + 1));
+    for (double& weight : weights) weight = 1.5 + weight;  // in [0.5, 2.5]
+    const std::vector<double> params = {0.0, 0.2, 0.5, 0.77, 1.0};
+    const auto reference = Evaluate(View(points, 2, weights), params, 3, {},
+                                    BezierAlgorithm::kDeCasteljau);
+    for (BezierAlgorithm algorithm : kAlgorithms) {
+      const auto result =
+          Evaluate(View(points, 2, weights), params, 3, {}, algorithm);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_THAT(
+            result[k],
+            Pointwise(DoubleNear(1e-12 * std::pow(4.0 * n, k)), reference[k]))
+            << "n=" << n << " k=" << k;
+      }
+    }
+  }
+}
+
+TEST(BezierTest, AutoPicksHornerUpToTheMeasuredDegree) {
+  EXPECT_EQ(ResolveBezierAlgorithm(BezierAlgorithm::kAuto, 3),
+            BezierAlgorithm::kHorner);
+  EXPECT_EQ(
+      ResolveBezierAlgorithm(BezierAlgorithm::kAuto, kHornerMaxAutoDegree),
+      BezierAlgorithm::kHorner);
+  EXPECT_EQ(
+      ResolveBezierAlgorithm(BezierAlgorithm::kAuto, kHornerMaxAutoDegree + 1),
+      BezierAlgorithm::kDeCasteljau);
+  EXPECT_EQ(ResolveBezierAlgorithm(BezierAlgorithm::kLadder, 3),
+            BezierAlgorithm::kLadder);
 }
 
 TEST(BezierTest, EndpointInterpolationAndSymmetry) {
@@ -349,6 +396,105 @@ TEST(BezierTest, WronglySizedOutputIsRejected) {
       EvaluateBezierCurve(View(points, 2), std::vector<double>{0.5}, output);
   EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(status.message(), HasSubstr("output[0]"));
+}
+
+}  // namespace
+}  // namespace freeform
+
+namespace freeform {
+namespace {
+
+// Long-double de Casteljau: the reference for accuracy.
+std::vector<long double> LongDoublePoint(const std::vector<double>& points,
+                                         int dimension, long double t) {
+  std::vector<long double> levels(points.begin(), points.end());
+  const int n = static_cast<int>(points.size()) / dimension - 1;
+  for (int m = n; m > 0; --m) {
+    for (int x = 0; x < m * dimension; ++x) {
+      levels[x] = (1.0L - t) * levels[x] + t * levels[x + dimension];
+    }
+  }
+  levels.resize(static_cast<size_t>(dimension));
+  return levels;
+}
+
+// The basis sum sum_i B(n,i,t) P_i, the third independent way.
+std::vector<double> BasisSum(const std::vector<double>& points, int dimension,
+                             const std::vector<double>& params) {
+  const int n = static_cast<int>(points.size()) / dimension - 1;
+  std::vector<double> basis(static_cast<size_t>(n + 1));
+  std::vector<double> out(params.size() * dimension, 0.0);
+  for (size_t r = 0; r < params.size(); ++r) {
+    BernsteinBasis(n, params[r], absl::MakeSpan(basis));
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; j < dimension; ++j) {
+        out[r * dimension + j] += basis[i] * points[i * dimension + j];
+      }
+    }
+  }
+  return out;
+}
+
+// std::nullopt stands for the basis sum.
+double MaxRelativeError(const std::vector<double>& points, int dimension,
+                        const std::vector<double>& params,
+                        std::optional<BezierAlgorithm> algorithm) {
+  std::vector<double> out(params.size() * dimension);
+  if (algorithm.has_value()) {
+    std::vector<absl::Span<double>> output = {absl::MakeSpan(out)};
+    EXPECT_TRUE(EvaluateBezierCurve(View(points, dimension), params, output, {},
+                                    *algorithm)
+                    .ok());
+  } else {
+    out = BasisSum(points, dimension, params);
+  }
+  double scale = 0;
+  for (double value : points) scale = std::max(scale, std::abs(value));
+  double worst = 0;
+  for (size_t r = 0; r < params.size(); ++r) {
+    const auto exact = LongDoublePoint(points, dimension, params[r]);
+    for (int j = 0; j < dimension; ++j) {
+      worst = std::max(
+          worst,
+          static_cast<double>(std::fabs(out[r * dimension + j] - exact[j])) /
+              scale);
+    }
+  }
+  return worst;
+}
+
+// Degrees 1..64 at 10^4 parameters against long double: de Casteljau,
+// Horner, the ladder and the basis sum all stay within 1e-13 of the scale of
+// the control points; the errors printed here are what kHornerMaxAutoDegree
+// was chosen from.
+TEST(BezierAccuracyTest, AlgorithmsMatchLongDoubleReference) {
+  std::mt19937_64 rng(2024);
+  std::vector<double> params(10'000);
+  for (size_t r = 0; r < params.size(); ++r) {
+    params[r] = static_cast<double>(r) / static_cast<double>(params.size() - 1);
+  }
+  for (int n : {1, 3, 5, 7, 10, 12, 15, 20, 25, 30, 40, 50, 64}) {
+    const std::vector<double> points =
+        RandomValues(rng, static_cast<size_t>(3 * (n + 1)));
+    const double casteljau =
+        MaxRelativeError(points, 3, params, BezierAlgorithm::kDeCasteljau);
+    const double horner =
+        MaxRelativeError(points, 3, params, BezierAlgorithm::kHorner);
+    const double ladder =
+        MaxRelativeError(points, 3, params, BezierAlgorithm::kLadder);
+    const double automatic =
+        MaxRelativeError(points, 3, params, BezierAlgorithm::kAuto);
+    const double basis_sum = MaxRelativeError(points, 3, params, std::nullopt);
+    std::printf(
+        "degree %2d: de Casteljau %.2e  Horner %.2e  ladder %.2e  basis sum "
+        "%.2e\n",
+        n, casteljau, horner, ladder, basis_sum);
+    EXPECT_LT(basis_sum, 1e-13) << n;
+    EXPECT_LT(casteljau, 1e-13) << n;
+    EXPECT_LT(automatic, 1e-13) << n;
+    EXPECT_LT(horner, 1e-13) << n;
+    EXPECT_LT(ladder, 1e-13) << n;
+  }
 }
 
 }  // namespace
