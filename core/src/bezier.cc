@@ -204,6 +204,119 @@ BezierAlgorithm ResolveBezierAlgorithm(BezierAlgorithm algorithm, int degree) {
                                         : BezierAlgorithm::kDeCasteljau;
 }
 
+namespace {
+
+double Binomial(int n, int k) {
+  double result = 1.0;
+  for (int i = 1; i <= k; ++i) result = result * (n - k + i) / i;
+  return result;
+}
+
+}  // namespace
+
+std::vector<double> PowerToBezier(const PointsView& coefficients) {
+  const size_t dim = static_cast<size_t>(coefficients.dimension);
+  const int n = static_cast<int>(coefficients.size()) - 1;
+  std::vector<double> control(coefficients.coordinates.size(), 0.0);
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      const double factor = Binomial(i, j) / Binomial(n, j);
+      const double* a = coefficients.point(static_cast<size_t>(j));
+      for (size_t x = 0; x < dim; ++x) control[i * dim + x] += factor * a[x];
+    }
+  }
+  return control;
+}
+
+std::vector<double> BezierToPower(const PointsView& control_points) {
+  const size_t dim = static_cast<size_t>(control_points.dimension);
+  const int n = static_cast<int>(control_points.size()) - 1;
+  std::vector<double> coefficients(control_points.coordinates.size(), 0.0);
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= j; ++i) {
+      const double sign = (j - i) % 2 == 0 ? 1.0 : -1.0;
+      const double factor = sign * Binomial(n, j) * Binomial(j, i);
+      const double* p = control_points.point(static_cast<size_t>(i));
+      for (size_t x = 0; x < dim; ++x) {
+        coefficients[j * dim + x] += factor * p[x];
+      }
+    }
+  }
+  return coefficients;
+}
+
+absl::Status EvaluateBernsteinBasis(int n, absl::Span<const double> weights,
+                                    absl::Span<const double> parameters,
+                                    CurveOutput output,
+                                    const ExecutionContext& context) {
+  if (n < 0 || n + 1 > kMaxDimension) {
+    return InvalidFieldError(
+        "degree", absl::StrCat("must be between 0 and ", kMaxDimension - 1));
+  }
+  // The basis functions are the curve whose control points are the unit
+  // vectors e_i in dimension n + 1: C(t) = (B_0(t), ..., B_n(t)).
+  const size_t count = static_cast<size_t>(n + 1);
+  std::vector<double> identity(count * count, 0.0);
+  for (size_t i = 0; i < count; ++i) identity[i * count + i] = 1.0;
+  const BezierCurveView curve{
+      .control_points = {.dimension = n + 1, .coordinates = identity},
+      .weights = weights};
+  return EvaluateBezierCurve(curve, parameters, output, context);
+}
+
+BezierPointEvaluator::BezierPointEvaluator(const BezierCurveView& curve,
+                                           int max_order,
+                                           BezierAlgorithm algorithm)
+    : degree_(curve.degree()),
+      dimension_(curve.control_points.dimension),
+      max_order_(max_order),
+      rational_(curve.rational()),
+      algorithm_(ResolveBezierAlgorithm(algorithm, curve.degree())) {
+  const int work_dimension = rational_ ? dimension_ + 1 : dimension_;
+  control_ = rational_
+                 ? Homogenize(curve)
+                 : std::vector<double>(curve.control_points.coordinates.begin(),
+                                       curve.control_points.coordinates.end());
+  if (algorithm_ != BezierAlgorithm::kDeCasteljau) {
+    hodographs_ = ScaledHodographs(control_.data(), degree_, work_dimension,
+                                   std::min(max_order_, degree_));
+  }
+}
+
+size_t BezierPointEvaluator::scratch_size() const {
+  const size_t work =
+      static_cast<size_t>(rational_ ? dimension_ + 1 : dimension_);
+  const size_t orders = static_cast<size_t>(max_order_ + 1);
+  return 2 * static_cast<size_t>(degree_ + 1) * work + orders * work;
+}
+
+void BezierPointEvaluator::Evaluate(double t, double* scratch,
+                                    double* derivatives) const {
+  const int work_dimension = rational_ ? dimension_ + 1 : dimension_;
+  const size_t work = static_cast<size_t>(work_dimension);
+  const size_t levels = 2 * static_cast<size_t>(degree_ + 1) * work;
+  // Polynomial curves write straight into `derivatives`.
+  double* raw = rational_ ? scratch + levels : derivatives;
+  if (algorithm_ == BezierAlgorithm::kDeCasteljau) {
+    DeCasteljauDerivatives(control_.data(), degree_, work_dimension, t,
+                           max_order_, scratch, raw);
+  } else {
+    const int top = std::min(max_order_, degree_);
+    const auto point_scheme = algorithm_ == BezierAlgorithm::kLadder
+                                  ? &LadderBezierPoint
+                                  : &HornerBezierPoint;
+    for (int k = 0; k <= top; ++k) {
+      point_scheme(hodographs_[static_cast<size_t>(k)].data(), degree_ - k,
+                   work_dimension, t, raw + static_cast<size_t>(k) * work);
+    }
+    std::fill(raw + static_cast<size_t>(top + 1) * work,
+              raw + static_cast<size_t>(max_order_ + 1) * work, 0.0);
+  }
+  if (rational_) {
+    ProjectHomogeneousDerivatives(raw, dimension_, max_order_, derivatives);
+  }
+}
+
 absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
                                  absl::Span<const double> parameters,
                                  CurveOutput output,
@@ -222,50 +335,17 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
       !status.ok()) {
     return status;
   }
-  const int n = curve.degree();
-  const int max_order = static_cast<int>(output.size()) - 1;
-  const bool rational = curve.rational();
-  const int work_dimension = rational ? dimension + 1 : dimension;
-  const std::vector<double> homogeneous =
-      rational ? Homogenize(curve) : std::vector<double>();
-  const double* control =
-      rational ? homogeneous.data() : curve.control_points.coordinates.data();
+  const BezierPointEvaluator evaluator(
+      curve, static_cast<int>(output.size()) - 1, algorithm);
   const size_t dim = static_cast<size_t>(dimension);
-  const size_t work = static_cast<size_t>(work_dimension);
   const size_t orders = output.size();
-  const int top = std::min(max_order, n);  // higher orders are zero
-  const BezierAlgorithm resolved = ResolveBezierAlgorithm(algorithm, n);
-  const std::vector<std::vector<double>> hodographs =
-      resolved == BezierAlgorithm::kDeCasteljau
-          ? std::vector<std::vector<double>>()
-          : ScaledHodographs(control, n, work_dimension, top);
-  const auto point_scheme = resolved == BezierAlgorithm::kLadder
-                                ? &LadderBezierPoint
-                                : &HornerBezierPoint;
-
   return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
-    const size_t levels = 2 * static_cast<size_t>(n + 1) * work;
-    std::vector<double> scratch(levels + orders * work + orders * dim, 0.0);
-    double* raw = scratch.data() + levels;
-    double* projected = raw + orders * work;
+    std::vector<double> scratch(evaluator.scratch_size() + orders * dim);
+    double* derivatives = scratch.data() + evaluator.scratch_size();
     for (size_t r = begin; r < end; ++r) {
-      if (resolved == BezierAlgorithm::kDeCasteljau) {
-        DeCasteljauDerivatives(control, n, work_dimension, parameters[r],
-                               max_order, scratch.data(), raw);
-      } else {
-        for (int k = 0; k <= top; ++k) {
-          point_scheme(hodographs[static_cast<size_t>(k)].data(), n - k,
-                       work_dimension, parameters[r],
-                       raw + static_cast<size_t>(k) * work);
-        }
-      }
-      const double* result = raw;
-      if (rational) {
-        ProjectHomogeneousDerivatives(raw, dimension, max_order, projected);
-        result = projected;
-      }
+      evaluator.Evaluate(parameters[r], scratch.data(), derivatives);
       for (size_t k = 0; k < orders; ++k) {
-        std::copy(result + k * dim, result + (k + 1) * dim,
+        std::copy(derivatives + k * dim, derivatives + (k + 1) * dim,
                   output[k].data() + r * dim);
       }
     }

@@ -499,3 +499,77 @@ TEST(BezierAccuracyTest, AlgorithmsMatchLongDoubleReference) {
 
 }  // namespace
 }  // namespace freeform
+
+namespace freeform {
+namespace {
+
+// The Bezier geometry matrix of the slides turns control points into power
+// coefficients; PowerToBezier undoes it.
+TEST(PowerFormTest, CubicGeometryMatrixOfTheSlides) {
+  const double geometry[4][4] = {
+      {1, 0, 0, 0}, {-3, 3, 0, 0}, {3, -6, 3, 0}, {-1, 3, -3, 1}};
+  const std::vector<double> control = {0, 0, 1, 2, 3, 2, 4, 0};
+  const std::vector<double> power = BezierToPower({2, control});
+  for (int j = 0; j < 4; ++j) {
+    for (int x = 0; x < 2; ++x) {
+      double expected = 0;
+      for (int i = 0; i < 4; ++i)
+        expected += geometry[j][i] * control[2 * i + x];
+      EXPECT_DOUBLE_EQ(power[2 * j + x], expected);
+    }
+  }
+  EXPECT_THAT(PowerToBezier({2, power}), Pointwise(DoubleNear(1e-15), control));
+}
+
+TEST(PowerFormTest, ConvertedCurveEvaluatesThePolynomial) {
+  std::mt19937_64 rng(8);
+  for (int n = 0; n <= 8; ++n) {
+    const std::vector<double> coefficients =
+        RandomValues(rng, static_cast<size_t>(n + 1));
+    const std::vector<double> control = PowerToBezier({1, coefficients});
+    const std::vector<double> params = {0, 0.3, 0.5, 0.9, 1};
+    const auto result = Evaluate(View(control, 1), params, 2);
+    for (size_t r = 0; r < params.size(); ++r) {
+      double value = 0, derivative = 0;
+      for (int j = n; j >= 0; --j) {
+        derivative = derivative * params[r] + value;
+        value = value * params[r] + coefficients[j];
+      }
+      EXPECT_NEAR(result[0][r], value, 1e-14) << n;
+      EXPECT_NEAR(result[1][r], derivative, 1e-13) << n;
+    }
+  }
+}
+
+TEST(BernsteinBasisTest, DenseValuesDerivativesAndRationalBasis) {
+  const std::vector<double> params = {0, 0.25, 0.5, 1};
+  std::vector<std::vector<double>> buffers(2, std::vector<double>(3 * 4));
+  std::vector<absl::Span<double>> output(buffers.begin(), buffers.end());
+  ASSERT_TRUE(EvaluateBernsteinBasis(2, {}, params, output).ok());
+  for (size_t r = 0; r < params.size(); ++r) {
+    const double t = params[r];
+    EXPECT_NEAR(buffers[0][3 * r + 0], (1 - t) * (1 - t), 1e-15);
+    EXPECT_NEAR(buffers[0][3 * r + 1], 2 * t * (1 - t), 1e-15);
+    EXPECT_NEAR(buffers[0][3 * r + 2], t * t, 1e-15);
+    EXPECT_NEAR(buffers[1][3 * r + 0], -2 * (1 - t), 1e-14);
+    EXPECT_NEAR(buffers[1][3 * r + 1], 2 - 4 * t, 1e-14);
+    EXPECT_NEAR(buffers[1][3 * r + 2], 2 * t, 1e-14);
+  }
+  // Rational basis of the quarter circle (weights 1, 1, 2): sums to one.
+  const std::vector<double> weights = {1, 1, 2};
+  ASSERT_TRUE(EvaluateBernsteinBasis(2, weights, params, output).ok());
+  for (size_t r = 0; r < params.size(); ++r) {
+    const double t = params[r];
+    const double w = (1 - t) * (1 - t) + 2 * t * (1 - t) + 2 * t * t;
+    EXPECT_NEAR(buffers[0][3 * r + 2], 2 * t * t / w, 1e-15);
+    EXPECT_NEAR(
+        buffers[0][3 * r] + buffers[0][3 * r + 1] + buffers[0][3 * r + 2], 1.0,
+        1e-15);
+    EXPECT_NEAR(
+        buffers[1][3 * r] + buffers[1][3 * r + 1] + buffers[1][3 * r + 2], 0.0,
+        1e-14);
+  }
+}
+
+}  // namespace
+}  // namespace freeform

@@ -18,6 +18,7 @@
 #define FREEFORM_CORE_BEZIER_H_
 
 #include <cstddef>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/types/span.h"
@@ -85,6 +86,31 @@ absl::Status EvaluateBezierCurve(
     CurveOutput output, const ExecutionContext& context = {},
     BezierAlgorithm algorithm = BezierAlgorithm::kAuto);
 
+// BezierPointEvaluator evaluates one valid Bezier curve point by point,
+// with derivatives 0..max_order: the per-curve work (homogeneous points,
+// hodographs) is done once in the constructor. Evaluate() is const and
+// thread-safe; each thread passes its own scratch of scratch_size() doubles.
+// `curve` must have passed ValidateBezierCurve; the evaluator keeps its own
+// copy of what it needs.
+class BezierPointEvaluator {
+ public:
+  BezierPointEvaluator(const BezierCurveView& curve, int max_order,
+                       BezierAlgorithm algorithm = BezierAlgorithm::kAuto);
+
+  size_t scratch_size() const;
+  // Evaluate writes C^(k)(t) into derivatives[k * dimension + j].
+  void Evaluate(double t, double* scratch, double* derivatives) const;
+
+ private:
+  int degree_;
+  int dimension_;
+  int max_order_;
+  bool rational_;
+  BezierAlgorithm algorithm_;
+  std::vector<double> control_;                  // homogeneous when rational
+  std::vector<std::vector<double>> hodographs_;  // O(n) schemes only
+};
+
 // DeCasteljauDerivatives evaluates one point: it writes C^(k)(t) for
 // k = 0..max_order of the polynomial curve with n + 1 control points of
 // `dimension` coordinates at `control` into derivatives[k * dimension + j].
@@ -113,6 +139,27 @@ void LadderBezierPoint(const double* scaled, int n, int dimension, double t,
 // `derivatives[k * dimension + j]` for k = 0..max_order.
 void ProjectHomogeneousDerivatives(const double* homogeneous, int dimension,
                                    int max_order, double* derivatives);
+
+// PowerToBezier returns the Bezier control points of the power-form curve
+// C(t) = sum_j A_j t^j on [0, 1] (A_j = `coefficients`): the inverse of the
+// Bezier geometry matrix, P_i = sum_{j<=i} binom(i,j) / binom(n,j) A_j.
+std::vector<double> PowerToBezier(const PointsView& coefficients);
+
+// BezierToPower returns the power-form coefficients A = M_B P with the
+// Bezier geometry matrix M_B[j][i] = (-1)^(j-i) binom(n,j) binom(j,i)
+// (for n = 3 the matrix of the slides: rows 1 0 0 0 / -3 3 0 0 /
+// 3 -6 3 0 / -1 3 -3 1).
+std::vector<double> BezierToPower(const PointsView& control_points);
+
+// EvaluateBernsteinBasis writes the Bernstein polynomials B(n,i,t) of degree
+// n (or, with n + 1 weights, the rational basis w_i B_i / sum_j w_j B_j) and
+// their derivatives: output[k][r * (n + 1) + i] is the k-th derivative of
+// function i at parameters[r]. Weights follow the Bezier rules ("weights",
+// "weights[i]"); parameters must lie in [0, 1] ("parameters[i]").
+absl::Status EvaluateBernsteinBasis(int n, absl::Span<const double> weights,
+                                    absl::Span<const double> parameters,
+                                    CurveOutput output,
+                                    const ExecutionContext& context = {});
 
 // BernsteinBasis writes B(n,i,t), i = 0..n, into values (n + 1 doubles) by
 // the triangular recurrence B(j,i) = (1-t) B(j-1,i) + t B(j-1,i-1).
