@@ -13,42 +13,17 @@
 
 #include "freeform/core/bezier.h"
 #include "freeform/core/thread_pool.h"
+#include "workloads.h"
 
 namespace {
 
-// The workloads' LCG: rnd() in [-1, 1).
-class Lcg {
- public:
-  explicit Lcg(uint64_t seed) : state_(seed) {}
-  double Next() {
-    state_ = state_ * 6364136223846793005ULL + 1442695040888963407ULL;
-    const double unit = static_cast<double>(state_ >> 11) * 0x1.0p-53;
-    return 2.0 * unit - 1.0;
-  }
+using freeform::bench::RandomPoints;
+using freeform::bench::UniformParameters;
 
- private:
-  uint64_t state_;
-};
-
-std::vector<double> RandomPoints(uint64_t seed, size_t count, int dimension) {
-  Lcg lcg(seed);
-  std::vector<double> points(count * static_cast<size_t>(dimension));
-  for (double& value : points) value = lcg.Next();
-  return points;
-}
-
-std::vector<double> UniformParameters(size_t count) {
-  std::vector<double> parameters(count);
-  for (size_t k = 0; k < count; ++k) {
-    parameters[k] = static_cast<double>(k) / static_cast<double>(count - 1);
-  }
-  return parameters;
-}
-
-void RunBezier(benchmark::State& state, int degree, size_t count, int orders,
-               freeform::ThreadPool* pool,
-               freeform::BezierAlgorithm algorithm =
-                   freeform::BezierAlgorithm::kAuto) {
+void RunBezier(
+    benchmark::State& state, int degree, size_t count, int orders,
+    freeform::ThreadPool* pool,
+    freeform::BezierAlgorithm algorithm = freeform::BezierAlgorithm::kAuto) {
   const std::vector<double> control =
       RandomPoints(3, static_cast<size_t>(degree + 1), 3);
   const std::vector<double> parameters = UniformParameters(count);
@@ -60,9 +35,8 @@ void RunBezier(benchmark::State& state, int degree, size_t count, int orders,
       .weights = {}};
   const freeform::ExecutionContext context{.pool = pool};
   for (auto _ : state) {
-    benchmark::DoNotOptimize(
-        freeform::EvaluateBezierCurve(curve, parameters, output, context,
-                                      algorithm));
+    benchmark::DoNotOptimize(freeform::EvaluateBezierCurve(
+        curve, parameters, output, context, algorithm));
     benchmark::ClobberMemory();
   }
   double checksum = 0;

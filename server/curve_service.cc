@@ -1,7 +1,6 @@
 #include "curve_service.h"
 
 #include <algorithm>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -9,105 +8,12 @@
 #include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "errors.h"
-#include "freeform/core/bezier.h"
 #include "freeform/core/status.h"
+#include "prepared_curve.h"
 #include "rpc.h"
 
 namespace freeform::server {
 namespace {
-
-// A validated curve, ready to evaluate at parameters in its domain.
-struct PreparedCurve {
-  int dimension = 0;
-  double domain_start = 0.0;
-  double domain_end = 1.0;
-  std::function<absl::Status(absl::Span<const double>, CurveOutput,
-                             const ExecutionContext&)>
-      evaluate;
-};
-
-absl::Status CheckDimension(uint32_t dimension, const ServiceLimits& limits,
-                            absl::string_view field) {
-  if (dimension < 1 ||
-      dimension > static_cast<uint32_t>(limits.max_dimension)) {
-    return InvalidFieldError(
-        absl::StrCat(field, ".dimension"),
-        absl::StrCat("dimension must be between 1 and ", limits.max_dimension,
-                     ", got ", dimension));
-  }
-  return absl::OkStatus();
-}
-
-absl::Status CheckControlPointCount(size_t count, int degree,
-                                    const ServiceLimits& limits,
-                                    absl::string_view field) {
-  if (count > limits.max_control_points) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        field, ": ", count, " control points exceed the server's limit of ",
-        limits.max_control_points, " (--max_control_points)"));
-  }
-  if (degree > limits.max_degree) {
-    return InvalidFieldError(
-        field,
-        absl::StrCat("degree ", degree, " exceeds the server's limit of ",
-                     limits.max_degree, " (--max_degree)"));
-  }
-  return absl::OkStatus();
-}
-
-// Fields in errors are relative to the BezierCurve message.
-absl::StatusOr<PreparedCurve> PrepareBezier(const v1::BezierCurve& message,
-                                            const ServiceLimits& limits) {
-  if (absl::Status status = CheckDimension(message.control_points().dimension(),
-                                           limits, "control_points");
-      !status.ok()) {
-    return status;
-  }
-  const BezierCurveView curve = ViewOf(message);
-  if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckControlPointCount(curve.control_points.size(), curve.degree(),
-                                 limits, "control_points");
-      !status.ok()) {
-    return status;
-  }
-  PreparedCurve prepared;
-  prepared.dimension = curve.control_points.dimension;
-  prepared.evaluate = [curve](absl::Span<const double> parameters,
-                              CurveOutput output,
-                              const ExecutionContext& context) {
-    return EvaluateBezierCurve(curve, parameters, output, context);
-  };
-  return prepared;
-}
-
-// Fields in errors are full paths from the request ("curve.bezier...").
-absl::StatusOr<PreparedCurve> PrepareCurve(const v1::Curve& curve,
-                                           const ServiceLimits& limits) {
-  absl::StatusOr<PreparedCurve> prepared;
-  absl::string_view prefix = "curve";
-  switch (curve.kind_case()) {
-    case v1::Curve::kBezier:
-      prefix = "curve.bezier";
-      prepared = PrepareBezier(curve.bezier(), limits);
-      break;
-    case v1::Curve::kBspline:
-      return NotYetImplemented("Evaluating B-spline and NURBS curves",
-                               "issue #3");
-    case v1::Curve::kLagrange:
-      return NotYetImplemented("Evaluating Lagrange curves", "issue #3");
-    case v1::Curve::kHermite:
-      return NotYetImplemented("Evaluating Hermite curves", "issue #3");
-    case v1::Curve::kPower:
-      return NotYetImplemented("Evaluating power-form curves", "issue #3");
-    case v1::Curve::KIND_NOT_SET:
-      return InvalidFieldError("curve", "set one curve kind (bezier, ...)");
-  }
-  if (!prepared.ok()) return PrefixFieldPath(prepared.status(), prefix);
-  return prepared;
-}
 
 // Everything an evaluation request resolves to before any math runs.
 struct EvaluationPlan {
@@ -120,35 +26,30 @@ struct EvaluationPlan {
   }
 };
 
-absl::StatusOr<EvaluationPlan> PlanEvaluation(
-    const v1::EvaluateCurveRequest& request, const ServiceLimits& limits) {
-  if (request.derivative_order() >
-      static_cast<uint32_t>(limits.max_derivative_order)) {
+absl::Status CheckDerivativeOrder(uint32_t order, const ServiceLimits& limits) {
+  if (order > static_cast<uint32_t>(limits.max_derivative_order)) {
     return InvalidFieldError(
         "derivative_order",
         absl::StrCat("must be at most ", limits.max_derivative_order, ", got ",
-                     request.derivative_order()));
+                     order));
   }
-  switch (request.bezier_algorithm()) {
-    case v1::BEZIER_ALGORITHM_AUTO:
-    case v1::BEZIER_ALGORITHM_DE_CASTELJAU:
-      break;
-    default:
-      if (request.curve().has_bezier()) {
-        return NotYetImplemented("This Bezier algorithm", "issue #3");
-      }
-  }
-  absl::StatusOr<PreparedCurve> curve = PrepareCurve(request.curve(), limits);
+  return absl::OkStatus();
+}
+
+// Resolves the parameters against the prepared curve's domain and checks
+// the output limit.
+absl::StatusOr<EvaluationPlan> PlanFor(absl::StatusOr<PreparedCurve> curve,
+                                       const v1::Parameters& parameters,
+                                       uint32_t derivative_order,
+                                       const ServiceLimits& limits) {
   if (!curve.ok()) return curve.status();
-  absl::StatusOr<ParameterSet> parameters =
-      ParameterSet::Resolve(request.parameters(), curve->domain_start,
-                            curve->domain_end, limits.max_parameters);
-  if (!parameters.ok()) {
-    return PrefixFieldPath(parameters.status(), "parameters");
-  }
+  absl::StatusOr<ParameterSet> resolved =
+      ParameterSet::Resolve(parameters, curve->domain_start, curve->domain_end,
+                            limits.max_parameters);
+  if (!resolved.ok()) return PrefixFieldPath(resolved.status(), "parameters");
   EvaluationPlan plan{.curve = *std::move(curve),
-                      .parameters = *std::move(parameters),
-                      .orders = request.derivative_order() + 1u};
+                      .parameters = *std::move(resolved),
+                      .orders = derivative_order + 1u};
   const size_t values = plan.parameters.size() * plan.ValuesPerParameter();
   if (values > limits.max_output_values) {
     return absl::ResourceExhaustedError(
@@ -157,6 +58,51 @@ absl::StatusOr<EvaluationPlan> PlanEvaluation(
                      limits.max_output_values, " (--max_output_values)"));
   }
   return plan;
+}
+
+absl::StatusOr<EvaluationPlan> PlanEvaluation(
+    const v1::EvaluateCurveRequest& request, const ServiceLimits& limits) {
+  if (absl::Status status =
+          CheckDerivativeOrder(request.derivative_order(), limits);
+      !status.ok()) {
+    return status;
+  }
+  return PlanFor(
+      PrepareCurve(request.curve(), request.bezier_algorithm(), limits),
+      request.parameters(), request.derivative_order(), limits);
+}
+
+absl::StatusOr<EvaluationPlan> PlanBasisEvaluation(
+    const v1::EvaluateBasisRequest& request, const ServiceLimits& limits) {
+  if (absl::Status status =
+          CheckDerivativeOrder(request.derivative_order(), limits);
+      !status.ok()) {
+    return status;
+  }
+  return PlanFor(PrepareBasis(request.basis(), limits), request.parameters(),
+                 request.derivative_order(), limits);
+}
+
+absl::Status CheckUnaryAnswerSize(const EvaluationPlan& plan,
+                                  const ServiceLimits& limits,
+                                  absl::string_view streaming_hint) {
+  const size_t bytes = plan.parameters.size() * plan.ValuesPerParameter() * 8;
+  if (bytes > static_cast<size_t>(limits.max_message_bytes)) {
+    return absl::ResourceExhaustedError(
+        absl::StrCat("parameters: the answer would take ", bytes,
+                     " bytes, over the message limit of ",
+                     limits.max_message_bytes, streaming_hint));
+  }
+  return absl::OkStatus();
+}
+
+// Grows `field` by `size` values left for the caller to write and returns
+// them (no zero-filling: every value is overwritten by the evaluation).
+absl::Span<double> UninitializedArray(
+    google::protobuf::RepeatedField<double>& field, size_t size) {
+  field.Reserve(field.size() + static_cast<int>(size));
+  return absl::MakeSpan(field.AddNAlreadyReserved(static_cast<int>(size)),
+                        size);
 }
 
 // Adds the derivative arrays of `count` points to `response` and returns
@@ -173,11 +119,7 @@ std::vector<absl::Span<double>> AllocateDerivatives(
   for (size_t k = 0; k < plan.orders; ++k) {
     v1::Points* points = response.add_derivatives();
     points->set_dimension(static_cast<uint32_t>(plan.curve.dimension));
-    google::protobuf::RepeatedField<double>* coordinates =
-        points->mutable_coordinates();
-    coordinates->Reserve(static_cast<int>(size));
-    spans.emplace_back(coordinates->AddNAlreadyReserved(static_cast<int>(size)),
-                       size);
+    spans.push_back(UninitializedArray(*points->mutable_coordinates(), size));
   }
   return spans;
 }
@@ -197,12 +139,10 @@ grpc::Status CurveServiceImpl::Evaluate(grpc::ServerContext* context,
         absl::StatusOr<EvaluationPlan> plan = PlanEvaluation(*request, limits_);
         if (!plan.ok()) return plan.status();
         const size_t count = plan->parameters.size();
-        const size_t bytes = count * plan->ValuesPerParameter() * 8;
-        if (bytes > static_cast<size_t>(limits_.max_message_bytes)) {
-          return absl::ResourceExhaustedError(
-              absl::StrCat("parameters: the answer would take ", bytes,
-                           " bytes, over the message limit of ",
-                           limits_.max_message_bytes, "; use EvaluateStream"));
+        if (absl::Status status =
+                CheckUnaryAnswerSize(*plan, limits_, "; use EvaluateStream");
+            !status.ok()) {
+          return status;
         }
         absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
             admission_.Admit(count > limits_.grain);
@@ -266,9 +206,36 @@ grpc::Status CurveServiceImpl::EvaluateStream(
 
 grpc::Status CurveServiceImpl::EvaluateBasis(
     grpc::ServerContext* context, const v1::EvaluateBasisRequest* request,
-    v1::EvaluateBasisResponse*) {
-  return RunUnimplemented("CurveService.EvaluateBasis", context, *request,
-                          "issue #3");
+    v1::EvaluateBasisResponse* response) {
+  return RunRpc(
+      "CurveService.EvaluateBasis", context, *request, response,
+      [&](const CancellationToken& token) -> absl::Status {
+        absl::StatusOr<EvaluationPlan> plan =
+            PlanBasisEvaluation(*request, limits_);
+        if (!plan.ok()) return plan.status();
+        if (absl::Status status = CheckUnaryAnswerSize(*plan, limits_, "");
+            !status.ok()) {
+          return status;
+        }
+        const size_t count = plan->parameters.size();
+        absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
+            admission_.Admit(count > limits_.grain);
+        if (!ticket.ok()) return ticket.status();
+        response->set_function_count(
+            static_cast<uint32_t>(plan->curve.dimension));
+        response->set_count(static_cast<uint32_t>(count));
+        const size_t size = count * static_cast<size_t>(plan->curve.dimension);
+        std::vector<absl::Span<double>> output;
+        for (size_t k = 0; k < plan->orders; ++k) {
+          output.push_back(UninitializedArray(
+              *response->add_derivatives()->mutable_values(), size));
+        }
+        std::vector<double> storage;
+        const ExecutionContext execution{
+            .pool = pool_, .cancellation = &token, .grain = limits_.grain};
+        return plan->curve.evaluate(plan->parameters.Values(0, count, storage),
+                                    output, execution);
+      });
 }
 
 grpc::Status CurveServiceImpl::Split(grpc::ServerContext* context,

@@ -2,6 +2,8 @@
 //
 //   freeform eval   [--address HOST:PORT] [--file REQUEST.json] [--stream]
 //                   [--format json|csv]
+//   freeform basis  [--address HOST:PORT] [--file REQUEST.json]
+//                   [--format json|csv]
 //   freeform health [--address HOST:PORT] [--service NAME]
 //
 // Requests are the canonical proto3 JSON of the request message (from a file
@@ -143,6 +145,55 @@ int RunEval(const CommonFlags& flags, const std::string& file, bool stream,
   return 0;
 }
 
+// One CSV row per parameter: index, then each derivative's function values.
+void PrintBasisCsv(const freeform::BasisSamples& samples) {
+  std::cout << "index";
+  for (size_t k = 0; k < samples.derivatives.size(); ++k) {
+    for (size_t i = 0; i < samples.function_count; ++i) {
+      std::cout << "," << (k == 0 ? "" : absl::StrCat("d", k)) << "f" << i;
+    }
+  }
+  std::cout << "\n";
+  std::cout.precision(17);
+  for (size_t r = 0; r < samples.count; ++r) {
+    std::cout << r;
+    for (size_t k = 0; k < samples.derivatives.size(); ++k) {
+      for (size_t i = 0; i < samples.function_count; ++i) {
+        std::cout << "," << samples.Value(k, r, i);
+      }
+    }
+    std::cout << "\n";
+  }
+}
+
+int RunBasis(const CommonFlags& flags, const std::string& file,
+             const std::string& format) {
+  absl::StatusOr<freeform::v1::EvaluateBasisRequest> request =
+      ParseJson<freeform::v1::EvaluateBasisRequest>(file);
+  if (!request.ok()) {
+    std::cerr << "error: " << request.status().message() << "\n";
+    return 2;
+  }
+  std::unique_ptr<freeform::Client> client = Connect(flags);
+  if (client == nullptr) return 2;
+  absl::StatusOr<freeform::BasisSamples> samples =
+      client->EvaluateBasis(*request);
+  if (!samples.ok()) return ReportError(samples.status());
+  if (format == "csv") {
+    PrintBasisCsv(*samples);
+    return 0;
+  }
+  freeform::v1::EvaluateBasisResponse response;
+  response.set_function_count(static_cast<uint32_t>(samples->function_count));
+  response.set_count(static_cast<uint32_t>(samples->count));
+  for (const std::vector<double>& values : samples->derivatives) {
+    response.add_derivatives()->mutable_values()->Add(values.begin(),
+                                                      values.end());
+  }
+  std::cout << ToJson(response);
+  return 0;
+}
+
 int RunHealth(const CommonFlags& flags, const std::string& service) {
   std::unique_ptr<freeform::Client> client = Connect(flags);
   if (client == nullptr) return 2;
@@ -186,6 +237,15 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"json", "csv"}))
       ->capture_default_str();
 
+  CLI::App* basis = app.add_subcommand(
+      "basis", "Evaluate blending functions: CurveService.EvaluateBasis");
+  AddCommonFlags(*basis, flags);
+  basis->add_option("-f,--file", file,
+                    "EvaluateBasisRequest as proto3 JSON (default: stdin)");
+  basis->add_option("--format", format, "Output: json or csv")
+      ->check(CLI::IsMember({"json", "csv"}))
+      ->capture_default_str();
+
   CLI::App* health =
       app.add_subcommand("health", "Ask the server's health service");
   std::string service;
@@ -195,5 +255,6 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (eval->parsed()) return RunEval(flags, file, stream, format);
+  if (basis->parsed()) return RunBasis(flags, file, format);
   return RunHealth(flags, service);
 }

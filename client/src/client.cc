@@ -197,6 +197,25 @@ absl::StatusOr<CurveSamples> Client::EvaluateCurveStreamed(
   return samples;
 }
 
+absl::StatusOr<BasisSamples> Client::EvaluateBasis(
+    const v1::EvaluateBasisRequest& request) {
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  v1::EvaluateBasisResponse response;
+  if (grpc::Status status =
+          curves_->EvaluateBasis(context.get(), request, &response);
+      !status.ok()) {
+    return FromGrpcStatus(status);
+  }
+  BasisSamples samples{.function_count = response.function_count(),
+                       .count = response.count(),
+                       .derivatives = {}};
+  for (const v1::BasisValues& values : response.derivatives()) {
+    samples.derivatives.emplace_back(values.values().begin(),
+                                     values.values().end());
+  }
+  return samples;
+}
+
 absl::Status Client::CheckHealth(const std::string& service) {
   auto stub = grpc::health::v1::Health::NewStub(channel_);
   std::unique_ptr<grpc::ClientContext> context = NewContext();

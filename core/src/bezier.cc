@@ -5,30 +5,11 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 
 namespace freeform {
-namespace {
-
-// Homogeneous control points (w_i P_i, w_i), dimension + 1 values each.
-std::vector<double> Homogenize(const BezierCurveView& curve) {
-  const size_t dimension = static_cast<size_t>(curve.control_points.dimension);
-  const size_t count = curve.control_points.size();
-  std::vector<double> homogeneous(count * (dimension + 1));
-  for (size_t i = 0; i < count; ++i) {
-    const double* point = curve.control_points.point(i);
-    double* out = &homogeneous[i * (dimension + 1)];
-    const double weight = curve.weights[i];
-    // A zero weight makes the point a direction: (P, 0), the point at
-    // infinity in the direction P.
-    const double scale = weight == 0.0 ? 1.0 : weight;
-    for (size_t j = 0; j < dimension; ++j) out[j] = scale * point[j];
-    out[dimension] = weight;
-  }
-  return homogeneous;
-}
-
-}  // namespace
+namespace {}  // namespace
 
 absl::Status ValidateBezierCurve(const BezierCurveView& curve) {
   if (absl::Status status =
@@ -92,29 +73,6 @@ void DeCasteljauDerivatives(const double* control, int n, int dimension,
     for (size_t x = 0; x < static_cast<size_t>(m) * dim; ++x) {
       levels[x] = s * levels[x] + t * levels[x + dim];
     }
-  }
-}
-
-void ProjectHomogeneousDerivatives(const double* homogeneous, int dimension,
-                                   int max_order, double* derivatives) {
-  const size_t dim = static_cast<size_t>(dimension);
-  const size_t stride = dim + 1;
-  const double weight = homogeneous[dim];
-  for (int k = 0; k <= max_order; ++k) {
-    double* out = derivatives + static_cast<size_t>(k) * dim;
-    const double* numerator = homogeneous + static_cast<size_t>(k) * stride;
-    for (size_t j = 0; j < dim; ++j) out[j] = numerator[j];
-    double binomial = 1.0;  // binom(k, i)
-    for (int i = 1; i <= k; ++i) {
-      binomial = binomial * (k - i + 1) / i;
-      const double weight_derivative =
-          homogeneous[static_cast<size_t>(i) * stride + dim];
-      const double* lower = derivatives + static_cast<size_t>(k - i) * dim;
-      for (size_t j = 0; j < dim; ++j) {
-        out[j] -= binomial * weight_derivative * lower[j];
-      }
-    }
-    for (size_t j = 0; j < dim; ++j) out[j] /= weight;
   }
 }
 
@@ -274,7 +232,7 @@ BezierPointEvaluator::BezierPointEvaluator(const BezierCurveView& curve,
       algorithm_(ResolveBezierAlgorithm(algorithm, curve.degree())) {
   const int work_dimension = rational_ ? dimension_ + 1 : dimension_;
   control_ = rational_
-                 ? Homogenize(curve)
+                 ? HomogeneousPoints(curve.control_points, curve.weights)
                  : std::vector<double>(curve.control_points.coordinates.begin(),
                                        curve.control_points.coordinates.end());
   if (algorithm_ != BezierAlgorithm::kDeCasteljau) {
@@ -325,13 +283,9 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
   if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
     return status;
   }
-  if (absl::Status status = ValidateInRange(parameters, 0.0, 1.0, "parameters");
-      !status.ok()) {
-    return status;
-  }
   const int dimension = curve.control_points.dimension;
   if (absl::Status status =
-          ValidateCurveOutput(output, parameters.size(), dimension);
+          ValidateBatch(parameters, 0.0, 1.0, output, dimension);
       !status.ok()) {
     return status;
   }

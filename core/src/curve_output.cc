@@ -1,6 +1,7 @@
 #include "freeform/core/curve_output.h"
 
 #include "absl/strings/str_cat.h"
+#include "freeform/core/points.h"
 
 namespace freeform {
 
@@ -18,6 +19,17 @@ absl::Status ValidateCurveOutput(CurveOutput output, size_t count,
     }
   }
   return absl::OkStatus();
+}
+
+absl::Status ValidateBatch(absl::Span<const double> parameters, double start,
+                           double end, CurveOutput output,
+                           int values_per_point) {
+  if (absl::Status status =
+          ValidateInRange(parameters, start, end, "parameters");
+      !status.ok()) {
+    return status;
+  }
+  return ValidateCurveOutput(output, parameters.size(), values_per_point);
 }
 
 }  // namespace freeform

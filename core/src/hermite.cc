@@ -106,14 +106,9 @@ absl::Status EvaluateHermiteCurve(const HermiteCurveView& curve,
     return status;
   }
   const auto [start, end] = HermiteDomain(curve);
-  if (absl::Status status =
-          ValidateInRange(parameters, start, end, "parameters");
-      !status.ok()) {
-    return status;
-  }
   const int dimension = curve.points.dimension;
   if (absl::Status status =
-          ValidateCurveOutput(output, parameters.size(), dimension);
+          ValidateBatch(parameters, start, end, output, dimension);
       !status.ok()) {
     return status;
   }

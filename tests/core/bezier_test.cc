@@ -4,9 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
 #include <numbers>
 #include <optional>
 #include <random>
+#include <set>
+#include <thread>
 #include <vector>
 
 #include "freeform/core/status.h"
@@ -569,6 +573,45 @@ TEST(BernsteinBasisTest, DenseValuesDerivativesAndRationalBasis) {
         buffers[1][3 * r] + buffers[1][3 * r + 1] + buffers[1][3 * r + 2], 0.0,
         1e-14);
   }
+}
+
+}  // namespace
+}  // namespace freeform
+
+namespace freeform {
+namespace {
+
+// A 10^6-parameter batch on a pool gives exactly the serial numbers, and
+// every pool thread takes part: the token's poll, asked before each chunk on
+// the thread that runs it, holds each thread until all five (the caller and
+// four workers) have arrived, so the batch can only finish if all took work.
+TEST(BezierBatchTest, MillionParametersUseEveryThreadAndMatchSerial) {
+  std::mt19937_64 rng(99);
+  const std::vector<double> points = RandomValues(rng, 8 * 3);
+  std::vector<double> params(1'000'000);
+  for (size_t r = 0; r < params.size(); ++r) {
+    params[r] = static_cast<double>(r) / static_cast<double>(params.size() - 1);
+  }
+  constexpr size_t kWorkers = 4;
+  ThreadPool pool(kWorkers);
+  std::mutex mutex;
+  std::condition_variable arrived;
+  std::set<std::thread::id> threads;
+  CancellationToken token;
+  token.SetPoll([&] {
+    std::unique_lock<std::mutex> lock(mutex);
+    threads.insert(std::this_thread::get_id());
+    arrived.notify_all();
+    arrived.wait_for(lock, std::chrono::seconds(20),
+                     [&] { return threads.size() >= kWorkers + 1; });
+    return false;
+  });
+  const auto serial = Evaluate(View(points, 3), params, 2);
+  const auto parallel = Evaluate(
+      View(points, 3), params, 2,
+      ExecutionContext{.pool = &pool, .cancellation = &token, .grain = 4096});
+  EXPECT_EQ(serial, parallel);
+  EXPECT_EQ(threads.size(), kWorkers + 1);
 }
 
 }  // namespace

@@ -198,6 +198,18 @@ TEST_F(FreeformdTest, CliReportsFieldViolationsAndServerStaysUp) {
   EXPECT_TRUE(client_->CheckHealth().ok());
 }
 
+TEST_F(FreeformdTest, CliBasisPrintsBlendingFunctions) {
+  // The degree-2 B-splines on 0,0,0,1,1,1 at u = 1/2: (1-u)^2, 2u(1-u), u^2.
+  const std::string file = WriteTempFile(R"({
+    "basis": {"bspline": {"degree": 2, "knots": [0, 0, 0, 1, 1, 1]}},
+    "parameters": {"list": {"values": [0.5]}}})");
+  CommandResult csv =
+      RunCommand(Cli(absl::StrCat("basis --format csv --file ", file)));
+  EXPECT_EQ(csv.exit_code, 0) << csv.output;
+  EXPECT_EQ(csv.output, "index,f0,f1,f2\n0,0.25,0.5,0.25\n");
+  unlink(file.c_str());
+}
+
 TEST_F(FreeformdTest, CliHealth) {
   CommandResult result = RunCommand(Cli("health"));
   EXPECT_EQ(result.exit_code, 0) << result.output;

@@ -72,6 +72,20 @@ struct CurveSamples {
   }
 };
 
+// Values (and derivatives) of a set of blending functions at a batch of
+// parameters.
+struct BasisSamples {
+  size_t function_count = 0;
+  size_t count = 0;
+  // derivatives[k][r * function_count + i]: derivative k of function i at
+  // parameter r.
+  std::vector<std::vector<double>> derivatives;
+
+  double Value(size_t order, size_t index, size_t function) const {
+    return derivatives[order][index * function_count + function];
+  }
+};
+
 // One google.rpc.BadRequest field violation.
 struct FieldViolation {
   std::string field;
@@ -109,6 +123,10 @@ class Client {
   // chunks, for answers larger than one message.
   absl::StatusOr<CurveSamples> EvaluateCurveStreamed(
       const v1::EvaluateCurveRequest& request);
+
+  // EvaluateBasis runs CurveService.EvaluateBasis.
+  absl::StatusOr<BasisSamples> EvaluateBasis(
+      const v1::EvaluateBasisRequest& request);
 
   // CheckHealth asks grpc.health.v1.Health; OK means SERVING, UNAVAILABLE
   // means NOT_SERVING; other codes are transport errors.

@@ -24,6 +24,7 @@
 #include "absl/types/span.h"
 #include "freeform/core/curve_output.h"
 #include "freeform/core/points.h"
+#include "freeform/core/rational.h"
 #include "freeform/core/thread_pool.h"
 
 namespace freeform {
@@ -131,14 +132,6 @@ void HornerBezierPoint(const double* scaled, int n, int dimension, double t,
 // control points.
 void LadderBezierPoint(const double* scaled, int n, int dimension, double t,
                        double* point);
-
-// ProjectHomogeneousDerivatives turns derivatives of a homogeneous curve
-// (dimension + 1 values per order, weight last) into the derivatives of its
-// projection: C^(k) = (A^(k) - sum_{i=1..k} binom(k,i) w^(i) C^(k-i)) / w.
-// Reads `homogeneous[k * (dimension + 1) + j]`, writes
-// `derivatives[k * dimension + j]` for k = 0..max_order.
-void ProjectHomogeneousDerivatives(const double* homogeneous, int dimension,
-                                   int max_order, double* derivatives);
 
 // PowerToBezier returns the Bezier control points of the power-form curve
 // C(t) = sum_j A_j t^j on [0, 1] (A_j = `coefficients`): the inverse of the

@@ -24,6 +24,13 @@ using CurveOutput = absl::Span<const absl::Span<double>>;
 absl::Status ValidateCurveOutput(CurveOutput output, size_t count,
                                  int dimension);
 
+// ValidateBatch checks what every batch evaluator gets besides its curve:
+// parameters finite and inside [start, end] ("parameters[i]"), and output
+// buffers of count * values_per_point doubles.
+absl::Status ValidateBatch(absl::Span<const double> parameters, double start,
+                           double end, CurveOutput output,
+                           int values_per_point);
+
 }  // namespace freeform
 
 #endif  // FREEFORM_CORE_CURVE_OUTPUT_H_

@@ -1,0 +1,35 @@
+// Homogeneous form of rational geometry.
+//
+// A rational curve or surface with Cartesian control points P_i and weights
+// w_i is the projection of the polynomial one with homogeneous points
+// (w_i P_i, w_i). A zero weight makes the point a direction: its coordinates
+// D are kept and the homogeneous point is (D, 0), a point at infinity, as in
+// the course notes' half circle (1,0,1), (0,1,0), (-1,0,1). Derivatives of
+// the projection follow from the homogeneous ones by the quotient rule (The
+// NURBS Book, eq. 4.8). Thread-safe.
+#ifndef FREEFORM_CORE_RATIONAL_H_
+#define FREEFORM_CORE_RATIONAL_H_
+
+#include <vector>
+
+#include "absl/types/span.h"
+#include "freeform/core/points.h"
+
+namespace freeform {
+
+// HomogeneousPoints returns (w_i P_i, w_i) for every point, dimension + 1
+// values each ((D, 0) for a zero weight). `weights` has one weight per point.
+std::vector<double> HomogeneousPoints(const PointsView& points,
+                                      absl::Span<const double> weights);
+
+// ProjectHomogeneousDerivatives turns derivatives of a homogeneous curve
+// (dimension + 1 values per order, weight last) into the derivatives of its
+// projection: C^(k) = (A^(k) - sum_{i=1..k} binom(k,i) w^(i) C^(k-i)) / w.
+// Reads `homogeneous[k * (dimension + 1) + j]`, writes
+// `derivatives[k * dimension + j]` for k = 0..max_order.
+void ProjectHomogeneousDerivatives(const double* homogeneous, int dimension,
+                                   int max_order, double* derivatives);
+
+}  // namespace freeform
+
+#endif  // FREEFORM_CORE_RATIONAL_H_
