@@ -297,6 +297,11 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
     std::vector<double> scratch(evaluator.scratch_size() + orders * dim);
     double* derivatives = scratch.data() + evaluator.scratch_size();
     for (size_t r = begin; r < end; ++r) {
+      if (orders == 1) {  // positions only: write in place
+        evaluator.Evaluate(parameters[r], scratch.data(),
+                           output[0].data() + r * dim);
+        continue;
+      }
       evaluator.Evaluate(parameters[r], scratch.data(), derivatives);
       for (size_t k = 0; k < orders; ++k) {
         std::copy(derivatives + k * dim, derivatives + (k + 1) * dim,

@@ -278,6 +278,48 @@ TEST_F(CurveKindsTest, InvalidCurvesNameTheField) {
                 "curve.power.coefficients.coordinates[1]");
 }
 
+TEST_F(CurveKindsTest, KnotAndWeightRulesNameTheField) {
+  // Degree against the number of control points: a cubic needs four.
+  v1::Curve curve;
+  v1::BSplineCurve* bspline = curve.mutable_bspline();
+  bspline->set_degree(3);
+  SetPoints(bspline->mutable_control_points(), 1, {0, 1, 2});
+  Append(bspline->mutable_knots(), {0, 0, 0, 0, 1, 1, 1});
+  ExpectInvalid(Evaluate(curve, {0.5}).status(),
+                "curve.bspline.control_points.coordinates");
+
+  // An interior knot may repeat at most `degree` times.
+  curve = v1::Curve();
+  bspline = curve.mutable_bspline();
+  bspline->set_degree(2);
+  SetPoints(bspline->mutable_control_points(), 1, {0, 1, 2, 3, 4, 5});
+  Append(bspline->mutable_knots(), {0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1});
+  ExpectInvalid(Evaluate(curve, {0.25}).status(), "curve.bspline.knots[5]");
+
+  // The half circle: a zero interior weight (a point at infinity) keeps the
+  // curve finite and is accepted...
+  curve = v1::Curve();
+  bspline = curve.mutable_bspline();
+  bspline->set_degree(2);
+  SetPoints(bspline->mutable_control_points(), 2, {1, 0, 0, 1, -1, 0});
+  Append(bspline->mutable_knots(), {0, 0, 0, 1, 1, 1});
+  Append(bspline->mutable_weights(), {1, 0, 1});
+  absl::StatusOr<CurveSamples> half = Evaluate(curve, {0, 0.5, 1});
+  ASSERT_TRUE(half.ok()) << half.status();
+  EXPECT_THAT(
+      half->derivatives[0],
+      Pointwise(DoubleNear(1e-15), std::vector<double>{1, 0, 0, 1, -1, 0}));
+  // ...but a zero end weight makes the curve infinite at u = 1: rejected.
+  bspline->set_weights(2, 0);
+  ExpectInvalid(Evaluate(curve, {0.5}).status(), "curve.bspline.weights[2]");
+  // The same rule for a rational Bezier curve.
+  v1::Curve bezier;
+  SetPoints(bezier.mutable_bezier()->mutable_control_points(), 2,
+            {1, 0, 0, 1, -1, 0});
+  Append(bezier.mutable_bezier()->mutable_weights(), {0, 1, 1});
+  ExpectInvalid(Evaluate(bezier, {0.5}).status(), "curve.bezier.weights[0]");
+}
+
 TEST_F(CurveKindsTest, InvalidBasesNameTheField) {
   v1::EvaluateBasisRequest request;
   request.mutable_parameters()->mutable_list()->add_values(0.5);
