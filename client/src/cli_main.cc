@@ -4,6 +4,10 @@
 //                   [--format json|csv]
 //   freeform basis  [--address HOST:PORT] [--file REQUEST.json]
 //                   [--format json|csv]
+//   freeform surface [--address HOST:PORT] [--file REQUEST.json] [--stream]
+//                   [--format json|csv] [--obj MESH.obj]
+//   freeform mesh   [--address HOST:PORT] --bezier-patches PATCHES.json
+//                   [--grid N] [--obj MESH.obj]
 //   freeform health [--address HOST:PORT] [--service NAME]
 //
 // Requests are the canonical proto3 JSON of the request message (from a file
@@ -12,6 +16,7 @@
 // its field violations), 2 for unusable input.
 #include <google/protobuf/util/json_util.h>
 
+#include <fstream>
 #include <iostream>
 #include <iterator>
 #include <string>
@@ -21,6 +26,8 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
 #include "freeform/core/file.h"
+#include "nlohmann/json.hpp"
+#include "obj_mesh.h"
 
 namespace {
 
@@ -194,6 +201,179 @@ int RunBasis(const CommonFlags& flags, const std::string& file,
   return 0;
 }
 
+// Number of values a grid axis resolves to.
+size_t AxisCount(const freeform::v1::Parameters& axis) {
+  return axis.has_list() ? static_cast<size_t>(axis.list().values_size())
+                         : axis.range().count();
+}
+
+freeform::v1::EvaluateSurfaceResponse ToSurfaceResponse(
+    const freeform::SurfaceEvaluation& evaluation) {
+  freeform::v1::EvaluateSurfaceResponse response;
+  response.set_dimension(static_cast<uint32_t>(evaluation.dimension));
+  response.set_count(static_cast<uint32_t>(evaluation.count));
+  for (const auto& partial : evaluation.partials) {
+    freeform::v1::PartialDerivative* out = response.add_partials();
+    out->set_order_u(static_cast<uint32_t>(partial.order_u));
+    out->set_order_v(static_cast<uint32_t>(partial.order_v));
+    out->mutable_values()->set_dimension(
+        static_cast<uint32_t>(evaluation.dimension));
+    out->mutable_values()->mutable_coordinates()->Add(partial.values.begin(),
+                                                      partial.values.end());
+  }
+  if (!evaluation.normals.empty()) {
+    response.mutable_normals()->set_dimension(3);
+    response.mutable_normals()->mutable_coordinates()->Add(
+        evaluation.normals.begin(), evaluation.normals.end());
+  }
+  return response;
+}
+
+// One CSV row per point: index, every partial's coordinates, the normal.
+void PrintSurfaceCsv(const freeform::SurfaceEvaluation& evaluation) {
+  std::cout << "index";
+  for (const auto& partial : evaluation.partials) {
+    for (int j = 0; j < evaluation.dimension; ++j) {
+      std::cout << ",s" << partial.order_u << partial.order_v << "_" << j;
+    }
+  }
+  if (!evaluation.normals.empty()) std::cout << ",nx,ny,nz";
+  std::cout << "\n";
+  std::cout.precision(17);
+  const size_t dim = static_cast<size_t>(evaluation.dimension);
+  for (size_t r = 0; r < evaluation.count; ++r) {
+    std::cout << r;
+    for (const auto& partial : evaluation.partials) {
+      for (size_t j = 0; j < dim; ++j) {
+        std::cout << "," << partial.values[r * dim + j];
+      }
+    }
+    for (size_t j = 0; !evaluation.normals.empty() && j < 3; ++j) {
+      std::cout << "," << evaluation.normals[3 * r + j];
+    }
+    std::cout << "\n";
+  }
+}
+
+int WriteObj(const freeform::cli::ObjMesh& mesh, const std::string& path) {
+  if (path == "-") {
+    mesh.Write(std::cout);
+    return 0;
+  }
+  std::ofstream out(path);
+  mesh.Write(out);
+  if (!out) {
+    std::cerr << "error: cannot write " << path << "\n";
+    return 2;
+  }
+  std::cerr << "wrote " << path << ": " << mesh.vertex_count() << " vertices, "
+            << mesh.triangle_count() << " triangles\n";
+  return 0;
+}
+
+int RunSurface(const CommonFlags& flags, const std::string& file, bool stream,
+               const std::string& format, const std::string& obj) {
+  absl::StatusOr<freeform::v1::EvaluateSurfaceRequest> request =
+      ParseJson<freeform::v1::EvaluateSurfaceRequest>(file);
+  if (!request.ok()) {
+    std::cerr << "error: " << request.status().message() << "\n";
+    return 2;
+  }
+  if (!obj.empty()) {
+    if (!request->parameters().has_grid()) {
+      std::cerr << "error: --obj needs grid parameters\n";
+      return 2;
+    }
+    request->set_normals(true);
+  }
+  std::unique_ptr<freeform::Client> client = Connect(flags);
+  if (client == nullptr) return 2;
+  absl::StatusOr<freeform::SurfaceEvaluation> evaluation =
+      stream ? client->EvaluateSurfaceStreamed(*request)
+             : client->EvaluateSurface(*request);
+  if (!evaluation.ok()) return ReportError(evaluation.status());
+  if (!obj.empty()) {
+    freeform::cli::ObjMesh mesh;
+    mesh.AddGrid("surface", AxisCount(request->parameters().grid().u()),
+                 AxisCount(request->parameters().grid().v()),
+                 evaluation->partials[0].values, evaluation->normals);
+    return WriteObj(mesh, obj);
+  }
+  if (format == "csv") {
+    PrintSurfaceCsv(*evaluation);
+  } else {
+    std::cout << ToJson(ToSurfaceResponse(*evaluation));
+  }
+  return 0;
+}
+
+// Reads a set of Bezier patches in the layout of shared/data/teapot.json:
+// {"degree_u": m, "degree_v": n, "patches": [{"control_points":
+// [[x, y, z], ...]}, ...]} with (m+1)(n+1) row-major points per patch.
+absl::StatusOr<std::vector<freeform::v1::Surface>> ReadBezierPatches(
+    const std::string& file) {
+  absl::StatusOr<std::string> text = ReadInput(file);
+  if (!text.ok()) return text.status();
+  const nlohmann::json json = nlohmann::json::parse(*text, nullptr, false);
+  if (json.is_discarded() || !json.contains("patches")) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(file, ": not a JSON object with \"patches\""));
+  }
+  const int degree_u = json.value("degree_u", 3);
+  const int degree_v = json.value("degree_v", 3);
+  std::vector<freeform::v1::Surface> surfaces;
+  for (const nlohmann::json& patch : json["patches"]) {
+    freeform::v1::Surface surface;
+    freeform::v1::ControlNet* net =
+        surface.mutable_bezier()->mutable_control_net();
+    net->set_dimension(3);
+    net->set_count_u(static_cast<uint32_t>(degree_u + 1));
+    net->set_count_v(static_cast<uint32_t>(degree_v + 1));
+    for (const nlohmann::json& point : patch.at("control_points")) {
+      for (const nlohmann::json& value : point) {
+        net->add_coordinates(value.get<double>());
+      }
+    }
+    surfaces.push_back(std::move(surface));
+  }
+  return surfaces;
+}
+
+int RunMesh(const CommonFlags& flags, const std::string& patches_file, int grid,
+            const std::string& obj) {
+  absl::StatusOr<std::vector<freeform::v1::Surface>> surfaces =
+      ReadBezierPatches(patches_file);
+  if (!surfaces.ok()) {
+    std::cerr << "error: " << surfaces.status().message() << "\n";
+    return 2;
+  }
+  std::unique_ptr<freeform::Client> client = Connect(flags);
+  if (client == nullptr) return 2;
+  freeform::cli::ObjMesh mesh;
+  for (size_t p = 0; p < surfaces->size(); ++p) {
+    freeform::v1::EvaluateSurfaceRequest request;
+    *request.mutable_surface() = (*surfaces)[p];
+    request.mutable_parameters()
+        ->mutable_grid()
+        ->mutable_u()
+        ->mutable_range()
+        ->set_count(static_cast<uint32_t>(grid));
+    request.mutable_parameters()
+        ->mutable_grid()
+        ->mutable_v()
+        ->mutable_range()
+        ->set_count(static_cast<uint32_t>(grid));
+    request.set_normals(true);
+    absl::StatusOr<freeform::SurfaceEvaluation> evaluation =
+        client->EvaluateSurface(request);
+    if (!evaluation.ok()) return ReportError(evaluation.status());
+    mesh.AddGrid(absl::StrCat("patch", p), static_cast<size_t>(grid),
+                 static_cast<size_t>(grid), evaluation->partials[0].values,
+                 evaluation->normals);
+  }
+  return WriteObj(mesh, obj);
+}
+
 int RunHealth(const CommonFlags& flags, const std::string& service) {
   std::unique_ptr<freeform::Client> client = Connect(flags);
   if (client == nullptr) return 2;
@@ -246,6 +426,36 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"json", "csv"}))
       ->capture_default_str();
 
+  CLI::App* surface = app.add_subcommand(
+      "surface", "Evaluate a surface: SurfaceService.Evaluate");
+  std::string obj;
+  AddCommonFlags(*surface, flags);
+  surface->add_option("-f,--file", file,
+                      "EvaluateSurfaceRequest as proto3 JSON (default: stdin)");
+  surface->add_flag("--stream", stream, "Use EvaluateStream (large grids)");
+  surface->add_option("--format", format, "Output: json or csv")
+      ->check(CLI::IsMember({"json", "csv"}))
+      ->capture_default_str();
+  surface->add_option("--obj", obj,
+                      "Write the grid as an OBJ triangle mesh to this file "
+                      "('-' for stdout)");
+
+  CLI::App* mesh_command = app.add_subcommand(
+      "mesh", "Mesh a set of Bezier patches (teapot.json layout) as OBJ");
+  std::string patches_file;
+  int grid = 16;
+  std::string mesh_obj = "-";
+  AddCommonFlags(*mesh_command, flags);
+  mesh_command
+      ->add_option("--bezier-patches", patches_file,
+                   "JSON with degree_u, degree_v and patches[].control_points")
+      ->required();
+  mesh_command->add_option("--grid", grid, "Points per side of each patch")
+      ->check(CLI::Range(2, 4096))
+      ->capture_default_str();
+  mesh_command->add_option("--obj", mesh_obj, "Output file ('-' for stdout)")
+      ->capture_default_str();
+
   CLI::App* health =
       app.add_subcommand("health", "Ask the server's health service");
   std::string service;
@@ -256,5 +466,9 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (eval->parsed()) return RunEval(flags, file, stream, format);
   if (basis->parsed()) return RunBasis(flags, file, format);
+  if (surface->parsed()) return RunSurface(flags, file, stream, format, obj);
+  if (mesh_command->parsed()) {
+    return RunMesh(flags, patches_file, grid, mesh_obj);
+  }
   return RunHealth(flags, service);
 }

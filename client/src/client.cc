@@ -81,7 +81,71 @@ absl::Status Append(const v1::EvaluateCurveResponse& response,
   return absl::OkStatus();
 }
 
+// Appends one surface response to `evaluation`.
+absl::Status AppendSurface(const v1::EvaluateSurfaceResponse& response,
+                           SurfaceEvaluation& evaluation) {
+  if (evaluation.partials.empty()) {
+    evaluation.dimension = static_cast<int>(response.dimension());
+    for (const v1::PartialDerivative& partial : response.partials()) {
+      evaluation.partials.push_back(
+          {.order_u = static_cast<int>(partial.order_u()),
+           .order_v = static_cast<int>(partial.order_v()),
+           .values = {}});
+    }
+  }
+  if (static_cast<size_t>(response.partials_size()) !=
+          evaluation.partials.size() ||
+      response.first_index() != evaluation.count) {
+    return absl::DataLossError("the server sent inconsistent chunks");
+  }
+  for (int k = 0; k < response.partials_size(); ++k) {
+    const auto& values = response.partials(k).values().coordinates();
+    std::vector<double>& into =
+        evaluation.partials[static_cast<size_t>(k)].values;
+    into.insert(into.end(), values.begin(), values.end());
+  }
+  const auto& normals = response.normals().coordinates();
+  evaluation.normals.insert(evaluation.normals.end(), normals.begin(),
+                            normals.end());
+  evaluation.count += response.count();
+  return absl::OkStatus();
+}
+
+// Reads every chunk of a server stream into one result.
+template <typename Response, typename Result>
+absl::StatusOr<Result> ReadChunks(grpc::ClientContext& context,
+                                  grpc::ClientReader<Response>& reader,
+                                  absl::Status (*append)(const Response&,
+                                                         Result&)) {
+  Result result;
+  Response response;
+  absl::Status appended;
+  while (reader.Read(&response)) {
+    appended = append(response, result);
+    if (!appended.ok()) {
+      context.TryCancel();
+      break;
+    }
+  }
+  grpc::Status status = reader.Finish();
+  if (!appended.ok()) return appended;
+  if (!status.ok()) return FromGrpcStatus(status);
+  return result;
+}
+
 }  // namespace
+
+absl::Span<const double> SurfaceEvaluation::Point(int order_u, int order_v,
+                                                  size_t index) const {
+  for (const Partial& partial : partials) {
+    if (partial.order_u == order_u && partial.order_v == order_v) {
+      return absl::MakeConstSpan(partial.values)
+          .subspan(index * static_cast<size_t>(dimension),
+                   static_cast<size_t>(dimension));
+    }
+  }
+  return {};
+}
 
 absl::Status FromGrpcStatus(const grpc::Status& status) {
   if (status.ok()) return absl::OkStatus();
@@ -181,20 +245,31 @@ absl::StatusOr<CurveSamples> Client::EvaluateCurveStreamed(
   std::unique_ptr<grpc::ClientContext> context = NewContext();
   std::unique_ptr<grpc::ClientReader<v1::EvaluateCurveResponse>> reader =
       curves_->EvaluateStream(context.get(), request);
-  CurveSamples samples;
-  v1::EvaluateCurveResponse response;
-  absl::Status appended;
-  while (reader->Read(&response)) {
-    appended = Append(response, samples);
-    if (!appended.ok()) {
-      context->TryCancel();
-      break;
-    }
+  return ReadChunks(*context, *reader, &Append);
+}
+
+absl::StatusOr<SurfaceEvaluation> Client::EvaluateSurface(
+    const v1::EvaluateSurfaceRequest& request) {
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  v1::EvaluateSurfaceResponse response;
+  if (grpc::Status status =
+          surfaces_->Evaluate(context.get(), request, &response);
+      !status.ok()) {
+    return FromGrpcStatus(status);
   }
-  grpc::Status status = reader->Finish();
-  if (!appended.ok()) return appended;
-  if (!status.ok()) return FromGrpcStatus(status);
-  return samples;
+  SurfaceEvaluation evaluation;
+  if (absl::Status status = AppendSurface(response, evaluation); !status.ok()) {
+    return status;
+  }
+  return evaluation;
+}
+
+absl::StatusOr<SurfaceEvaluation> Client::EvaluateSurfaceStreamed(
+    const v1::EvaluateSurfaceRequest& request) {
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  std::unique_ptr<grpc::ClientReader<v1::EvaluateSurfaceResponse>> reader =
+      surfaces_->EvaluateStream(context.get(), request);
+  return ReadChunks(*context, *reader, &AppendSurface);
 }
 
 absl::StatusOr<BasisSamples> Client::EvaluateBasis(

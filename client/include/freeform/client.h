@@ -86,6 +86,27 @@ struct BasisSamples {
   }
 };
 
+// Points, partial derivatives and normals of a surface at a batch of
+// (u, v) points or on a grid (u-major: point (i, j) is i * count(v) + j).
+struct SurfaceEvaluation {
+  struct Partial {
+    int order_u = 0;
+    int order_v = 0;
+    // count * dimension values.
+    std::vector<double> values;
+  };
+  int dimension = 0;
+  size_t count = 0;
+  // In the server's order: (0,0), (1,0), (0,1), (2,0), (1,1), (0,2), ...
+  std::vector<Partial> partials;
+  // count * 3 values when normals were asked for.
+  std::vector<double> normals;
+
+  // Point returns partial (order_u, order_v) at point `index`, or an empty
+  // span when that partial was not computed.
+  absl::Span<const double> Point(int order_u, int order_v, size_t index) const;
+};
+
 // One google.rpc.BadRequest field violation.
 struct FieldViolation {
   std::string field;
@@ -123,6 +144,15 @@ class Client {
   // chunks, for answers larger than one message.
   absl::StatusOr<CurveSamples> EvaluateCurveStreamed(
       const v1::EvaluateCurveRequest& request);
+
+  // EvaluateSurface runs SurfaceService.Evaluate.
+  absl::StatusOr<SurfaceEvaluation> EvaluateSurface(
+      const v1::EvaluateSurfaceRequest& request);
+
+  // EvaluateSurfaceStreamed runs SurfaceService.EvaluateStream and joins the
+  // chunks.
+  absl::StatusOr<SurfaceEvaluation> EvaluateSurfaceStreamed(
+      const v1::EvaluateSurfaceRequest& request);
 
   // EvaluateBasis runs CurveService.EvaluateBasis.
   absl::StatusOr<BasisSamples> EvaluateBasis(

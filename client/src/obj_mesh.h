@@ -1,0 +1,45 @@
+// Triangle meshes of surface grids, written as Wavefront OBJ (for the CLI's
+// --obj output): a grid of nu x nv evaluated points becomes (nu-1)(nv-1)
+// quads, each split into two triangles ordered counter-clockwise seen
+// against the normal S_u x S_v. Not thread-safe (one mesh, one writer).
+#ifndef FREEFORM_CLIENT_OBJ_MESH_H_
+#define FREEFORM_CLIENT_OBJ_MESH_H_
+
+#include <array>
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "absl/types/span.h"
+
+namespace freeform::cli {
+
+class ObjMesh {
+ public:
+  // AddGrid appends a u-major grid of `count_u` x `count_v` 3D points (and
+  // unit normals, when `normals` is not empty) as one OBJ group.
+  void AddGrid(const std::string& name, size_t count_u, size_t count_v,
+               absl::Span<const double> points,
+               absl::Span<const double> normals);
+
+  // Write prints the mesh as OBJ text.
+  void Write(std::ostream& out) const;
+
+  size_t vertex_count() const { return vertices_.size() / 3; }
+  size_t triangle_count() const { return triangles_.size(); }
+
+ private:
+  struct Group {
+    std::string name;
+    size_t first_triangle = 0;
+  };
+  std::vector<double> vertices_;
+  std::vector<double> normals_;
+  std::vector<std::array<size_t, 3>> triangles_;  // 0-based vertex indices
+  std::vector<Group> groups_;
+};
+
+}  // namespace freeform::cli
+
+#endif  // FREEFORM_CLIENT_OBJ_MESH_H_
