@@ -38,6 +38,13 @@ absl::StatusOr<double> RangeEnd(bool has_value, double value, double fallback,
 
 }  // namespace
 
+absl::Span<double> UninitializedArray(
+    google::protobuf::RepeatedField<double>& field, size_t size) {
+  field.Reserve(field.size() + static_cast<int>(size));
+  return absl::MakeSpan(field.AddNAlreadyReserved(static_cast<int>(size)),
+                        size);
+}
+
 PointsView ViewOf(const v1::Points& points) {
   return PointsView{
       .dimension = static_cast<int>(std::min<uint32_t>(

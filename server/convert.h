@@ -27,6 +27,12 @@ PointsView ViewOf(const v1::Points& points);
 // ViewOf returns a view of a Bezier curve (no copy, no validation).
 BezierCurveView ViewOf(const v1::BezierCurve& curve);
 
+// UninitializedArray grows `field` by `size` values left for the caller to
+// write and returns them: response arrays are filled in place by the core,
+// without zero-filling or copying.
+absl::Span<double> UninitializedArray(
+    google::protobuf::RepeatedField<double>& field, size_t size);
+
 // A resolved set of curve parameters: an explicit list (a view into the
 // request) or a uniform range generated on demand, chunk by chunk.
 class ParameterSet {

@@ -96,15 +96,6 @@ absl::Status CheckUnaryAnswerSize(const EvaluationPlan& plan,
   return absl::OkStatus();
 }
 
-// Grows `field` by `size` values left for the caller to write and returns
-// them (no zero-filling: every value is overwritten by the evaluation).
-absl::Span<double> UninitializedArray(
-    google::protobuf::RepeatedField<double>& field, size_t size) {
-  field.Reserve(field.size() + static_cast<int>(size));
-  return absl::MakeSpan(field.AddNAlreadyReserved(static_cast<int>(size)),
-                        size);
-}
-
 // Adds the derivative arrays of `count` points to `response` and returns
 // spans over their (uninitialized) storage.
 std::vector<absl::Span<double>> AllocateDerivatives(

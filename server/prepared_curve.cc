@@ -350,17 +350,18 @@ absl::StatusOr<PreparedCurve> PrepareCurve(const v1::Curve& curve,
 }
 
 absl::StatusOr<PreparedCurve> PrepareBasis(const v1::Basis& basis,
-                                           const ServiceLimits& limits) {
+                                           const ServiceLimits& limits,
+                                           absl::string_view field) {
   switch (basis.kind_case()) {
     case v1::Basis::kBernstein:
       return WithPrefix(PrepareBernsteinBasis(basis.bernstein(), limits),
-                        "basis.bernstein");
+                        absl::StrCat(field, ".bernstein"));
     case v1::Basis::kBspline:
       return WithPrefix(PrepareBSplineBasis(basis.bspline(), limits),
-                        "basis.bspline");
+                        absl::StrCat(field, ".bspline"));
     case v1::Basis::kLagrange:
       return WithPrefix(PrepareLagrangeBasis(basis.lagrange(), limits),
-                        "basis.lagrange");
+                        absl::StrCat(field, ".lagrange"));
     case v1::Basis::kHermite: {
       return MakePrepared(
           4, [](absl::Span<const double> parameters, CurveOutput output,
@@ -372,7 +373,7 @@ absl::StatusOr<PreparedCurve> PrepareBasis(const v1::Basis& basis,
       break;
   }
   return InvalidFieldError(
-      "basis", "set one basis kind: bernstein, bspline, lagrange, hermite");
+      field, "set one basis kind: bernstein, bspline, lagrange, hermite");
 }
 
 }  // namespace freeform::server

@@ -41,9 +41,11 @@ absl::StatusOr<PreparedCurve> PrepareCurve(const v1::Curve& curve,
                                            v1::BezierAlgorithm algorithm,
                                            const ServiceLimits& limits);
 
-// PrepareBasis does the same for the request's field "basis".
+// PrepareBasis does the same for a Basis message at `field` of the request
+// ("basis", or "tensor.u" in a surface basis request).
 absl::StatusOr<PreparedCurve> PrepareBasis(const v1::Basis& basis,
-                                           const ServiceLimits& limits);
+                                           const ServiceLimits& limits,
+                                           absl::string_view field = "basis");
 
 }  // namespace freeform::server
 

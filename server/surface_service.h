@@ -1,6 +1,10 @@
-// SurfaceServiceImpl: freeform.v1.SurfaceService. Until the surface issue
-// lands every RPC answers UNIMPLEMENTED, saying which issue brings it.
-// Thread-safe.
+// SurfaceServiceImpl: freeform.v1.SurfaceService on top of the core.
+//
+// Evaluation converts the request to core views (no copies), checks the
+// server's limits, runs the core on the shared thread pool under the RPC's
+// cancellation token and writes partials and normals straight into the
+// response. RPCs of later issues answer UNIMPLEMENTED, naming the issue.
+// Thread-safe: one instance serves all calls.
 #ifndef FREEFORM_SERVER_SURFACE_SERVICE_H_
 #define FREEFORM_SERVER_SURFACE_SERVICE_H_
 
@@ -47,6 +51,7 @@ class SurfaceServiceImpl final : public v1::SurfaceService::Service {
  private:
   ThreadPool* const pool_;
   const ServiceLimits limits_;
+  HeavyWorkAdmission admission_;
 };
 
 }  // namespace freeform::server

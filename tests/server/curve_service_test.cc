@@ -261,12 +261,12 @@ TEST_F(CurveServiceTest, PendingRpcsSayWhichIssueBringsThem) {
   EXPECT_THAT(status.error_message(), HasSubstr("issue #6"));
 
   grpc::ClientContext surface_context;
-  v1::EvaluateSurfaceRequest surface;
-  v1::EvaluateSurfaceResponse surface_response;
-  status = client_->surfaces().Evaluate(&surface_context, surface,
-                                        &surface_response);
+  v1::TessellateSurfaceRequest surface;
+  v1::TessellateSurfaceResponse surface_response;
+  status = client_->surfaces().Tessellate(&surface_context, surface,
+                                          &surface_response);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::UNIMPLEMENTED);
-  EXPECT_THAT(status.error_message(), HasSubstr("issue #4"));
+  EXPECT_THAT(status.error_message(), HasSubstr("issue #5"));
 }
 
 TEST_F(CurveServiceTest, HealthIsServingUntilShutdown) {

@@ -51,6 +51,14 @@ struct SurfaceSamples {
   absl::Span<const double> v;
 
   size_t size() const { return grid ? u.size() * v.size() : uv.size() / 2; }
+
+  static SurfaceSamples Pairs(absl::Span<const double> pairs) {
+    return {.uv = pairs, .grid = false, .u = {}, .v = {}};
+  }
+  static SurfaceSamples Grid(absl::Span<const double> grid_u,
+                             absl::Span<const double> grid_v) {
+    return {.uv = {}, .grid = true, .u = grid_u, .v = grid_v};
+  }
 };
 
 // ValidateSurfaceSamples checks an even number of finite pair values inside
