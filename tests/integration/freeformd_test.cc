@@ -9,8 +9,10 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -208,6 +210,59 @@ TEST_F(FreeformdTest, CliBasisPrintsBlendingFunctions) {
   EXPECT_EQ(csv.exit_code, 0) << csv.output;
   EXPECT_EQ(csv.output, "index,f0,f1,f2\n0,0.25,0.5,0.25\n");
   unlink(file.c_str());
+}
+
+// The Utah teapot (32 bicubic patches) meshed by the CLI: a valid OBJ with
+// every face on existing vertices, unit normals, and vertices on the patches.
+TEST_F(FreeformdTest, CliMeshesTheTeapotAsObj) {
+  char path[] = "/tmp/freeform_teapot_XXXXXX";
+  const int fd = mkstemp(path);
+  ASSERT_GE(fd, 0);
+  close(fd);
+  CommandResult result = RunCommand(Cli(absl::StrCat(
+      "mesh --bezier-patches " FREEFORM_SOURCE_DIR "/examples/teapot.json ",
+      "--grid 8 --obj ", path)));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::ifstream obj(path);
+  std::string line;
+  size_t vertices = 0, normals = 0, faces = 0, groups = 0;
+  double max_z = -1e300, min_z = 1e300;
+  while (std::getline(obj, line)) {
+    std::istringstream fields(line);
+    std::string kind;
+    fields >> kind;
+    if (kind == "v") {
+      double x, y, z;
+      fields >> x >> y >> z;
+      max_z = std::max(max_z, z);
+      min_z = std::min(min_z, z);
+      ++vertices;
+    } else if (kind == "vn") {
+      double x, y, z;
+      fields >> x >> y >> z;
+      EXPECT_NEAR(std::sqrt(x * x + y * y + z * z), 1.0, 1e-12) << line;
+      ++normals;
+    } else if (kind == "f") {
+      std::string corner;
+      for (int c = 0; c < 3; ++c) {
+        fields >> corner;
+        const size_t index = std::stoul(corner.substr(0, corner.find('/')));
+        EXPECT_GE(index, 1u);
+        EXPECT_LE(index, 32u * 64u);
+      }
+      ++faces;
+    } else if (kind == "g") {
+      ++groups;
+    }
+  }
+  EXPECT_EQ(vertices, 32u * 8 * 8);
+  EXPECT_EQ(normals, vertices);
+  EXPECT_EQ(faces, 32u * 2 * 7 * 7);
+  EXPECT_EQ(groups, 32u);
+  // The lid's knob tops out at z = 3.15 and the bottom sits at z = 0.
+  EXPECT_NEAR(max_z, 3.15, 1e-12);
+  EXPECT_NEAR(min_z, 0.0, 1e-12);
+  unlink(path);
 }
 
 TEST_F(FreeformdTest, CliHealth) {
