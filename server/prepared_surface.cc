@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
@@ -232,6 +233,15 @@ absl::StatusOr<PreparedSurface> PrepareTriangular(
       .weights = SpanOf(message.weights()),
       .domain_triangle = SpanOf(message.domain_triangle().coordinates())};
   if (absl::Status status = ValidateTriangularPatch(patch); !status.ok()) {
+    // The core names the triangle's values "domain_triangle[i]"; in the
+    // request they are a Points message.
+    const std::string path = FieldPathOf(status).value_or("");
+    if (absl::StartsWith(path, "domain_triangle[")) {
+      return InvalidFieldError(
+          absl::StrCat("domain_triangle.coordinates",
+                       path.substr(std::string("domain_triangle").size())),
+          FieldRuleOf(status));
+    }
     return status;
   }
   return PreparedSurface{

@@ -1,1 +1,124 @@
 #include "freeform/core/normals.h"
+
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+
+namespace freeform {
+namespace {
+
+struct Vec3 {
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+};
+
+Vec3 operator+(const Vec3& a, const Vec3& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+Vec3 operator*(double s, const Vec3& a) { return {s * a.x, s * a.y, s * a.z}; }
+double Dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+Vec3 Cross(const Vec3& a, const Vec3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+
+// S_u x S_v counts as vanishing below this fraction of |S_u|^2 + |S_v|^2:
+// far above the rounding of a collapsed edge's S_v (~1e-16 of the net's
+// scale), far below the sine of any angle a real patch makes.
+constexpr double kDegenerate = 1e-10;
+
+Vec3 Partial(SurfaceOutput partials, int k, int l, size_t r) {
+  const double* p = partials[PartialIndex(k, l)].data() + 3 * r;
+  return {p[0], p[1], p[2]};
+}
+
+// The unit normal of point r, degenerate points approached by
+// (sign_u h, sign_v h), h > 0 (see normals.h).
+Vec3 UnitNormal(SurfaceOutput partials, size_t r, double sign_u,
+                double sign_v) {
+  const Vec3 su = Partial(partials, 1, 0, r);
+  const Vec3 sv = Partial(partials, 0, 1, r);
+  Vec3 normal = Cross(su, sv);
+  double length = std::sqrt(Dot(normal, normal));
+  if (!(length > kDegenerate * (Dot(su, su) + Dot(sv, sv)))) {
+    if (MaxOrderOf(partials) < 2) return {};
+    const Vec3 suu = Partial(partials, 2, 0, r);
+    const Vec3 suv = Partial(partials, 1, 1, r);
+    const Vec3 svv = Partial(partials, 0, 2, r);
+    const Vec3 along_u = Cross(su, suv) + Cross(suu, sv);
+    const Vec3 along_v = Cross(suv, sv) + Cross(su, svv);
+    const bool use_u = Dot(along_u, along_u) >= Dot(along_v, along_v);
+    normal = use_u ? sign_u * along_u : sign_v * along_v;
+    length = std::sqrt(Dot(normal, normal));
+    if (!(length > 0.0) || !std::isfinite(length)) return {};
+  }
+  return (1.0 / length) * normal;
+}
+
+absl::Status ValidateNormalBuffers(SurfaceOutput partials, size_t count,
+                                   absl::Span<double> normals) {
+  if (absl::Status status = ValidateSurfaceOutput(partials, count, 3);
+      !status.ok()) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("partials must be 3D: ", status.message()));
+  }
+  if (MaxOrderOf(partials) < 1) {
+    return absl::InvalidArgumentError(
+        "partials must include the first derivatives (max order >= 1)");
+  }
+  if (normals.size() != 3 * count) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "normals holds ", normals.size(), " values, expected ", 3 * count));
+  }
+  return absl::OkStatus();
+}
+
+void Store(const Vec3& normal, size_t r, absl::Span<double> normals) {
+  normals[3 * r] = normal.x;
+  normals[3 * r + 1] = normal.y;
+  normals[3 * r + 2] = normal.z;
+}
+
+// -1 at the end of a non-empty interval (approach from below), else +1.
+double SideOf(double t, double start, double end) {
+  return t >= end && end > start ? -1.0 : 1.0;
+}
+
+}  // namespace
+
+absl::Status ComputeUnitNormals(SurfaceOutput partials, size_t count,
+                                absl::Span<double> normals) {
+  if (absl::Status status = ValidateNormalBuffers(partials, count, normals);
+      !status.ok()) {
+    return status;
+  }
+  for (size_t r = 0; r < count; ++r) {
+    Store(UnitNormal(partials, r, 1.0, 1.0), r, normals);
+  }
+  return absl::OkStatus();
+}
+
+absl::Status ComputeUnitNormals(SurfaceOutput partials,
+                                const SurfaceSamples& samples,
+                                const SurfaceDomain& domain,
+                                absl::Span<double> normals) {
+  const size_t count = samples.size();
+  if (absl::Status status = ValidateNormalBuffers(partials, count, normals);
+      !status.ok()) {
+    return status;
+  }
+  const size_t count_v = samples.v.size();
+  for (size_t r = 0; r < count; ++r) {
+    const double u = samples.grid ? samples.u[r / count_v] : samples.uv[2 * r];
+    const double v =
+        samples.grid ? samples.v[r % count_v] : samples.uv[2 * r + 1];
+    const double sign_u = SideOf(u, domain.u_start, domain.u_end);
+    const double sign_v = SideOf(v, domain.v_start, domain.v_end);
+    Store(UnitNormal(partials, r, sign_u, sign_v), r, normals);
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace freeform

@@ -317,6 +317,10 @@ TEST_F(SurfaceServiceTest, InvalidSurfacesNameTheField) {
   ExpectInvalid(AtPoints(triangle, {0.5, 0.5}).status(),
                 "surface.triangular_bezier.domain_triangle");
 
+  patch->mutable_domain_triangle()->set_coordinates(5, std::nan(""));
+  ExpectInvalid(AtPoints(triangle, {0.5, 0.5}).status(),
+                "surface.triangular_bezier.domain_triangle.coordinates[5]");
+
   ExpectInvalid(AtPoints(v1::Surface(), {0.5, 0.5}).status(), "surface");
 }
 
