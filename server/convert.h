@@ -21,6 +21,12 @@
 
 namespace freeform::server {
 
+// SpanOf views a repeated double field (no copy).
+inline absl::Span<const double> SpanOf(
+    const google::protobuf::RepeatedField<double>& values) {
+  return absl::MakeConstSpan(values.data(), values.size());
+}
+
 // ViewOf returns a view of `points` (no copy, no validation).
 PointsView ViewOf(const v1::Points& points);
 

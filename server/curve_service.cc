@@ -171,26 +171,16 @@ grpc::Status CurveServiceImpl::EvaluateStream(
         const ExecutionContext execution{
             .pool = pool_, .cancellation = &token, .grain = limits_.grain};
         std::vector<double> storage;
-        v1::EvaluateCurveResponse response;
-        for (size_t first = 0; first < plan->parameters.size();
-             first += chunk) {
-          if (token.IsCancelled()) return token.status();
-          const size_t last = std::min(plan->parameters.size(), first + chunk);
-          response.Clear();
-          std::vector<absl::Span<double>> output =
-              AllocateDerivatives(*plan, first, last - first, response);
-          if (absl::Status status = plan->curve.evaluate(
+        return StreamChunks<v1::EvaluateCurveResponse>(
+            plan->parameters.size(), chunk, token, writer, streamed_bytes,
+            [&](size_t first, size_t last,
+                v1::EvaluateCurveResponse& response) {
+              std::vector<absl::Span<double>> output =
+                  AllocateDerivatives(*plan, first, last - first, response);
+              return plan->curve.evaluate(
                   plan->parameters.Values(first, last, storage), output,
                   execution);
-              !status.ok()) {
-            return status;
-          }
-          streamed_bytes += response.ByteSizeLong();
-          if (!writer->Write(response)) {
-            return absl::CancelledError("the client stopped reading");
-          }
-        }
-        return absl::OkStatus();
+            });
       },
       &streamed_bytes);
 }

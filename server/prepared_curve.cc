@@ -15,40 +15,21 @@
 namespace freeform::server {
 namespace {
 
-absl::Span<const double> SpanOf(
-    const google::protobuf::RepeatedField<double>& values) {
-  return absl::MakeConstSpan(values.data(), values.size());
-}
-
 absl::Status CheckDimension(const v1::Points& points,
                             const ServiceLimits& limits,
                             absl::string_view field) {
-  if (points.dimension() < 1 ||
-      points.dimension() > static_cast<uint32_t>(limits.max_dimension)) {
-    return InvalidFieldError(
-        absl::StrCat(field, ".dimension"),
-        absl::StrCat("dimension must be between 1 and ", limits.max_dimension,
-                     ", got ", points.dimension()));
-  }
-  return absl::OkStatus();
+  return CheckDimensionLimit(points.dimension(), limits, field);
 }
 
 // The degree limit (INVALID_ARGUMENT on `field`) and the size limit
 // (RESOURCE_EXHAUSTED) on `count` points.
 absl::Status CheckSize(size_t count, int64_t degree,
                        const ServiceLimits& limits, absl::string_view field) {
-  if (count > limits.max_control_points) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        field, ": ", count, " points exceed the server's limit of ",
-        limits.max_control_points, " (--max_control_points)"));
+  if (absl::Status status = CheckPointLimit(count, limits, field);
+      !status.ok()) {
+    return status;
   }
-  if (degree > limits.max_degree) {
-    return InvalidFieldError(
-        field,
-        absl::StrCat("degree ", degree, " exceeds the server's limit of ",
-                     limits.max_degree, " (--max_degree)"));
-  }
-  return absl::OkStatus();
+  return CheckDegreeLimit(degree, limits, field);
 }
 
 BezierAlgorithm ToCore(v1::BezierAlgorithm algorithm) {

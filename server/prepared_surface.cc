@@ -6,6 +6,7 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "convert.h"
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
 #include "freeform/core/tensor_surface.h"
@@ -14,54 +15,25 @@
 namespace freeform::server {
 namespace {
 
-absl::Span<const double> SpanOf(
-    const google::protobuf::RepeatedField<double>& values) {
-  return absl::MakeConstSpan(values.data(), values.size());
-}
-
-absl::Status CheckDimension(uint32_t dimension, const ServiceLimits& limits,
-                            absl::string_view field) {
-  if (dimension < 1 ||
-      dimension > static_cast<uint32_t>(limits.max_dimension)) {
-    return InvalidFieldError(
-        absl::StrCat(field, ".dimension"),
-        absl::StrCat("dimension must be between 1 and ", limits.max_dimension,
-                     ", got ", dimension));
-  }
-  return absl::OkStatus();
-}
-
-absl::Status CheckDegree(int64_t degree, const ServiceLimits& limits,
-                         absl::string_view field) {
-  if (degree > limits.max_degree) {
-    return InvalidFieldError(
-        field,
-        absl::StrCat("degree ", degree, " exceeds the server's limit of ",
-                     limits.max_degree, " (--max_degree)"));
-  }
-  return absl::OkStatus();
-}
-
 // Dimension, size and degree limits of a net, then its own validation.
 absl::StatusOr<ControlNetView> NetOf(const v1::ControlNet& net,
                                      const ServiceLimits& limits,
                                      absl::string_view field,
                                      bool degrees_from_counts) {
-  if (absl::Status status = CheckDimension(net.dimension(), limits, field);
+  if (absl::Status status = CheckDimensionLimit(net.dimension(), limits, field);
       !status.ok()) {
     return status;
   }
-  const uint64_t points = uint64_t{net.count_u()} * net.count_v();
-  if (points > limits.max_control_points) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        field, ": ", points, " points exceed the server's limit of ",
-        limits.max_control_points, " (--max_control_points)"));
+  if (absl::Status status = CheckPointLimit(
+          uint64_t{net.count_u()} * net.count_v(), limits, field);
+      !status.ok()) {
+    return status;
   }
   if (degrees_from_counts) {
     for (auto [count, name] : {std::pair{net.count_u(), "count_u"},
                                std::pair{net.count_v(), "count_v"}}) {
-      if (absl::Status status = CheckDegree(int64_t{count} - 1, limits,
-                                            absl::StrCat(field, ".", name));
+      if (absl::Status status = CheckDegreeLimit(
+              int64_t{count} - 1, limits, absl::StrCat(field, ".", name));
           !status.ok()) {
         return status;
       }
@@ -124,11 +96,13 @@ absl::StatusOr<PreparedSurface> PrepareBezier(const v1::BezierSurface& message,
 
 absl::StatusOr<PreparedSurface> PrepareBSpline(
     const v1::BSplineSurface& message, const ServiceLimits& limits) {
-  if (absl::Status status = CheckDegree(message.degree_u(), limits, "degree_u");
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree_u(), limits, "degree_u");
       !status.ok()) {
     return status;
   }
-  if (absl::Status status = CheckDegree(message.degree_v(), limits, "degree_v");
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree_v(), limits, "degree_v");
       !status.ok()) {
     return status;
   }
@@ -176,7 +150,7 @@ absl::Status CheckCornerNet(const v1::ControlNet& net, uint32_t dimension,
 absl::StatusOr<PreparedSurface> PrepareHermite(
     const v1::BicubicHermitePatch& message, const ServiceLimits& limits) {
   const uint32_t dimension = message.positions().dimension();
-  if (absl::Status status = CheckDimension(dimension, limits, "positions");
+  if (absl::Status status = CheckDimensionLimit(dimension, limits, "positions");
       !status.ok()) {
     return status;
   }
@@ -217,12 +191,13 @@ absl::StatusOr<PreparedSurface> PrepareInterpolating(
 
 absl::StatusOr<PreparedSurface> PrepareTriangular(
     const v1::TriangularBezierPatch& message, const ServiceLimits& limits) {
-  if (absl::Status status = CheckDegree(message.degree(), limits, "degree");
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree(), limits, "degree");
       !status.ok()) {
     return status;
   }
-  if (absl::Status status = CheckDimension(message.control_points().dimension(),
-                                           limits, "control_points");
+  if (absl::Status status = CheckDimensionLimit(
+          message.control_points().dimension(), limits, "control_points");
       !status.ok()) {
     return status;
   }

@@ -13,7 +13,9 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 
 namespace freeform::server {
 
@@ -39,6 +41,22 @@ struct ServiceLimits {
   // Points per streamed chunk when the request does not say.
   size_t default_stream_chunk = 65536;
 };
+
+// CheckDimensionLimit returns INVALID_ARGUMENT on "<field>.dimension" unless
+// 1 <= dimension <= limits.max_dimension.
+absl::Status CheckDimensionLimit(uint64_t dimension,
+                                 const ServiceLimits& limits,
+                                 absl::string_view field);
+
+// CheckDegreeLimit returns INVALID_ARGUMENT on `field` when `degree` is over
+// limits.max_degree.
+absl::Status CheckDegreeLimit(int64_t degree, const ServiceLimits& limits,
+                              absl::string_view field);
+
+// CheckPointLimit returns RESOURCE_EXHAUSTED naming `field` when `count`
+// points are over limits.max_control_points.
+absl::Status CheckPointLimit(uint64_t count, const ServiceLimits& limits,
+                             absl::string_view field);
 
 // A ticket for one heavy request; released when destroyed.
 class HeavyWorkAdmission {

@@ -259,22 +259,12 @@ grpc::Status SurfaceServiceImpl::EvaluateStream(
         if (!ticket.ok()) return ticket.status();
         const ExecutionContext execution{
             .pool = pool_, .cancellation = &token, .grain = limits_.grain};
-        v1::EvaluateSurfaceResponse response;
-        for (size_t first = 0; first < plan->size(); first += chunk) {
-          if (token.IsCancelled()) return token.status();
-          response.Clear();
-          const size_t last = std::min(plan->size(), first + chunk);
-          if (absl::Status status =
-                  EvaluateChunk(*plan, first, last, execution, response);
-              !status.ok()) {
-            return status;
-          }
-          streamed_bytes += response.ByteSizeLong();
-          if (!writer->Write(response)) {
-            return absl::CancelledError("the client stopped reading");
-          }
-        }
-        return absl::OkStatus();
+        return StreamChunks<v1::EvaluateSurfaceResponse>(
+            plan->size(), chunk, token, writer, streamed_bytes,
+            [&](size_t first, size_t last,
+                v1::EvaluateSurfaceResponse& response) {
+              return EvaluateChunk(*plan, first, last, execution, response);
+            });
       },
       &streamed_bytes);
 }

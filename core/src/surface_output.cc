@@ -1,6 +1,7 @@
 #include "freeform/core/surface_output.h"
 
 #include "absl/strings/str_cat.h"
+#include "freeform/core/curve_output.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
 
@@ -20,15 +21,8 @@ absl::Status ValidateSurfaceOutput(SurfaceOutput output, size_t count,
         "output has ", output.size(),
         " buffers, not the number of partials of some order (1, 3, 6, ...)"));
   }
-  const size_t expected = count * static_cast<size_t>(dimension);
-  for (size_t k = 0; k < output.size(); ++k) {
-    if (output[k].size() != expected) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("output[", k, "] holds ", output[k].size(),
-                       " values, expected ", expected));
-    }
-  }
-  return absl::OkStatus();
+  // Same buffer sizes as a curve output.
+  return ValidateCurveOutput(output, count, dimension);
 }
 
 absl::Status ValidateSurfaceSamples(const SurfaceSamples& samples,
@@ -42,15 +36,14 @@ absl::Status ValidateSurfaceSamples(const SurfaceSamples& samples,
     return ValidateInRange(samples.v, v_start, v_end, "v");
   }
   if (samples.uv.size() % 2 != 0) {
-    return InvalidFieldError(
-        "uv", absl::StrCat("holds ", samples.uv.size(),
-                           " values, not (u, v) pairs"));
+    return InvalidFieldError("uv", absl::StrCat("holds ", samples.uv.size(),
+                                                " values, not (u, v) pairs"));
   }
   for (size_t i = 0; i < samples.uv.size(); ++i) {
     const bool is_u = i % 2 == 0;
-    if (absl::Status status = ValidateInRange(
-            samples.uv.subspan(i, 1), is_u ? u_start : v_start,
-            is_u ? u_end : v_end, IndexedField("uv", i));
+    if (absl::Status status =
+            ValidateInRange(samples.uv.subspan(i, 1), is_u ? u_start : v_start,
+                            is_u ? u_end : v_end, IndexedField("uv", i));
         !status.ok()) {
       return InvalidFieldError(IndexedField("uv", i), FieldRuleOf(status));
     }

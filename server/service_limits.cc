@@ -1,0 +1,42 @@
+#include "service_limits.h"
+
+#include "absl/strings/str_cat.h"
+#include "freeform/core/status.h"
+
+namespace freeform::server {
+
+absl::Status CheckDimensionLimit(uint64_t dimension,
+                                 const ServiceLimits& limits,
+                                 absl::string_view field) {
+  if (dimension < 1 ||
+      dimension > static_cast<uint64_t>(limits.max_dimension)) {
+    return InvalidFieldError(
+        absl::StrCat(field, ".dimension"),
+        absl::StrCat("dimension must be between 1 and ", limits.max_dimension,
+                     ", got ", dimension));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status CheckDegreeLimit(int64_t degree, const ServiceLimits& limits,
+                              absl::string_view field) {
+  if (degree > limits.max_degree) {
+    return InvalidFieldError(
+        field,
+        absl::StrCat("degree ", degree, " exceeds the server's limit of ",
+                     limits.max_degree, " (--max_degree)"));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status CheckPointLimit(uint64_t count, const ServiceLimits& limits,
+                             absl::string_view field) {
+  if (count > limits.max_control_points) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        field, ": ", count, " points exceed the server's limit of ",
+        limits.max_control_points, " (--max_control_points)"));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace freeform::server
