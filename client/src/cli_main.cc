@@ -2,7 +2,7 @@
 //
 //   freeform eval   [--address HOST:PORT] [--file REQUEST.json] [--stream]
 //                   [--format json|csv]
-//   freeform basis  [--address HOST:PORT] [--file REQUEST.json]
+//   freeform basis  [--address HOST:PORT] [--file REQUEST.json] [--surface]
 //                   [--format json|csv]
 //   freeform surface [--address HOST:PORT] [--file REQUEST.json] [--stream]
 //                   [--format json|csv] [--obj MESH.obj]
@@ -173,23 +173,49 @@ void PrintBasisCsv(const freeform::BasisSamples& samples) {
   }
 }
 
+// Prints basis samples as CSV or as the response message's JSON.
+template <typename Response>
+int PrintBasis(const freeform::BasisSamples& samples, const std::string& format,
+               Response& response) {
+  if (format == "csv") {
+    PrintBasisCsv(samples);
+  } else {
+    std::cout << ToJson(response);
+  }
+  return 0;
+}
+
 int RunBasis(const CommonFlags& flags, const std::string& file,
-             const std::string& format) {
+             const std::string& format, bool surface) {
+  std::unique_ptr<freeform::Client> client;
+  if (surface) {
+    absl::StatusOr<freeform::v1::EvaluateSurfaceBasisRequest> request =
+        ParseJson<freeform::v1::EvaluateSurfaceBasisRequest>(file);
+    if (!request.ok()) {
+      std::cerr << "error: " << request.status().message() << "\n";
+      return 2;
+    }
+    if ((client = Connect(flags)) == nullptr) return 2;
+    absl::StatusOr<freeform::BasisSamples> samples =
+        client->EvaluateSurfaceBasis(*request);
+    if (!samples.ok()) return ReportError(samples.status());
+    freeform::v1::EvaluateSurfaceBasisResponse response;
+    response.set_function_count(static_cast<uint32_t>(samples->function_count));
+    response.set_count(static_cast<uint32_t>(samples->count));
+    response.mutable_values()->Add(samples->derivatives[0].begin(),
+                                   samples->derivatives[0].end());
+    return PrintBasis(*samples, format, response);
+  }
   absl::StatusOr<freeform::v1::EvaluateBasisRequest> request =
       ParseJson<freeform::v1::EvaluateBasisRequest>(file);
   if (!request.ok()) {
     std::cerr << "error: " << request.status().message() << "\n";
     return 2;
   }
-  std::unique_ptr<freeform::Client> client = Connect(flags);
-  if (client == nullptr) return 2;
+  if ((client = Connect(flags)) == nullptr) return 2;
   absl::StatusOr<freeform::BasisSamples> samples =
       client->EvaluateBasis(*request);
   if (!samples.ok()) return ReportError(samples.status());
-  if (format == "csv") {
-    PrintBasisCsv(*samples);
-    return 0;
-  }
   freeform::v1::EvaluateBasisResponse response;
   response.set_function_count(static_cast<uint32_t>(samples->function_count));
   response.set_count(static_cast<uint32_t>(samples->count));
@@ -197,8 +223,7 @@ int RunBasis(const CommonFlags& flags, const std::string& file,
     response.add_derivatives()->mutable_values()->Add(values.begin(),
                                                       values.end());
   }
-  std::cout << ToJson(response);
-  return 0;
+  return PrintBasis(*samples, format, response);
 }
 
 // Number of values a grid axis resolves to.
@@ -422,6 +447,10 @@ int main(int argc, char** argv) {
   AddCommonFlags(*basis, flags);
   basis->add_option("-f,--file", file,
                     "EvaluateBasisRequest as proto3 JSON (default: stdin)");
+  bool surface_basis = false;
+  basis->add_flag("--surface", surface_basis,
+                  "The request is an EvaluateSurfaceBasisRequest "
+                  "(SurfaceService.EvaluateBasis)");
   basis->add_option("--format", format, "Output: json or csv")
       ->check(CLI::IsMember({"json", "csv"}))
       ->capture_default_str();
@@ -465,7 +494,7 @@ int main(int argc, char** argv) {
 
   CLI11_PARSE(app, argc, argv);
   if (eval->parsed()) return RunEval(flags, file, stream, format);
-  if (basis->parsed()) return RunBasis(flags, file, format);
+  if (basis->parsed()) return RunBasis(flags, file, format, surface_basis);
   if (surface->parsed()) return RunSurface(flags, file, stream, format, obj);
   if (mesh_command->parsed()) {
     return RunMesh(flags, patches_file, grid, mesh_obj);

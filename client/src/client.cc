@@ -272,6 +272,21 @@ absl::StatusOr<SurfaceEvaluation> Client::EvaluateSurfaceStreamed(
   return ReadChunks(*context, *reader, &AppendSurface);
 }
 
+absl::StatusOr<BasisSamples> Client::EvaluateSurfaceBasis(
+    const v1::EvaluateSurfaceBasisRequest& request) {
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  v1::EvaluateSurfaceBasisResponse response;
+  if (grpc::Status status =
+          surfaces_->EvaluateBasis(context.get(), request, &response);
+      !status.ok()) {
+    return FromGrpcStatus(status);
+  }
+  return BasisSamples{.function_count = response.function_count(),
+                      .count = response.count(),
+                      .derivatives = {std::vector<double>(
+                          response.values().begin(), response.values().end())}};
+}
+
 absl::StatusOr<BasisSamples> Client::EvaluateBasis(
     const v1::EvaluateBasisRequest& request) {
   std::unique_ptr<grpc::ClientContext> context = NewContext();

@@ -212,6 +212,19 @@ TEST_F(FreeformdTest, CliBasisPrintsBlendingFunctions) {
   unlink(file.c_str());
 }
 
+TEST_F(FreeformdTest, CliSurfaceBasis) {
+  // Bilinear Bernstein products at (1/2, 1/4): (1/2)(3/4), (1/2)(1/4), ...
+  const std::string file = WriteTempFile(R"({
+    "tensor": {"u": {"bernstein": {"degree": 1}},
+               "v": {"bernstein": {"degree": 1}}},
+    "parameters": {"points": {"uv": [0.5, 0.25]}}})");
+  CommandResult csv = RunCommand(
+      Cli(absl::StrCat("basis --surface --format csv --file ", file)));
+  EXPECT_EQ(csv.exit_code, 0) << csv.output;
+  EXPECT_EQ(csv.output, "index,f0,f1,f2,f3\n0,0.375,0.125,0.375,0.125\n");
+  unlink(file.c_str());
+}
+
 // The Utah teapot (32 bicubic patches) meshed by the CLI: a valid OBJ with
 // every face on existing vertices, unit normals, and vertices on the patches.
 TEST_F(FreeformdTest, CliMeshesTheTeapotAsObj) {

@@ -154,6 +154,11 @@ class Client {
   absl::StatusOr<SurfaceEvaluation> EvaluateSurfaceStreamed(
       const v1::EvaluateSurfaceRequest& request);
 
+  // EvaluateSurfaceBasis runs SurfaceService.EvaluateBasis (values only:
+  // derivatives[0] of the result).
+  absl::StatusOr<BasisSamples> EvaluateSurfaceBasis(
+      const v1::EvaluateSurfaceBasisRequest& request);
+
   // EvaluateBasis runs CurveService.EvaluateBasis.
   absl::StatusOr<BasisSamples> EvaluateBasis(
       const v1::EvaluateBasisRequest& request);
