@@ -8,6 +8,12 @@
 //                   [--format json|csv] [--obj MESH.obj]
 //   freeform mesh   [--address HOST:PORT] --bezier-patches PATCHES.json
 //                   [--grid N] [--obj MESH.obj]
+//   freeform elevate [--address HOST:PORT] [--file REQUEST.json] [--surface]
+//   freeform reduce [--address HOST:PORT] [--file REQUEST.json]
+//   freeform interpolate [--address HOST:PORT] [--file REQUEST.json]
+//                   [--surface] | [--csv POINTS.csv [--degree P]
+//                   [--parameterization KIND] [--closed]
+//                   [--spline END] [--least-squares N]]
 //   freeform health [--address HOST:PORT] [--service NAME]
 //
 // Requests are the canonical proto3 JSON of the request message (from a file
@@ -19,11 +25,15 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
 #include <string>
 
 #include "CLI/CLI.hpp"
 #include "absl/status/statusor.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "absl/strings/strip.h"
 #include "freeform/client.h"
 #include "freeform/core/file.h"
 #include "nlohmann/json.hpp"
@@ -399,6 +409,142 @@ int RunMesh(const CommonFlags& flags, const std::string& patches_file, int grid,
   return WriteObj(mesh, obj);
 }
 
+// Sends the JSON request in `file` with `call` and prints the response as
+// JSON.
+template <typename Request, typename Response>
+int RunJsonCall(
+    const CommonFlags& flags, const std::string& file,
+    absl::StatusOr<Response> (freeform::Client::*call)(const Request&)) {
+  absl::StatusOr<Request> request = ParseJson<Request>(file);
+  if (!request.ok()) {
+    std::cerr << "error: " << request.status().message() << "\n";
+    return 2;
+  }
+  std::unique_ptr<freeform::Client> client = Connect(flags);
+  if (client == nullptr) return 2;
+  absl::StatusOr<Response> response = ((*client).*call)(*request);
+  if (!response.ok()) return ReportError(response.status());
+  std::cout << ToJson(*response);
+  return 0;
+}
+
+// Reads points from CSV: one point per line, coordinates separated by
+// commas; blank lines, '#' comments and a non-numeric header are skipped.
+absl::StatusOr<std::vector<std::vector<double>>> ReadCsvRows(
+    const std::string& file) {
+  absl::StatusOr<std::string> text = ReadInput(file);
+  if (!text.ok()) return text.status();
+  std::vector<std::vector<double>> rows;
+  std::istringstream lines(*text);
+  std::string line;
+  for (int number = 1; std::getline(lines, line); ++number) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<double> row;
+    bool numeric = true;
+    for (absl::string_view field : absl::StrSplit(line, ',')) {
+      double value = 0;
+      if (!absl::SimpleAtod(absl::StripAsciiWhitespace(field), &value)) {
+        numeric = false;
+        break;
+      }
+      row.push_back(value);
+    }
+    if (!numeric) {
+      if (rows.empty()) continue;  // a header
+      return absl::InvalidArgumentError(
+          absl::StrCat(file, ":", number, ": not a row of numbers"));
+    }
+    if (!rows.empty() && row.size() != rows.front().size()) {
+      return absl::InvalidArgumentError(absl::StrCat(
+          file, ":", number, ": ", row.size(),
+          " values where earlier rows have ", rows.front().size()));
+    }
+    rows.push_back(std::move(row));
+  }
+  if (rows.empty()) return absl::InvalidArgumentError(file + ": no points");
+  return rows;
+}
+
+struct CsvInterpolation {
+  std::string csv;
+  int degree = 3;
+  std::string parameterization = "chord_length";
+  bool closed = false;
+  // Cubic spline of function data: the first column is the abscissa.
+  std::string spline;
+  int least_squares_points = 0;
+};
+
+// Builds an InterpolateCurveRequest from CSV points and flags.
+absl::StatusOr<freeform::v1::InterpolateCurveRequest> CsvRequest(
+    const CsvInterpolation& options) {
+  absl::StatusOr<std::vector<std::vector<double>>> rows =
+      ReadCsvRows(options.csv);
+  if (!rows.ok()) return rows.status();
+  freeform::v1::InterpolateCurveRequest request;
+  const bool spline = !options.spline.empty();
+  const size_t first = spline ? 1 : 0;
+  if (rows->front().size() <= first) {
+    return absl::InvalidArgumentError("the CSV rows need more columns");
+  }
+  freeform::v1::Points* points = request.mutable_points();
+  points->set_dimension(static_cast<uint32_t>(rows->front().size() - first));
+  for (const std::vector<double>& row : *rows) {
+    points->mutable_coordinates()->Add(row.begin() + first, row.end());
+  }
+  const std::map<std::string, freeform::v1::Parameterization> kinds = {
+      {"uniform", freeform::v1::PARAMETERIZATION_UNIFORM},
+      {"chord_length", freeform::v1::PARAMETERIZATION_CHORD_LENGTH},
+      {"centripetal", freeform::v1::PARAMETERIZATION_CENTRIPETAL},
+      {"universal", freeform::v1::PARAMETERIZATION_UNIVERSAL}};
+  if (spline) {
+    const std::map<std::string, freeform::v1::SplineEndCondition> ends = {
+        {"natural", freeform::v1::SPLINE_END_CONDITION_NATURAL},
+        {"not_a_knot", freeform::v1::SPLINE_END_CONDITION_NOT_A_KNOT},
+        {"periodic", freeform::v1::SPLINE_END_CONDITION_PERIODIC}};
+    auto* method = request.mutable_cubic_spline();
+    method->set_end_condition(ends.at(options.spline));
+    for (const std::vector<double>& row : *rows) {
+      method->add_parameters(row[0]);
+    }
+  } else if (options.least_squares_points > 0) {
+    auto* method = request.mutable_least_squares();
+    method->set_degree(static_cast<uint32_t>(options.degree));
+    method->set_control_point_count(
+        static_cast<uint32_t>(options.least_squares_points));
+    method->set_parameterization(kinds.at(options.parameterization));
+  } else {
+    auto* method = request.mutable_bspline();
+    method->set_degree(static_cast<uint32_t>(options.degree));
+    method->set_parameterization(kinds.at(options.parameterization));
+    method->set_closed(options.closed);
+  }
+  return request;
+}
+
+int RunInterpolate(const CommonFlags& flags, const std::string& file,
+                   bool surface, const CsvInterpolation& csv) {
+  if (surface) {
+    return RunJsonCall(flags, file, &freeform::Client::InterpolateSurface);
+  }
+  if (csv.csv.empty()) {
+    return RunJsonCall(flags, file, &freeform::Client::InterpolateCurve);
+  }
+  absl::StatusOr<freeform::v1::InterpolateCurveRequest> request =
+      CsvRequest(csv);
+  if (!request.ok()) {
+    std::cerr << "error: " << request.status().message() << "\n";
+    return 2;
+  }
+  std::unique_ptr<freeform::Client> client = Connect(flags);
+  if (client == nullptr) return 2;
+  absl::StatusOr<freeform::v1::InterpolateCurveResponse> response =
+      client->InterpolateCurve(*request);
+  if (!response.ok()) return ReportError(response.status());
+  std::cout << ToJson(*response);
+  return 0;
+}
+
 int RunHealth(const CommonFlags& flags, const std::string& service) {
   std::unique_ptr<freeform::Client> client = Connect(flags);
   if (client == nullptr) return 2;
@@ -485,6 +631,52 @@ int main(int argc, char** argv) {
   mesh_command->add_option("--obj", mesh_obj, "Output file ('-' for stdout)")
       ->capture_default_str();
 
+  CLI::App* elevate = app.add_subcommand(
+      "elevate", "Raise the degree: CurveService/SurfaceService.ElevateDegree");
+  bool surface_request = false;
+  AddCommonFlags(*elevate, flags);
+  elevate->add_option("-f,--file", file,
+                      "Elevate*DegreeRequest as proto3 JSON (default: stdin)");
+  elevate->add_flag("--surface", surface_request,
+                    "The request is an ElevateSurfaceDegreeRequest");
+
+  CLI::App* reduce = app.add_subcommand(
+      "reduce", "Lower a Bezier curve's degree: CurveService.ReduceDegree");
+  AddCommonFlags(*reduce, flags);
+  reduce->add_option(
+      "-f,--file", file,
+      "ReduceCurveDegreeRequest as proto3 JSON (default: stdin)");
+
+  CLI::App* interpolate =
+      app.add_subcommand("interpolate",
+                         "Interpolate points: CurveService/SurfaceService."
+                         "Interpolate, from JSON or from a CSV of points");
+  CsvInterpolation csv;
+  AddCommonFlags(*interpolate, flags);
+  interpolate->add_option(
+      "-f,--file", file, "Interpolate*Request as proto3 JSON (default: stdin)");
+  interpolate->add_flag("--surface", surface_request,
+                        "The request is an InterpolateSurfaceRequest");
+  interpolate->add_option("--csv", csv.csv,
+                          "Points from CSV, one per line (x,y[,z...])");
+  interpolate->add_option("--degree", csv.degree, "Degree (with --csv)")
+      ->capture_default_str();
+  interpolate
+      ->add_option("--parameterization", csv.parameterization,
+                   "uniform, chord_length, centripetal or universal")
+      ->check(CLI::IsMember(
+          {"uniform", "chord_length", "centripetal", "universal"}))
+      ->capture_default_str();
+  interpolate->add_flag("--closed", csv.closed, "Interpolate a closed curve");
+  interpolate
+      ->add_option("--spline", csv.spline,
+                   "Cubic spline of function data (first CSV column is x): "
+                   "natural, not_a_knot or periodic")
+      ->check(CLI::IsMember({"natural", "not_a_knot", "periodic"}));
+  interpolate->add_option(
+      "--least-squares", csv.least_squares_points,
+      "Least-squares fit with this many control points instead");
+
   CLI::App* health =
       app.add_subcommand("health", "Ask the server's health service");
   std::string service;
@@ -496,6 +688,19 @@ int main(int argc, char** argv) {
   if (eval->parsed()) return RunEval(flags, file, stream, format);
   if (basis->parsed()) return RunBasis(flags, file, format, surface_basis);
   if (surface->parsed()) return RunSurface(flags, file, stream, format, obj);
+  if (elevate->parsed()) {
+    return surface_request
+               ? RunJsonCall(flags, file,
+                             &freeform::Client::ElevateSurfaceDegree)
+               : RunJsonCall(flags, file,
+                             &freeform::Client::ElevateCurveDegree);
+  }
+  if (reduce->parsed()) {
+    return RunJsonCall(flags, file, &freeform::Client::ReduceCurveDegree);
+  }
+  if (interpolate->parsed()) {
+    return RunInterpolate(flags, file, surface_request, csv);
+  }
   if (mesh_command->parsed()) {
     return RunMesh(flags, patches_file, grid, mesh_obj);
   }

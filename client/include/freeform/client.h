@@ -163,6 +163,48 @@ class Client {
   absl::StatusOr<BasisSamples> EvaluateBasis(
       const v1::EvaluateBasisRequest& request);
 
+  // Unary calls `method` of `stub` with this client's deadline and returns
+  // the response, or the server's error (see FieldViolationsOf). For RPCs
+  // without a convenience method, e.g.
+  //   client.Unary(client.curves(), &v1::CurveService::Stub::ElevateDegree,
+  //                request);
+  template <typename Stub, typename Request, typename Response>
+  absl::StatusOr<Response> Unary(
+      Stub& stub,
+      grpc::Status (Stub::*method)(grpc::ClientContext*, const Request&,
+                                   Response*),
+      const Request& request) {
+    std::unique_ptr<grpc::ClientContext> context = NewContext();
+    Response response;
+    if (grpc::Status status = (stub.*method)(context.get(), request, &response);
+        !status.ok()) {
+      return FromGrpcStatus(status);
+    }
+    return response;
+  }
+
+  // The degree and interpolation RPCs.
+  absl::StatusOr<v1::ElevateCurveDegreeResponse> ElevateCurveDegree(
+      const v1::ElevateCurveDegreeRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::ElevateDegree, request);
+  }
+  absl::StatusOr<v1::ReduceCurveDegreeResponse> ReduceCurveDegree(
+      const v1::ReduceCurveDegreeRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::ReduceDegree, request);
+  }
+  absl::StatusOr<v1::InterpolateCurveResponse> InterpolateCurve(
+      const v1::InterpolateCurveRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::Interpolate, request);
+  }
+  absl::StatusOr<v1::ElevateSurfaceDegreeResponse> ElevateSurfaceDegree(
+      const v1::ElevateSurfaceDegreeRequest& request) {
+    return Unary(*surfaces_, &v1::SurfaceService::Stub::ElevateDegree, request);
+  }
+  absl::StatusOr<v1::InterpolateSurfaceResponse> InterpolateSurface(
+      const v1::InterpolateSurfaceRequest& request) {
+    return Unary(*surfaces_, &v1::SurfaceService::Stub::Interpolate, request);
+  }
+
   // CheckHealth asks grpc.health.v1.Health; OK means SERVING, UNAVAILABLE
   // means NOT_SERVING; other codes are transport errors.
   absl::Status CheckHealth(const std::string& service = "");
