@@ -253,25 +253,4 @@ grpc::Status CurveServiceImpl::Tessellate(
                           "issue #5");
 }
 
-grpc::Status CurveServiceImpl::ElevateDegree(
-    grpc::ServerContext* context, const v1::ElevateCurveDegreeRequest* request,
-    v1::ElevateCurveDegreeResponse*) {
-  return RunUnimplemented("CurveService.ElevateDegree", context, *request,
-                          "issue #6");
-}
-
-grpc::Status CurveServiceImpl::ReduceDegree(
-    grpc::ServerContext* context, const v1::ReduceCurveDegreeRequest* request,
-    v1::ReduceCurveDegreeResponse*) {
-  return RunUnimplemented("CurveService.ReduceDegree", context, *request,
-                          "issue #6");
-}
-
-grpc::Status CurveServiceImpl::Interpolate(
-    grpc::ServerContext* context, const v1::InterpolateCurveRequest* request,
-    v1::InterpolateCurveResponse*) {
-  return RunUnimplemented("CurveService.Interpolate", context, *request,
-                          "issue #7");
-}
-
 }  // namespace freeform::server

@@ -70,27 +70,15 @@ PreparedCurve OwnedBezier(std::vector<double> control, int dimension,
 absl::StatusOr<PreparedCurve> PrepareBezier(const v1::BezierCurve& message,
                                             BezierAlgorithm algorithm,
                                             const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDimension(message.control_points(), limits, "control_points");
-      !status.ok()) {
-    return status;
-  }
-  const BezierCurveView curve = ViewOf(message);
-  if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = CheckSize(curve.control_points.size(),
-                                      curve.degree(), limits, "control_points");
-      !status.ok()) {
-    return status;
-  }
-  return MakePrepared(
-      curve.control_points.dimension,
-      [curve, algorithm](absl::Span<const double> parameters,
-                         CurveOutput output, const ExecutionContext& context) {
-        return EvaluateBezierCurve(curve, parameters, output, context,
-                                   algorithm);
-      });
+  absl::StatusOr<BezierCurveView> curve = ValidatedBezier(message, limits);
+  if (!curve.ok()) return curve.status();
+  return MakePrepared(curve->control_points.dimension,
+                      [curve = *curve, algorithm](
+                          absl::Span<const double> parameters,
+                          CurveOutput output, const ExecutionContext& context) {
+                        return EvaluateBezierCurve(curve, parameters, output,
+                                                   context, algorithm);
+                      });
 }
 
 absl::StatusOr<PreparedCurve> PreparePower(const v1::PowerCurve& message,
@@ -118,33 +106,13 @@ absl::StatusOr<PreparedCurve> PreparePower(const v1::PowerCurve& message,
 
 absl::StatusOr<PreparedCurve> PrepareBSpline(const v1::BSplineCurve& message,
                                              const ServiceLimits& limits) {
-  if (absl::Status status = CheckSize(0, message.degree(), limits, "degree");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckDimension(message.control_points(), limits, "control_points");
-      !status.ok()) {
-    return status;
-  }
-  const BSplineCurveView curve{
-      .degree = static_cast<int>(message.degree()),
-      .control_points = ViewOf(message.control_points()),
-      .knots = SpanOf(message.knots()),
-      .weights = SpanOf(message.weights())};
-  if (absl::Status status =
-          CheckSize(curve.control_points.size(), 0, limits, "control_points");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateBSplineCurve(curve); !status.ok()) {
-    return status;
-  }
-  const ParameterDomain domain = BSplineDomain(curve);
+  absl::StatusOr<BSplineCurveView> curve = ValidatedBSpline(message, limits);
+  if (!curve.ok()) return curve.status();
+  const ParameterDomain domain = BSplineDomain(*curve);
   return MakePrepared(
-      curve.control_points.dimension,
-      [curve](absl::Span<const double> parameters, CurveOutput output,
-              const ExecutionContext& context) {
+      curve->control_points.dimension,
+      [curve = *curve](absl::Span<const double> parameters, CurveOutput output,
+                       const ExecutionContext& context) {
         return EvaluateBSplineCurve(curve, parameters, output, context);
       },
       domain.start, domain.end);
@@ -302,6 +270,52 @@ absl::StatusOr<PreparedCurve> PrepareLagrangeBasis(
 }
 
 }  // namespace
+
+absl::StatusOr<BezierCurveView> ValidatedBezier(const v1::BezierCurve& message,
+                                                const ServiceLimits& limits) {
+  if (absl::Status status =
+          CheckDimension(message.control_points(), limits, "control_points");
+      !status.ok()) {
+    return status;
+  }
+  const BezierCurveView curve = ViewOf(message);
+  if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = CheckSize(curve.control_points.size(),
+                                      curve.degree(), limits, "control_points");
+      !status.ok()) {
+    return status;
+  }
+  return curve;
+}
+
+absl::StatusOr<BSplineCurveView> ValidatedBSpline(
+    const v1::BSplineCurve& message, const ServiceLimits& limits) {
+  if (absl::Status status = CheckSize(0, message.degree(), limits, "degree");
+      !status.ok()) {
+    return status;
+  }
+  if (absl::Status status =
+          CheckDimension(message.control_points(), limits, "control_points");
+      !status.ok()) {
+    return status;
+  }
+  const BSplineCurveView curve{
+      .degree = static_cast<int>(message.degree()),
+      .control_points = ViewOf(message.control_points()),
+      .knots = SpanOf(message.knots()),
+      .weights = SpanOf(message.weights())};
+  if (absl::Status status =
+          CheckSize(curve.control_points.size(), 0, limits, "control_points");
+      !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = ValidateBSplineCurve(curve); !status.ok()) {
+    return status;
+  }
+  return curve;
+}
 
 absl::StatusOr<PreparedCurve> PrepareCurve(const v1::Curve& curve,
                                            v1::BezierAlgorithm algorithm,

@@ -14,6 +14,8 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "freeform/core/bezier.h"
+#include "freeform/core/bspline.h"
 #include "freeform/core/curve_output.h"
 #include "freeform/core/thread_pool.h"
 #include "freeform/v1/curve_service.pb.h"
@@ -34,6 +36,14 @@ struct PreparedCurve {
   double domain_end = 1.0;
   BatchEvaluator evaluate;
 };
+
+// ValidatedBezier and ValidatedBSpline check a curve message against the
+// core rules and `limits` and return its view. Field paths are relative to
+// the message ("control_points.coordinates[3]").
+absl::StatusOr<BezierCurveView> ValidatedBezier(const v1::BezierCurve& message,
+                                                const ServiceLimits& limits);
+absl::StatusOr<BSplineCurveView> ValidatedBSpline(
+    const v1::BSplineCurve& message, const ServiceLimits& limits);
 
 // PrepareCurve validates `curve` (the request's field "curve") against the
 // core rules and `limits`. `algorithm` applies to Bezier and power forms.

@@ -78,53 +78,28 @@ PreparedSurface OwnedBicubic(std::vector<double> net, int dimension) {
 
 absl::StatusOr<PreparedSurface> PrepareBezier(const v1::BezierSurface& message,
                                               const ServiceLimits& limits) {
-  absl::StatusOr<ControlNetView> net =
-      NetOf(message.control_net(), limits, "control_net", true);
-  if (!net.ok()) return net.status();
-  const BezierSurfaceView surface{.control_net = *net,
-                                  .weights = SpanOf(message.weights())};
-  if (absl::Status status = ValidateBezierSurface(surface); !status.ok()) {
-    return status;
-  }
-  return Tensor(net->dimension, BezierSurfaceDomain(),
-                [surface](const SurfaceSamples& samples, SurfaceOutput output,
-                          const ExecutionContext& context) {
-                  return EvaluateBezierSurface(surface, samples, output,
-                                               context);
-                });
+  absl::StatusOr<BezierSurfaceView> surface =
+      ValidatedBezierSurface(message, limits);
+  if (!surface.ok()) return surface.status();
+  return Tensor(
+      surface->control_net.dimension, BezierSurfaceDomain(),
+      [surface = *surface](const SurfaceSamples& samples, SurfaceOutput output,
+                           const ExecutionContext& context) {
+        return EvaluateBezierSurface(surface, samples, output, context);
+      });
 }
 
 absl::StatusOr<PreparedSurface> PrepareBSpline(
     const v1::BSplineSurface& message, const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDegreeLimit(message.degree_u(), limits, "degree_u");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckDegreeLimit(message.degree_v(), limits, "degree_v");
-      !status.ok()) {
-    return status;
-  }
-  absl::StatusOr<ControlNetView> net =
-      NetOf(message.control_net(), limits, "control_net", false);
-  if (!net.ok()) return net.status();
-  const BSplineSurfaceView surface{
-      .degree_u = static_cast<int>(message.degree_u()),
-      .degree_v = static_cast<int>(message.degree_v()),
-      .control_net = *net,
-      .knots_u = SpanOf(message.knots_u()),
-      .knots_v = SpanOf(message.knots_v()),
-      .weights = SpanOf(message.weights())};
-  if (absl::Status status = ValidateBSplineSurface(surface); !status.ok()) {
-    return status;
-  }
-  return Tensor(net->dimension, BSplineSurfaceDomain(surface),
-                [surface](const SurfaceSamples& samples, SurfaceOutput output,
-                          const ExecutionContext& context) {
-                  return EvaluateBSplineSurface(surface, samples, output,
-                                                context);
-                });
+  absl::StatusOr<BSplineSurfaceView> surface =
+      ValidatedBSplineSurface(message, limits);
+  if (!surface.ok()) return surface.status();
+  return Tensor(
+      surface->control_net.dimension, BSplineSurfaceDomain(*surface),
+      [surface = *surface](const SurfaceSamples& samples, SurfaceOutput output,
+                           const ExecutionContext& context) {
+        return EvaluateBSplineSurface(surface, samples, output, context);
+      });
 }
 
 // A 2 x 2 (or, when `optional`, empty) net of the given dimension.
@@ -191,6 +166,76 @@ absl::StatusOr<PreparedSurface> PrepareInterpolating(
 
 absl::StatusOr<PreparedSurface> PrepareTriangular(
     const v1::TriangularBezierPatch& message, const ServiceLimits& limits) {
+  absl::StatusOr<TriangularPatchView> patch =
+      ValidatedTriangularPatch(message, limits);
+  if (!patch.ok()) return patch.status();
+  return PreparedSurface{
+      .dimension = patch->control_points.dimension,
+      .triangular = true,
+      .evaluate = [patch = *patch](const SurfaceSamples& samples,
+                                   SurfaceOutput output,
+                                   const ExecutionContext& context) {
+        return EvaluateTriangularPatch(patch, samples.uv, output, context);
+      }};
+}
+
+absl::StatusOr<PreparedSurface> WithPrefix(
+    absl::StatusOr<PreparedSurface> prepared, absl::string_view prefix) {
+  if (!prepared.ok()) return PrefixFieldPath(prepared.status(), prefix);
+  return prepared;
+}
+
+}  // namespace
+
+absl::StatusOr<ControlNetView> ValidatedNet(const v1::ControlNet& net,
+                                            const ServiceLimits& limits,
+                                            absl::string_view field) {
+  return NetOf(net, limits, field, false);
+}
+
+absl::StatusOr<BezierSurfaceView> ValidatedBezierSurface(
+    const v1::BezierSurface& message, const ServiceLimits& limits) {
+  absl::StatusOr<ControlNetView> net =
+      NetOf(message.control_net(), limits, "control_net", true);
+  if (!net.ok()) return net.status();
+  const BezierSurfaceView surface{.control_net = *net,
+                                  .weights = SpanOf(message.weights())};
+  if (absl::Status status = ValidateBezierSurface(surface); !status.ok()) {
+    return status;
+  }
+  return surface;
+}
+
+absl::StatusOr<BSplineSurfaceView> ValidatedBSplineSurface(
+    const v1::BSplineSurface& message, const ServiceLimits& limits) {
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree_u(), limits, "degree_u");
+      !status.ok()) {
+    return status;
+  }
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree_v(), limits, "degree_v");
+      !status.ok()) {
+    return status;
+  }
+  absl::StatusOr<ControlNetView> net =
+      NetOf(message.control_net(), limits, "control_net", false);
+  if (!net.ok()) return net.status();
+  const BSplineSurfaceView surface{
+      .degree_u = static_cast<int>(message.degree_u()),
+      .degree_v = static_cast<int>(message.degree_v()),
+      .control_net = *net,
+      .knots_u = SpanOf(message.knots_u()),
+      .knots_v = SpanOf(message.knots_v()),
+      .weights = SpanOf(message.weights())};
+  if (absl::Status status = ValidateBSplineSurface(surface); !status.ok()) {
+    return status;
+  }
+  return surface;
+}
+
+absl::StatusOr<TriangularPatchView> ValidatedTriangularPatch(
+    const v1::TriangularBezierPatch& message, const ServiceLimits& limits) {
   if (absl::Status status =
           CheckDegreeLimit(message.degree(), limits, "degree");
       !status.ok()) {
@@ -219,22 +264,8 @@ absl::StatusOr<PreparedSurface> PrepareTriangular(
     }
     return status;
   }
-  return PreparedSurface{
-      .dimension = patch.control_points.dimension,
-      .triangular = true,
-      .evaluate = [patch](const SurfaceSamples& samples, SurfaceOutput output,
-                          const ExecutionContext& context) {
-        return EvaluateTriangularPatch(patch, samples.uv, output, context);
-      }};
+  return patch;
 }
-
-absl::StatusOr<PreparedSurface> WithPrefix(
-    absl::StatusOr<PreparedSurface> prepared, absl::string_view prefix) {
-  if (!prepared.ok()) return PrefixFieldPath(prepared.status(), prefix);
-  return prepared;
-}
-
-}  // namespace
 
 absl::StatusOr<PreparedSurface> PrepareSurface(const v1::Surface& surface,
                                                const ServiceLimits& limits) {

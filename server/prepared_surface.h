@@ -11,7 +11,9 @@
 
 #include "absl/status/statusor.h"
 #include "freeform/core/surface_output.h"
+#include "freeform/core/tensor_surface.h"
 #include "freeform/core/thread_pool.h"
+#include "freeform/core/triangular.h"
 #include "freeform/v1/geometry.pb.h"
 #include "service_limits.h"
 
@@ -31,6 +33,18 @@ struct PreparedSurface {
   bool triangular = false;
   SurfaceEvaluator evaluate;
 };
+
+// Validated* check a message against the core rules and `limits` and return
+// its view; field paths are relative to the message.
+absl::StatusOr<ControlNetView> ValidatedNet(const v1::ControlNet& net,
+                                            const ServiceLimits& limits,
+                                            absl::string_view field);
+absl::StatusOr<BezierSurfaceView> ValidatedBezierSurface(
+    const v1::BezierSurface& message, const ServiceLimits& limits);
+absl::StatusOr<BSplineSurfaceView> ValidatedBSplineSurface(
+    const v1::BSplineSurface& message, const ServiceLimits& limits);
+absl::StatusOr<TriangularPatchView> ValidatedTriangularPatch(
+    const v1::TriangularBezierPatch& message, const ServiceLimits& limits);
 
 // PrepareSurface validates `surface` (the request's field "surface").
 absl::StatusOr<PreparedSurface> PrepareSurface(const v1::Surface& surface,

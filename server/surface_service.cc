@@ -439,19 +439,4 @@ grpc::Status SurfaceServiceImpl::TessellateStream(
                           "issue #5");
 }
 
-grpc::Status SurfaceServiceImpl::ElevateDegree(
-    grpc::ServerContext* context,
-    const v1::ElevateSurfaceDegreeRequest* request,
-    v1::ElevateSurfaceDegreeResponse*) {
-  return RunUnimplemented("SurfaceService.ElevateDegree", context, *request,
-                          "issue #6");
-}
-
-grpc::Status SurfaceServiceImpl::Interpolate(
-    grpc::ServerContext* context, const v1::InterpolateSurfaceRequest* request,
-    v1::InterpolateSurfaceResponse*) {
-  return RunUnimplemented("SurfaceService.Interpolate", context, *request,
-                          "issue #7");
-}
-
 }  // namespace freeform::server

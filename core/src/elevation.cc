@@ -1,1 +1,625 @@
 #include "freeform/core/elevation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "absl/types/span.h"
+#include "freeform/core/rational.h"
+#include "freeform/core/status.h"
+
+namespace freeform {
+namespace {
+
+// Control points of `dim` coordinates each (homogeneous ones included) in a
+// flat array, point after point.
+struct Points {
+  int dim = 0;
+  std::vector<double> values;
+
+  size_t count() const {
+    return dim > 0 ? values.size() / static_cast<size_t>(dim) : 0;
+  }
+  double* at(size_t i) { return values.data() + i * static_cast<size_t>(dim); }
+  const double* at(size_t i) const {
+    return values.data() + i * static_cast<size_t>(dim);
+  }
+};
+
+// A B-spline's knots and control points.
+struct Spline {
+  std::vector<double> knots;
+  Points points;
+};
+
+absl::Status CheckPositive(int value, absl::string_view field) {
+  if (value < 1) return InvalidFieldError(field, "must be at least 1");
+  return absl::OkStatus();
+}
+
+// ElevationCoefficients returns the (p+by+1) x (p+1) matrix of eq. 5.36,
+// a[i][j] = C(p,j) C(by,i-j) / C(p+by,i) (zero outside j in
+// [max(0,i-by), min(p,i)]), row-major. The binomials are long double so
+// that they stay finite and accurate for any practical degree.
+std::vector<double> ElevationCoefficients(int p, int by) {
+  const int ph = p + by;
+  std::vector<long double> binomial(static_cast<size_t>(ph + 1) * (ph + 1), 0);
+  auto choose = [&](int n, int k) -> long double& {
+    return binomial[static_cast<size_t>(n) * (ph + 1) + k];
+  };
+  for (int n = 0; n <= ph; ++n) {
+    choose(n, 0) = 1;
+    for (int k = 1; k <= n; ++k)
+      choose(n, k) = choose(n, k - 1) * (n - k + 1) / k;
+  }
+  std::vector<double> a(static_cast<size_t>(ph + 1) * (p + 1), 0.0);
+  for (int i = 0; i <= ph; ++i) {
+    for (int j = std::max(0, i - by); j <= std::min(p, i); ++j) {
+      a[static_cast<size_t>(i) * (p + 1) + j] =
+          static_cast<double>(choose(p, j) * choose(by, i - j) / choose(ph, i));
+    }
+  }
+  return a;
+}
+
+// out[i] = sum_j a[i][j] in[j] for i in [first, p + by] (eq. 5.36), with
+// `a` from ElevationCoefficients(p, by) and points of `dim` values.
+void ElevateSegment(const std::vector<double>& a, int p, int by, int dim,
+                    const double* in, int first, double* out) {
+  for (int i = first; i <= p + by; ++i) {
+    double* q = out + static_cast<size_t>(i) * dim;
+    std::fill(q, q + dim, 0.0);
+    for (int j = std::max(0, i - by); j <= std::min(p, i); ++j) {
+      const double c = a[static_cast<size_t>(i) * (p + 1) + j];
+      const double* point = in + static_cast<size_t>(j) * dim;
+      for (int x = 0; x < dim; ++x) q[x] += c * point[x];
+    }
+  }
+}
+
+// ElevateBezierPoints raises the Bezier control polygon `points` by `by`.
+Points ElevateBezierPoints(const Points& points, int by) {
+  const int p = static_cast<int>(points.count()) - 1;
+  Points result{points.dim,
+                std::vector<double>((points.count() + by) * points.dim)};
+  ElevateSegment(ElevationCoefficients(p, by), p, by, points.dim,
+                 points.values.data(), 0, result.values.data());
+  return result;
+}
+
+// out = alpha * a + (1 - alpha) * b, coordinate by coordinate (out may
+// alias a or b).
+void Blend(double alpha, const double* a, const double* b, int dim,
+           double* out) {
+  for (int x = 0; x < dim; ++x) out[x] = alpha * a[x] + (1.0 - alpha) * b[x];
+}
+
+// InsertKnotOnce inserts `u` once into `spline` of degree p (The NURBS Book
+// A5.1 with r = 1); `u` must lie in [u_p, u_{n+1}] with a knot after it.
+void InsertKnotOnce(Spline& spline, int p, double u) {
+  std::vector<double>& knots = spline.knots;
+  const int k =
+      static_cast<int>(std::upper_bound(knots.begin(), knots.end(), u) -
+                       knots.begin()) -
+      1;
+  const int s = static_cast<int>(std::count(knots.begin(), knots.end(), u));
+  const int dim = spline.points.dim;
+  Points next{dim, std::vector<double>((spline.points.count() + 1) * dim)};
+  const Points& old = spline.points;
+  for (int i = 0; i <= k - p; ++i) std::copy_n(old.at(i), dim, next.at(i));
+  for (size_t i = k - s; i < old.count(); ++i) {
+    std::copy_n(old.at(i), dim, next.at(i + 1));
+  }
+  for (int i = k - p + 1; i <= k - s; ++i) {
+    const double alpha = (u - knots[i]) / (knots[i + p] - knots[i]);
+    Blend(alpha, old.at(i), old.at(i - 1), dim, next.at(i));
+  }
+  knots.insert(knots.begin() + k + 1, u);
+  spline.points = std::move(next);
+}
+
+// Multiplicity of `u` in the sorted `knots`.
+int Multiplicity(const std::vector<double>& knots, double u) {
+  return static_cast<int>(std::count(knots.begin(), knots.end(), u));
+}
+
+bool IsClamped(absl::Span<const double> knots, int p) {
+  const size_t last = knots.size() - 1;
+  for (int i = 1; i <= p; ++i) {
+    if (knots[i] != knots[0] || knots[last - i] != knots[last]) return false;
+  }
+  return true;
+}
+
+// Clamp rewrites an unclamped spline of degree p with the same curve on its
+// domain [a, b] = [u_p, u_{n+1}] and knots a (p + 1 times), the knots
+// strictly inside the domain, b (p + 1 times). Knot insertion (A5.1) raises
+// the multiplicity of a and b to at least p; then only the control points
+// whose basis functions reach into the domain are kept: from index e - p,
+// where e is the last knot equal to a (the knots before the run of a do not
+// affect those functions on the domain), to index f - 1, where f is the
+// first knot equal to b.
+void Clamp(Spline& spline, int p) {
+  const size_t n = spline.points.count() - 1;
+  const double a = spline.knots[p];
+  const double b = spline.knots[n + 1];
+  for (int s = Multiplicity(spline.knots, a); s < p; ++s) {
+    InsertKnotOnce(spline, p, a);
+  }
+  for (int s = Multiplicity(spline.knots, b); s < p; ++s) {
+    InsertKnotOnce(spline, p, b);
+  }
+  const std::vector<double>& knots = spline.knots;
+  const int e =
+      static_cast<int>(std::upper_bound(knots.begin(), knots.end(), a) -
+                       knots.begin()) -
+      1;
+  const int f = static_cast<int>(
+      std::lower_bound(knots.begin(), knots.end(), b) - knots.begin());
+  const int first = e - p;
+  const int last = f - 1;
+  const int dim = spline.points.dim;
+  Spline clamped;
+  clamped.knots.assign(knots.begin() + first, knots.begin() + last + p + 2);
+  clamped.knots.front() = a;
+  clamped.knots.back() = b;
+  clamped.points.dim = dim;
+  clamped.points.values.assign(spline.points.at(first),
+                               spline.points.at(last + 1));
+  spline = std::move(clamped);
+}
+
+// ElevatedKnots returns the clamped `knots` with the multiplicity of every
+// distinct value raised by `by`.
+std::vector<double> ElevatedKnots(const std::vector<double>& knots, int by) {
+  std::vector<double> result;
+  result.reserve(knots.size() * static_cast<size_t>(by + 1));
+  for (size_t i = 0; i < knots.size(); ++i) {
+    result.push_back(knots[i]);
+    if (i + 1 == knots.size() || knots[i + 1] != knots[i]) {
+      result.insert(result.end(), by, knots[i]);
+    }
+  }
+  return result;
+}
+
+// BlossomElevator computes the control points of a clamped spline raised
+// from degree p to ph = p + by by blossoming (Ramshaw, "Blossoms are polar
+// forms", CAGD 6 (1989)): on every knot span the elevated piece has the
+// blossom F(x_1..x_ph) = average over the p-subsets S of f(x_S), f the
+// piece's blossom, and the control point Q_i is F at the new knots
+// Uh_{i+1}..Uh_{i+ph} on any non-empty span of its support. The average over
+// subsets is built one argument at a time, A_k[c] = (k-c)/k A_{k-1}[c] +
+// c/k step(A_{k-1}[c-1], x_k), where A_k[c] is the average of the level-c de
+// Boor points over the c-subsets of the first k arguments; every term is a
+// knot-insertion-like combination, so nothing is extrapolated beyond what
+// evaluation does, unlike the knot removal of The NURBS Book's A5.9, which
+// loses up to 6 digits at degree 11 (measured on uniform knots).
+class BlossomElevator {
+ public:
+  BlossomElevator(const Spline& spline, int p, int by)
+      : p_(p),
+        ph_(p + by),
+        dim_(spline.points.dim),
+        knots_(spline.knots),
+        points_(spline.points),
+        levels_(static_cast<size_t>(p + 1)) {
+    for (int c = 0; c <= p; ++c) {
+      levels_[c].resize(static_cast<size_t>(p + 1 - c) * dim_);
+    }
+  }
+
+  Spline Run() {
+    Spline result{ElevatedKnots(knots_, ph_ - p_), Points{dim_, {}}};
+    const std::vector<double>& uh = result.knots;
+    const int count = static_cast<int>(uh.size()) - ph_ - 1;
+    result.points.values.resize(static_cast<size_t>(count) * dim_);
+    for (int i = 0; i < count; ++i) {
+      const int s = SpanFor(uh, i);
+      Blossom(s, &uh[i + 1], result.points.at(i));
+    }
+    return result;
+  }
+
+ private:
+  // SpanFor returns the original span of the non-empty new span nearest the
+  // middle of Q_i's support [Uh_i, Uh_{i+ph+1}].
+  int SpanFor(const std::vector<double>& uh, int i) const {
+    int best = -1;
+    for (int j = i; j <= i + ph_; ++j) {
+      if (uh[j] < uh[j + 1] &&
+          (best < 0 ||
+           std::abs(2 * j - 2 * i - ph_) < std::abs(2 * best - 2 * i - ph_))) {
+        best = j;
+      }
+    }
+    return static_cast<int>(
+               std::upper_bound(knots_.begin(), knots_.end(), uh[best]) -
+               knots_.begin()) -
+           1;
+  }
+
+  // Blossom writes F(args[0..ph-1]) of the elevated piece on span s.
+  void Blossom(int s, const double* args, double* out) {
+    std::copy_n(points_.at(s - p_), (p_ + 1) * dim_, levels_[0].begin());
+    for (int k = 1; k <= ph_; ++k) {
+      for (int c = std::min(k, p_); c >= 1; --c) {
+        const double keep = c < k ? static_cast<double>(k - c) / k : 0.0;
+        Step(s, c, args[k - 1], keep, static_cast<double>(c) / k);
+      }
+    }
+    std::copy_n(levels_[p_].begin(), dim_, out);
+  }
+
+  // Step sets level c to keep * level c + add * (the de Boor step of level
+  // c - 1 at x on span s; The NURBS Book eq. 5.15 with x for the knot).
+  void Step(int s, int c, double x, double keep, double add) {
+    const std::vector<double>& from = levels_[c - 1];
+    std::vector<double>& to = levels_[c];
+    for (int idx = 0; idx <= p_ - c; ++idx) {
+      const int i = s - p_ + c + idx;
+      const double alpha =
+          (x - knots_[i]) / (knots_[i + p_ + 1 - c] - knots_[i]);
+      const double* left = &from[static_cast<size_t>(idx) * dim_];
+      const double* right = left + dim_;
+      double* target = &to[static_cast<size_t>(idx) * dim_];
+      for (int d = 0; d < dim_; ++d) {
+        const double value = (1.0 - alpha) * left[d] + alpha * right[d];
+        target[d] = keep * target[d] + add * value;
+      }
+    }
+  }
+
+  const int p_;
+  const int ph_;
+  const int dim_;
+  const std::vector<double>& knots_;
+  const Points& points_;
+  std::vector<std::vector<double>> levels_;
+};
+
+// ElevateSpline raises a spline of degree p by `by` (see
+// ElevateBSplineCurve).
+Spline ElevateSpline(Spline spline, int p, int by) {
+  if (!IsClamped(spline.knots, p)) Clamp(spline, p);
+  return BlossomElevator(spline, p, by).Run();
+}
+
+// Control points as `Points`, homogeneous (dimension + 1 values) when there
+// are weights.
+Points ToPoints(const PointsView& points, absl::Span<const double> weights) {
+  if (weights.empty()) {
+    return Points{points.dimension,
+                  std::vector<double>(points.coordinates.begin(),
+                                      points.coordinates.end())};
+  }
+  return Points{points.dimension + 1, HomogeneousPoints(points, weights)};
+}
+
+// FromPoints writes `points` (homogeneous when `rational`) back as
+// coordinates and weights. A weight within rounding of 0 (relative to the
+// largest weight) is a point at infinity: the weight becomes exactly 0 and
+// the homogeneous coordinates are kept as its direction.
+void FromPoints(const Points& points, bool rational,
+                std::vector<double>& coordinates,
+                std::vector<double>& weights) {
+  if (!rational) {
+    coordinates = points.values;
+    return;
+  }
+  const int dim = points.dim - 1;
+  const size_t count = points.count();
+  double largest = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    largest = std::max(largest, std::abs(points.at(i)[dim]));
+  }
+  const double zero = 8.0 * std::numeric_limits<double>::epsilon() * largest;
+  coordinates.resize(count * dim);
+  weights.resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    const double* h = points.at(i);
+    double w = h[dim];
+    if (std::abs(w) <= zero) w = 0.0;
+    const double scale = w == 0.0 ? 1.0 : 1.0 / w;
+    for (int x = 0; x < dim; ++x) coordinates[i * dim + x] = scale * h[x];
+    weights[i] = w;
+  }
+}
+
+// Transpose swaps the two indices of a rows x cols grid of blocks of
+// `block` values.
+std::vector<double> Transpose(const std::vector<double>& values, int rows,
+                              int cols, int block) {
+  std::vector<double> result(values.size());
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      std::copy_n(&values[(static_cast<size_t>(i) * cols + j) * block], block,
+                  &result[(static_cast<size_t>(j) * rows + i) * block]);
+    }
+  }
+  return result;
+}
+
+absl::Status CheckSurfaceElevation(int by_u, int by_v) {
+  if (by_u < 0) return InvalidFieldError("by_u", "must not be negative");
+  if (by_v < 0) return InvalidFieldError("by_v", "must not be negative");
+  if (by_u == 0 && by_v == 0) {
+    return InvalidFieldError("by_u", "by_u and by_v must not both be 0");
+  }
+  return absl::OkStatus();
+}
+
+// A rows x cols net of (homogeneous) points of `dim` values, P[i][j] at
+// (i * cols + j) * dim, with its knot vectors (empty for Bezier).
+struct Net {
+  int rows = 0;
+  int cols = 0;
+  int dim = 0;
+  std::vector<double> values;
+  std::vector<double> knots_u;
+  std::vector<double> knots_v;
+};
+
+// ElevateNetU raises the net in u (along its rows index i): the rows are
+// the control points, of cols * dim values each, of one curve. `degree` < 0
+// means Bezier.
+void ElevateNetU(Net& net, int degree, int by) {
+  Points rows{net.cols * net.dim, std::move(net.values)};
+  if (degree < 0) {
+    rows = ElevateBezierPoints(rows, by);
+  } else {
+    Spline spline = ElevateSpline(
+        Spline{std::move(net.knots_u), std::move(rows)}, degree, by);
+    net.knots_u = std::move(spline.knots);
+    rows = std::move(spline.points);
+  }
+  net.rows = static_cast<int>(rows.count());
+  net.values = std::move(rows.values);
+}
+
+// ElevateNetV raises the net in v by transposing it around ElevateNetU.
+void ElevateNetV(Net& net, int degree, int by) {
+  Net transposed{net.cols,
+                 net.rows,
+                 net.dim,
+                 Transpose(net.values, net.rows, net.cols, net.dim),
+                 std::move(net.knots_v),
+                 {}};
+  ElevateNetU(transposed, degree, by);
+  net.cols = transposed.rows;
+  net.values =
+      Transpose(transposed.values, transposed.rows, transposed.cols, net.dim);
+  net.knots_v = std::move(transposed.knots_u);
+}
+
+// ElevateSurface raises a (homogeneous when rational) net; degrees < 0 mean
+// Bezier.
+SurfaceData ElevateSurface(const ControlNetView& view,
+                           absl::Span<const double> weights,
+                           absl::Span<const double> knots_u,
+                           absl::Span<const double> knots_v, int degree_u,
+                           int degree_v, int by_u, int by_v) {
+  Points points = ToPoints({view.dimension, view.coordinates}, weights);
+  Net net{view.count_u,
+          view.count_v,
+          points.dim,
+          std::move(points.values),
+          std::vector<double>(knots_u.begin(), knots_u.end()),
+          std::vector<double>(knots_v.begin(), knots_v.end())};
+  if (by_u > 0) ElevateNetU(net, degree_u, by_u);
+  if (by_v > 0) ElevateNetV(net, degree_v, by_v);
+  SurfaceData result;
+  result.dimension = view.dimension;
+  result.count_u = net.rows;
+  result.count_v = net.cols;
+  result.degree_u = degree_u < 0 ? net.rows - 1 : degree_u + by_u;
+  result.degree_v = degree_v < 0 ? net.cols - 1 : degree_v + by_v;
+  FromPoints(Points{net.dim, std::move(net.values)}, !weights.empty(),
+             result.coordinates, result.weights);
+  result.knots_u = std::move(net.knots_u);
+  result.knots_v = std::move(net.knots_v);
+  return result;
+}
+
+// ElevateTriangleOnce raises the triangular net of degree n by one (seed
+// 002): Q_ijk = (i P_{i-1,j,k} + j P_{i,j-1,k} + k P_{i,j,k-1}) / (n + 1).
+Points ElevateTriangleOnce(const Points& points, int n) {
+  const int dim = points.dim;
+  Points result{dim, std::vector<double>(TriangularPointCount(n + 1) * dim)};
+  const double scale = 1.0 / (n + 1);
+  for (int i = 0; i <= n + 1; ++i) {
+    for (int j = 0; i + j <= n + 1; ++j) {
+      const int k = n + 1 - i - j;
+      double* q = result.at(TriangularIndex(n + 1, i, j));
+      auto add = [&](int factor, size_t index) {
+        const double c = factor * scale;
+        const double* p = points.at(index);
+        for (int x = 0; x < dim; ++x) q[x] += c * p[x];
+      };
+      if (i > 0) add(i, TriangularIndex(n, i - 1, j));
+      if (j > 0) add(j, TriangularIndex(n, i, j - 1));
+      if (k > 0) add(k, TriangularIndex(n, i, j));
+    }
+  }
+  return result;
+}
+
+// SolveLeastSquares returns the x (cols x dim, row-major) minimizing
+// |A x - B| for A (rows x cols, row-major, full column rank, rows >= cols)
+// and B (rows x dim), by Householder QR (Golub and Van Loan, 5.3).
+std::vector<double> SolveLeastSquares(std::vector<double> a, int rows, int cols,
+                                      std::vector<double> b, int dim) {
+  auto at = [&](int r, int c) -> double& {
+    return a[static_cast<size_t>(r) * cols + c];
+  };
+  auto rhs = [&](int r, int x) -> double& {
+    return b[static_cast<size_t>(r) * dim + x];
+  };
+  std::vector<double> v(rows);
+  for (int k = 0; k < cols; ++k) {
+    double norm = 0.0;
+    for (int r = k; r < rows; ++r) norm = std::hypot(norm, at(r, k));
+    if (norm == 0.0) continue;
+    const double alpha = at(k, k) > 0 ? -norm : norm;
+    double v_norm2 = 0.0;
+    for (int r = k; r < rows; ++r) {
+      v[r] = at(r, k) - (r == k ? alpha : 0.0);
+      v_norm2 += v[r] * v[r];
+    }
+    auto reflect = [&](auto&& element, int count) {
+      for (int c = 0; c < count; ++c) {
+        double dot = 0.0;
+        for (int r = k; r < rows; ++r) dot += v[r] * element(r, c);
+        const double f = 2.0 * dot / v_norm2;
+        for (int r = k; r < rows; ++r) element(r, c) -= f * v[r];
+      }
+    };
+    reflect([&](int r, int c) -> double& { return at(r, k + c); }, cols - k);
+    reflect(rhs, dim);
+  }
+  std::vector<double> x(static_cast<size_t>(cols) * dim);
+  for (int k = cols - 1; k >= 0; --k) {
+    for (int d = 0; d < dim; ++d) {
+      double sum = rhs(k, d);
+      for (int c = k + 1; c < cols; ++c) sum -= at(k, c) * x[c * dim + d];
+      x[static_cast<size_t>(k) * dim + d] = sum / at(k, k);
+    }
+  }
+  return x;
+}
+
+// ReducedPoints returns the control points of ReduceBezierCurve's
+// approximation of degree m = n - by to the degree-n polygon `p`.
+Points ReducedPoints(const Points& p, int by) {
+  const int n = static_cast<int>(p.count()) - 1;
+  const int m = n - by;
+  const int dim = p.dim;
+  const std::vector<double> e = ElevationCoefficients(m, by);
+  auto coefficient = [&](int i, int j) { return e[i * (m + 1) + j]; };
+  Points q{dim, std::vector<double>(static_cast<size_t>(m + 1) * dim)};
+  // Fixed end points for m >= 1; the free unknowns are q_first..q_last.
+  const int first = m >= 1 ? 1 : 0;
+  const int last = m >= 1 ? m - 1 : 0;
+  if (m >= 1) {
+    std::copy_n(p.at(0), dim, q.at(0));
+    std::copy_n(p.at(n), dim, q.at(m));
+  }
+  const int cols = last - first + 1;
+  if (cols <= 0) return q;
+  std::vector<double> a(static_cast<size_t>(n + 1) * cols);
+  std::vector<double> b(p.values);
+  for (int i = 0; i <= n; ++i) {
+    for (int j = first; j <= last; ++j)
+      a[i * cols + j - first] = coefficient(i, j);
+    if (m >= 1) {
+      for (int x = 0; x < dim; ++x) {
+        b[i * dim + x] -=
+            coefficient(i, 0) * q.at(0)[x] + coefficient(i, m) * q.at(m)[x];
+      }
+    }
+  }
+  const std::vector<double> x =
+      SolveLeastSquares(std::move(a), n + 1, cols, std::move(b), dim);
+  std::copy(x.begin(), x.end(), q.at(first));
+  return q;
+}
+
+}  // namespace
+
+absl::StatusOr<BezierCurveData> ElevateBezierCurve(const BezierCurveView& curve,
+                                                   int by) {
+  if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
+    return status;
+  }
+  const Points elevated =
+      ElevateBezierPoints(ToPoints(curve.control_points, curve.weights), by);
+  BezierCurveData result;
+  result.dimension = curve.control_points.dimension;
+  FromPoints(elevated, curve.rational(), result.coordinates, result.weights);
+  return result;
+}
+
+absl::StatusOr<BSplineCurveData> ElevateBSplineCurve(
+    const BSplineCurveView& curve, int by) {
+  if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
+    return status;
+  }
+  Spline spline{std::vector<double>(curve.knots.begin(), curve.knots.end()),
+                ToPoints(curve.control_points, curve.weights)};
+  spline = ElevateSpline(std::move(spline), curve.degree, by);
+  BSplineCurveData result;
+  result.degree = curve.degree + by;
+  result.dimension = curve.control_points.dimension;
+  result.knots = std::move(spline.knots);
+  FromPoints(spline.points, curve.rational(), result.coordinates,
+             result.weights);
+  return result;
+}
+
+absl::StatusOr<ReducedBezierCurve> ReduceBezierCurve(
+    const BezierCurveView& curve, int by) {
+  const int n = curve.degree();
+  if (by < 1 || by > n) {
+    return InvalidFieldError("by", "must lie in [1, degree]");
+  }
+  if (curve.rational()) {
+    return InvalidFieldError(
+        "weights", "degree reduction of rational curves is not supported");
+  }
+  const Points original = ToPoints(curve.control_points, {});
+  Points reduced = ReducedPoints(original, by);
+  const Points back = ElevateBezierPoints(reduced, by);
+  ReducedBezierCurve result;
+  for (size_t i = 0; i < original.count(); ++i) {
+    double norm = 0.0;
+    for (int x = 0; x < original.dim; ++x) {
+      norm = std::hypot(norm, original.at(i)[x] - back.at(i)[x]);
+    }
+    result.error_bound = std::max(result.error_bound, norm);
+  }
+  result.curve.dimension = original.dim;
+  result.curve.coordinates = std::move(reduced.values);
+  return result;
+}
+
+absl::StatusOr<SurfaceData> ElevateBezierSurface(
+    const BezierSurfaceView& surface, int by_u, int by_v) {
+  if (absl::Status status = CheckSurfaceElevation(by_u, by_v); !status.ok()) {
+    return status;
+  }
+  return ElevateSurface(surface.control_net, surface.weights, {}, {}, -1, -1,
+                        by_u, by_v);
+}
+
+absl::StatusOr<SurfaceData> ElevateBSplineSurface(
+    const BSplineSurfaceView& surface, int by_u, int by_v) {
+  if (absl::Status status = CheckSurfaceElevation(by_u, by_v); !status.ok()) {
+    return status;
+  }
+  return ElevateSurface(surface.control_net, surface.weights, surface.knots_u,
+                        surface.knots_v, surface.degree_u, surface.degree_v,
+                        by_u, by_v);
+}
+
+absl::StatusOr<TriangularPatchData> ElevateTriangularPatch(
+    const TriangularPatchView& patch, int by) {
+  if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
+    return status;
+  }
+  Points points = ToPoints(patch.control_points, patch.weights);
+  for (int n = patch.degree; n < patch.degree + by; ++n) {
+    points = ElevateTriangleOnce(points, n);
+  }
+  TriangularPatchData result;
+  result.degree = patch.degree + by;
+  result.dimension = patch.control_points.dimension;
+  result.domain_triangle.assign(patch.domain_triangle.begin(),
+                                patch.domain_triangle.end());
+  FromPoints(points, patch.rational(), result.coordinates, result.weights);
+  return result;
+}
+
+}  // namespace freeform

@@ -212,6 +212,20 @@ TEST_F(FreeformdTest, CliBasisPrintsBlendingFunctions) {
   unlink(file.c_str());
 }
 
+// Exercise 5 of the course notes from a CSV file: chord-length parameters
+// 0, 5/17, 9/17, 14/17, 1.
+TEST_F(FreeformdTest, CliInterpolatesPointsFromCsv) {
+  const std::string file = WriteTempFile("x,y\n0,0\n3,4\n-1,4\n-4,0\n-4,-3\n");
+  CommandResult result =
+      RunCommand(Cli(absl::StrCat("interpolate --degree 3 --csv ", file)));
+  EXPECT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_THAT(result.output,
+              HasSubstr(R"("parameters":[0,0.29411764705882354,)"
+                        R"(0.52941176470588236,0.82352941176470584,1])"));
+  EXPECT_THAT(result.output, HasSubstr(R"("bspline":{"degree":3)"));
+  unlink(file.c_str());
+}
+
 TEST_F(FreeformdTest, CliSurfaceBasis) {
   // Bilinear Bernstein products at (1/2, 1/4): (1/2)(3/4), (1/2)(1/4), ...
   const std::string file = WriteTempFile(R"({

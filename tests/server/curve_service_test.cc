@@ -253,12 +253,11 @@ TEST_F(CurveServiceTest, DeadlineStopsALargeBatch) {
 
 TEST_F(CurveServiceTest, PendingRpcsSayWhichIssueBringsThem) {
   grpc::ClientContext context;
-  v1::ElevateCurveDegreeRequest elevate;
-  v1::ElevateCurveDegreeResponse elevated;
-  grpc::Status status =
-      client_->curves().ElevateDegree(&context, elevate, &elevated);
+  v1::SplitCurveRequest split;
+  v1::SplitCurveResponse pieces;
+  grpc::Status status = client_->curves().Split(&context, split, &pieces);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::UNIMPLEMENTED);
-  EXPECT_THAT(status.error_message(), HasSubstr("issue #6"));
+  EXPECT_THAT(status.error_message(), HasSubstr("issue #5"));
 
   grpc::ClientContext surface_context;
   v1::TessellateSurfaceRequest surface;
