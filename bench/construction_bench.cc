@@ -1,0 +1,79 @@
+// Benchmarks of the operations that build geometry, on the workloads of
+// shared/bench/WORKLOADS.md.
+//
+//   build/release/bench/construction_bench --benchmark_min_time=1
+//
+// W5: global cubic B-spline interpolation, chord-length parameters,
+// averaging knots, of N = 10^5 points P_i = (10 cos(0.01 i) + 0.1 r1,
+// 10 sin(0.01 i) + 0.1 r2, 0.01 i + 0.1 r3), r drawn from LCG seed 4 (also
+// 10^4 and 10^6 to show linear growth). W6: degree elevation by 1 of the W1
+// curve (result: 197 control points).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "freeform/core/elevation.h"
+#include "freeform/core/interpolation.h"
+#include "workloads.h"
+
+namespace {
+
+std::vector<double> W5Points(size_t count) {
+  freeform::bench::Lcg lcg(4);
+  std::vector<double> points;
+  points.reserve(3 * count);
+  for (size_t i = 0; i < count; ++i) {
+    const double t = 0.01 * static_cast<double>(i);
+    const double r1 = lcg.Next();
+    const double r2 = lcg.Next();
+    const double r3 = lcg.Next();
+    points.push_back(10 * std::cos(t) + 0.1 * r1);
+    points.push_back(10 * std::sin(t) + 0.1 * r2);
+    points.push_back(t + 0.1 * r3);
+  }
+  return points;
+}
+
+void BM_W5_GlobalCubicInterpolation(benchmark::State& state) {
+  const std::vector<double> points =
+      W5Points(static_cast<size_t>(state.range(0)));
+  freeform::CurveInterpolationOptions options;
+  options.degree = 3;
+  double checksum = 0;
+  for (auto _ : state) {
+    auto result = freeform::InterpolateCurve({3, points}, options);
+    if (!result.ok()) state.SkipWithError("interpolation failed");
+    checksum = 0;
+    for (double value : result->curve.coordinates) checksum += value;
+    benchmark::DoNotOptimize(checksum);
+  }
+  state.counters["checksum"] = checksum;
+}
+BENCHMARK(BM_W5_GlobalCubicInterpolation)
+    ->Arg(10'000)
+    ->Arg(100'000)
+    ->Arg(1'000'000)
+    ->Unit(benchmark::kMillisecond);
+
+void BM_W6_ElevateW1ByOne(benchmark::State& state) {
+  const std::vector<double> control = freeform::bench::RandomPoints(1, 100, 3);
+  const std::vector<double> knots =
+      freeform::bench::ClampedUniformKnots(100, 3);
+  const freeform::BSplineCurveView curve{.degree = 3,
+                                         .control_points = {3, control},
+                                         .knots = knots,
+                                         .weights = {}};
+  size_t count = 0;
+  for (auto _ : state) {
+    auto elevated = freeform::ElevateBSplineCurve(curve, 1);
+    count = elevated->coordinates.size() / 3;
+    benchmark::DoNotOptimize(elevated);
+  }
+  state.counters["control_points"] = static_cast<double>(count);
+}
+BENCHMARK(BM_W6_ElevateW1ByOne)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
