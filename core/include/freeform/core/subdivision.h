@@ -1,0 +1,4 @@
+// Placeholder: being written.
+#ifndef FREEFORM_CORE_SUBDIVISION_H_
+#define FREEFORM_CORE_SUBDIVISION_H_
+#endif  // FREEFORM_CORE_SUBDIVISION_H_

@@ -1,0 +1,4 @@
+// Placeholder: being written.
+#ifndef FREEFORM_CORE_TESSELLATION_H_
+#define FREEFORM_CORE_TESSELLATION_H_
+#endif  // FREEFORM_CORE_TESSELLATION_H_

@@ -1,0 +1,1 @@
+#include "freeform/core/subdivision.h"
