@@ -14,6 +14,11 @@
 //                   [--surface] | [--csv POINTS.csv [--degree P]
 //                   [--parameterization KIND] [--closed]
 //                   [--spline END] [--least-squares N]]
+//   freeform split|insert-knots [--surface] [--file REQUEST.json]
+//   freeform decompose [--file REQUEST.json]
+//   freeform subdivide [--file REQUEST.json] [--svg PICTURE.svg]
+//   freeform tessellate [--surface] [--file REQUEST.json]
+//                   [--svg PICTURE.svg | --obj MESH.obj]
 //   freeform health [--address HOST:PORT] [--service NAME]
 //
 // Requests are the canonical proto3 JSON of the request message (from a file
@@ -38,6 +43,7 @@
 #include "freeform/core/file.h"
 #include "nlohmann/json.hpp"
 #include "obj_mesh.h"
+#include "svg_drawing.h"
 
 namespace {
 
@@ -545,6 +551,131 @@ int RunInterpolate(const CommonFlags& flags, const std::string& file,
   return 0;
 }
 
+// The control points of a Bezier or B-spline request curve (to draw them).
+absl::Span<const double> ControlPolygon(const freeform::v1::Curve& curve,
+                                        int& dimension) {
+  const freeform::v1::Points& points = curve.has_bspline()
+                                           ? curve.bspline().control_points()
+                                           : curve.bezier().control_points();
+  dimension = static_cast<int>(points.dimension());
+  return absl::MakeConstSpan(points.coordinates().data(),
+                             points.coordinates_size());
+}
+
+int WriteSvg(const freeform::cli::SvgDrawing& drawing,
+             const std::string& path) {
+  if (path == "-") {
+    drawing.Write(std::cout);
+    return 0;
+  }
+  std::ofstream out(path);
+  drawing.Write(out);
+  if (!out) {
+    std::cerr << "error: cannot write " << path << "\n";
+    return 2;
+  }
+  std::cerr << "wrote " << path << "\n";
+  return 0;
+}
+
+int RunTessellate(const CommonFlags& flags, const std::string& file,
+                  bool surface, const std::string& svg,
+                  const std::string& obj) {
+  if (surface) {
+    absl::StatusOr<freeform::v1::TessellateSurfaceRequest> request =
+        ParseJson<freeform::v1::TessellateSurfaceRequest>(file);
+    if (!request.ok()) {
+      std::cerr << "error: " << request.status().message() << "\n";
+      return 2;
+    }
+    if (!obj.empty()) request->set_normals(true);
+    std::unique_ptr<freeform::Client> client = Connect(flags);
+    if (client == nullptr) return 2;
+    absl::StatusOr<freeform::v1::TessellateSurfaceResponse> mesh =
+        client->TessellateSurfaces(*request);
+    if (!mesh.ok()) return ReportError(mesh.status());
+    if (obj.empty()) {
+      std::cout << ToJson(*mesh);
+      return 0;
+    }
+    freeform::cli::ObjMesh out;
+    out.AddTriangles("mesh", mesh->vertices().coordinates(),
+                     mesh->normals().coordinates(), mesh->triangles());
+    return WriteObj(out, obj);
+  }
+  absl::StatusOr<freeform::v1::TessellateCurveRequest> request =
+      ParseJson<freeform::v1::TessellateCurveRequest>(file);
+  if (!request.ok()) {
+    std::cerr << "error: " << request.status().message() << "\n";
+    return 2;
+  }
+  std::unique_ptr<freeform::Client> client = Connect(flags);
+  if (client == nullptr) return 2;
+  absl::StatusOr<freeform::v1::TessellateCurveResponse> polyline =
+      client->TessellateCurve(*request);
+  if (!polyline.ok()) return ReportError(polyline.status());
+  if (svg.empty()) {
+    std::cout << ToJson(*polyline);
+    return 0;
+  }
+  freeform::cli::SvgDrawing drawing;
+  int dimension = 0;
+  drawing.AddPolyline(ControlPolygon(request->curve(), dimension), dimension,
+                      {.color = "#999999",
+                       .width = 1,
+                       .dashed = true,
+                       .dots = true,
+                       .closed = false});
+  drawing.AddPolyline(polyline->points().coordinates(),
+                      static_cast<int>(polyline->points().dimension()),
+                      {.color = "#1f5fbf",
+                       .width = 2,
+                       .dashed = false,
+                       .dots = false,
+                       .closed = false});
+  return WriteSvg(drawing, svg);
+}
+
+int RunSubdivide(const CommonFlags& flags, const std::string& file,
+                 const std::string& svg) {
+  absl::StatusOr<freeform::v1::SubdivideRequest> request =
+      ParseJson<freeform::v1::SubdivideRequest>(file);
+  if (!request.ok()) {
+    std::cerr << "error: " << request.status().message() << "\n";
+    return 2;
+  }
+  if (!svg.empty()) request->set_keep_levels(true);
+  std::unique_ptr<freeform::Client> client = Connect(flags);
+  if (client == nullptr) return 2;
+  absl::StatusOr<freeform::v1::SubdivideResponse> result =
+      client->SubdividePolygon(*request);
+  if (!result.ok()) return ReportError(result.status());
+  if (svg.empty()) {
+    std::cout << ToJson(*result);
+    return 0;
+  }
+  freeform::cli::SvgDrawing drawing;
+  const int dimension = static_cast<int>(request->polygon().dimension());
+  drawing.AddPolyline(request->polygon().coordinates(), dimension,
+                      {.color = "#999999",
+                       .width = 1,
+                       .dashed = true,
+                       .dots = true,
+                       .closed = request->closed()});
+  const char* colors[] = {"#d95f02", "#7570b3", "#e7298a", "#66a61e",
+                          "#1f5fbf"};
+  for (int level = 0; level < result->levels_size(); ++level) {
+    const bool last = level + 1 == result->levels_size();
+    drawing.AddPolyline(result->levels(level).coordinates(), dimension,
+                        {.color = last ? "#1f5fbf" : colors[level % 4],
+                         .width = last ? 2.0 : 1.0,
+                         .dashed = false,
+                         .dots = false,
+                         .closed = request->closed()});
+  }
+  return WriteSvg(drawing, svg);
+}
+
 int RunHealth(const CommonFlags& flags, const std::string& service) {
   std::unique_ptr<freeform::Client> client = Connect(flags);
   if (client == nullptr) return 2;
@@ -677,6 +808,46 @@ int main(int argc, char** argv) {
       "--least-squares", csv.least_squares_points,
       "Least-squares fit with this many control points instead");
 
+  CLI::App* split = app.add_subcommand(
+      "split", "Split a curve or patch: CurveService/SurfaceService.Split");
+  AddCommonFlags(*split, flags);
+  split->add_option("-f,--file", file, "Split*Request as proto3 JSON");
+  split->add_flag("--surface", surface_request,
+                  "The request is a SplitSurfaceRequest");
+
+  CLI::App* insert = app.add_subcommand(
+      "insert-knots",
+      "Knot insertion: CurveService/SurfaceService.InsertKnots");
+  AddCommonFlags(*insert, flags);
+  insert->add_option("-f,--file", file, "Insert*KnotsRequest as proto3 JSON");
+  insert->add_flag("--surface", surface_request,
+                   "The request is an InsertSurfaceKnotsRequest");
+
+  CLI::App* decompose = app.add_subcommand(
+      "decompose", "Bezier segments of a curve: CurveService.Decompose");
+  AddCommonFlags(*decompose, flags);
+  decompose->add_option("-f,--file", file,
+                        "DecomposeCurveRequest as proto3 JSON");
+
+  CLI::App* subdivide = app.add_subcommand(
+      "subdivide", "Chaikin / uniform B-spline subdivision of a polygon");
+  std::string svg;
+  AddCommonFlags(*subdivide, flags);
+  subdivide->add_option("-f,--file", file, "SubdivideRequest as proto3 JSON");
+  subdivide->add_option(
+      "--svg", svg, "Draw the polygon and every level as SVG ('-': stdout)");
+
+  CLI::App* tessellate = app.add_subcommand(
+      "tessellate", "Adaptive polyline of a curve or mesh of surfaces");
+  AddCommonFlags(*tessellate, flags);
+  tessellate->add_option("-f,--file", file,
+                         "Tessellate*Request as proto3 JSON");
+  tessellate->add_flag("--surface", surface_request,
+                       "The request is a TessellateSurfaceRequest");
+  tessellate->add_option("--svg", svg,
+                         "Curves: draw the polyline and control polygon");
+  tessellate->add_option("--obj", obj, "Surfaces: write the mesh as OBJ");
+
   CLI::App* health =
       app.add_subcommand("health", "Ask the server's health service");
   std::string service;
@@ -697,6 +868,23 @@ int main(int argc, char** argv) {
   }
   if (reduce->parsed()) {
     return RunJsonCall(flags, file, &freeform::Client::ReduceCurveDegree);
+  }
+  if (split->parsed()) {
+    return surface_request
+               ? RunJsonCall(flags, file, &freeform::Client::SplitSurface)
+               : RunJsonCall(flags, file, &freeform::Client::SplitCurve);
+  }
+  if (insert->parsed()) {
+    return surface_request
+               ? RunJsonCall(flags, file, &freeform::Client::InsertSurfaceKnots)
+               : RunJsonCall(flags, file, &freeform::Client::InsertCurveKnots);
+  }
+  if (decompose->parsed()) {
+    return RunJsonCall(flags, file, &freeform::Client::DecomposeCurve);
+  }
+  if (subdivide->parsed()) return RunSubdivide(flags, file, svg);
+  if (tessellate->parsed()) {
+    return RunTessellate(flags, file, surface_request, svg, obj);
   }
   if (interpolate->parsed()) {
     return RunInterpolate(flags, file, surface_request, csv);

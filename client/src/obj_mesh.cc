@@ -21,6 +21,21 @@ void ObjMesh::AddGrid(const std::string& name, size_t count_u, size_t count_v,
   }
 }
 
+void ObjMesh::AddTriangles(
+    const std::string& name,
+    const google::protobuf::RepeatedField<double>& vertices,
+    const google::protobuf::RepeatedField<double>& normals,
+    const google::protobuf::RepeatedField<uint32_t>& triangles) {
+  const size_t first = vertex_count();
+  groups_.push_back({.name = name, .first_triangle = triangles_.size()});
+  vertices_.insert(vertices_.end(), vertices.begin(), vertices.end());
+  normals_.insert(normals_.end(), normals.begin(), normals.end());
+  for (int t = 0; t + 2 < triangles.size(); t += 3) {
+    triangles_.push_back({first + triangles[t], first + triangles[t + 1],
+                          first + triangles[t + 2]});
+  }
+}
+
 void ObjMesh::Write(std::ostream& out) const {
   out.precision(17);
   out << "# freeform: " << vertex_count() << " vertices, " << triangle_count()

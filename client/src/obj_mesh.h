@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "absl/types/span.h"
+#include "google/protobuf/repeated_field.h"
 
 namespace freeform::cli {
 
@@ -22,6 +23,13 @@ class ObjMesh {
   void AddGrid(const std::string& name, size_t count_u, size_t count_v,
                absl::Span<const double> points,
                absl::Span<const double> normals);
+
+  // AddTriangles appends an indexed triangle mesh (3D vertices, optional
+  // per-vertex normals, 0-based vertex indices) as one OBJ group.
+  void AddTriangles(const std::string& name,
+                    const google::protobuf::RepeatedField<double>& vertices,
+                    const google::protobuf::RepeatedField<double>& normals,
+                    const google::protobuf::RepeatedField<uint32_t>& triangles);
 
   // Write prints the mesh as OBJ text.
   void Write(std::ostream& out) const;

@@ -205,6 +205,40 @@ class Client {
     return Unary(*surfaces_, &v1::SurfaceService::Stub::Interpolate, request);
   }
 
+  // Subdivision, refinement and tessellation.
+  absl::StatusOr<v1::SplitCurveResponse> SplitCurve(
+      const v1::SplitCurveRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::Split, request);
+  }
+  absl::StatusOr<v1::InsertKnotsResponse> InsertCurveKnots(
+      const v1::InsertKnotsRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::InsertKnots, request);
+  }
+  absl::StatusOr<v1::DecomposeCurveResponse> DecomposeCurve(
+      const v1::DecomposeCurveRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::Decompose, request);
+  }
+  absl::StatusOr<v1::SubdivideResponse> SubdividePolygon(
+      const v1::SubdivideRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::Subdivide, request);
+  }
+  absl::StatusOr<v1::TessellateCurveResponse> TessellateCurve(
+      const v1::TessellateCurveRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::Tessellate, request);
+  }
+  absl::StatusOr<v1::SplitSurfaceResponse> SplitSurface(
+      const v1::SplitSurfaceRequest& request) {
+    return Unary(*surfaces_, &v1::SurfaceService::Stub::Split, request);
+  }
+  absl::StatusOr<v1::InsertSurfaceKnotsResponse> InsertSurfaceKnots(
+      const v1::InsertSurfaceKnotsRequest& request) {
+    return Unary(*surfaces_, &v1::SurfaceService::Stub::InsertKnots, request);
+  }
+  absl::StatusOr<v1::TessellateSurfaceResponse> TessellateSurfaces(
+      const v1::TessellateSurfaceRequest& request) {
+    return Unary(*surfaces_, &v1::SurfaceService::Stub::Tessellate, request);
+  }
+
   // CheckHealth asks grpc.health.v1.Health; OK means SERVING, UNAVAILABLE
   // means NOT_SERVING; other codes are transport errors.
   absl::Status CheckHealth(const std::string& service = "");
