@@ -39,8 +39,8 @@ void RunW3(benchmark::State& state, int max_order, bool normals,
       .knots_v = knots,
       .weights = {}};
   const size_t count = grid.size() * grid.size();
-  std::vector<std::vector<double>> buffers(
-      freeform::PartialCount(max_order), std::vector<double>(3 * count));
+  std::vector<std::vector<double>> buffers(freeform::PartialCount(max_order),
+                                           std::vector<double>(3 * count));
   std::vector<absl::Span<double>> output(buffers.begin(), buffers.end());
   std::vector<double> unit_normals(normals ? 3 * count : 0);
   const auto samples = freeform::SurfaceSamples::Grid(grid, grid);

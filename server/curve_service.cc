@@ -219,38 +219,4 @@ grpc::Status CurveServiceImpl::EvaluateBasis(
       });
 }
 
-grpc::Status CurveServiceImpl::Split(grpc::ServerContext* context,
-                                     const v1::SplitCurveRequest* request,
-                                     v1::SplitCurveResponse*) {
-  return RunUnimplemented("CurveService.Split", context, *request, "issue #5");
-}
-
-grpc::Status CurveServiceImpl::InsertKnots(
-    grpc::ServerContext* context, const v1::InsertKnotsRequest* request,
-    v1::InsertKnotsResponse*) {
-  return RunUnimplemented("CurveService.InsertKnots", context, *request,
-                          "issue #5");
-}
-
-grpc::Status CurveServiceImpl::Decompose(
-    grpc::ServerContext* context, const v1::DecomposeCurveRequest* request,
-    v1::DecomposeCurveResponse*) {
-  return RunUnimplemented("CurveService.Decompose", context, *request,
-                          "issue #5");
-}
-
-grpc::Status CurveServiceImpl::Subdivide(grpc::ServerContext* context,
-                                         const v1::SubdivideRequest* request,
-                                         v1::SubdivideResponse*) {
-  return RunUnimplemented("CurveService.Subdivide", context, *request,
-                          "issue #5");
-}
-
-grpc::Status CurveServiceImpl::Tessellate(
-    grpc::ServerContext* context, const v1::TessellateCurveRequest* request,
-    v1::TessellateCurveResponse*) {
-  return RunUnimplemented("CurveService.Tessellate", context, *request,
-                          "issue #5");
-}
-
 }  // namespace freeform::server

@@ -31,11 +31,4 @@ grpc::Status ToGrpcStatus(const absl::Status& status,
   return grpc::Status(code, message, details.SerializeAsString());
 }
 
-absl::Status NotYetImplemented(absl::string_view what,
-                               absl::string_view issue) {
-  return absl::UnimplementedError(absl::StrCat(
-      what, " is not implemented yet in this freeformd (it lands with ", issue,
-      ")"));
-}
-
 }  // namespace freeform::server

@@ -20,10 +20,6 @@ namespace freeform::server {
 grpc::Status ToGrpcStatus(const absl::Status& status,
                           absl::string_view field_prefix = "");
 
-// UnimplementedError says that `what` is not offered yet and which issue
-// brings it.
-absl::Status NotYetImplemented(absl::string_view what, absl::string_view issue);
-
 }  // namespace freeform::server
 
 #endif  // FREEFORM_SERVER_ERRORS_H_

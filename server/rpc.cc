@@ -58,14 +58,4 @@ grpc::Status RunRpc(
   return status;
 }
 
-grpc::Status RunUnimplemented(absl::string_view method,
-                              grpc::ServerContext* context,
-                              const google::protobuf::Message& request,
-                              absl::string_view issue) {
-  return RunRpc(method, context, request, nullptr,
-                [&](const CancellationToken&) {
-                  return NotYetImplemented(method, issue);
-                });
-}
-
 }  // namespace freeform::server

@@ -56,13 +56,6 @@ absl::Status StreamChunks(
   return absl::OkStatus();
 }
 
-// RunUnimplemented answers UNIMPLEMENTED for `method`, saying which issue
-// brings it, and logs the call like RunRpc.
-grpc::Status RunUnimplemented(absl::string_view method,
-                              grpc::ServerContext* context,
-                              const google::protobuf::Message& request,
-                              absl::string_view issue);
-
 }  // namespace freeform::server
 
 #endif  // FREEFORM_SERVER_RPC_H_

@@ -411,32 +411,4 @@ grpc::Status SurfaceServiceImpl::EvaluateBasis(
       });
 }
 
-grpc::Status SurfaceServiceImpl::Split(grpc::ServerContext* context,
-                                       const v1::SplitSurfaceRequest* request,
-                                       v1::SplitSurfaceResponse*) {
-  return RunUnimplemented("SurfaceService.Split", context, *request,
-                          "issue #5");
-}
-
-grpc::Status SurfaceServiceImpl::InsertKnots(
-    grpc::ServerContext* context, const v1::InsertSurfaceKnotsRequest* request,
-    v1::InsertSurfaceKnotsResponse*) {
-  return RunUnimplemented("SurfaceService.InsertKnots", context, *request,
-                          "issue #5");
-}
-
-grpc::Status SurfaceServiceImpl::Tessellate(
-    grpc::ServerContext* context, const v1::TessellateSurfaceRequest* request,
-    v1::TessellateSurfaceResponse*) {
-  return RunUnimplemented("SurfaceService.Tessellate", context, *request,
-                          "issue #5");
-}
-
-grpc::Status SurfaceServiceImpl::TessellateStream(
-    grpc::ServerContext* context, const v1::TessellateSurfaceRequest* request,
-    grpc::ServerWriter<v1::TessellateSurfaceResponse>*) {
-  return RunUnimplemented("SurfaceService.TessellateStream", context, *request,
-                          "issue #5");
-}
-
 }  // namespace freeform::server

@@ -1,1 +1,570 @@
 #include "freeform/core/subdivision.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "absl/types/span.h"
+#include "freeform/core/rational.h"
+#include "freeform/core/status.h"
+
+namespace freeform {
+namespace {
+
+// Control points of `dim` values each (homogeneous ones included), point
+// after point.
+struct Polygon {
+  int dim = 0;
+  std::vector<double> values;
+
+  int count() const {
+    return dim > 0 ? static_cast<int>(values.size() / static_cast<size_t>(dim))
+                   : 0;
+  }
+  double* at(int i) { return values.data() + static_cast<size_t>(i) * dim; }
+  const double* at(int i) const {
+    return values.data() + static_cast<size_t>(i) * dim;
+  }
+};
+
+// Lift returns the points, homogeneous (dimension + 1 values each) when
+// there are weights.
+Polygon Lift(const PointsView& points, absl::Span<const double> weights) {
+  if (weights.empty()) {
+    return {points.dimension, std::vector<double>(points.coordinates.begin(),
+                                                  points.coordinates.end())};
+  }
+  return {points.dimension + 1, HomogeneousPoints(points, weights)};
+}
+
+// Project writes `points` (homogeneous when `rational`) back as coordinates
+// and weights. A weight within rounding of 0 (relative to the largest one)
+// is a point at infinity: it becomes exactly 0 and the homogeneous
+// coordinates are kept as its direction (rational.h).
+void Project(const Polygon& points, bool rational,
+             std::vector<double>& coordinates, std::vector<double>& weights) {
+  if (!rational) {
+    coordinates = points.values;
+    weights.clear();
+    return;
+  }
+  const int dim = points.dim - 1;
+  const int count = points.count();
+  double largest = 0.0;
+  for (int i = 0; i < count; ++i) {
+    largest = std::max(largest, std::abs(points.at(i)[dim]));
+  }
+  const double zero = 8.0 * std::numeric_limits<double>::epsilon() * largest;
+  coordinates.resize(static_cast<size_t>(count) * dim);
+  weights.resize(static_cast<size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    const double* h = points.at(i);
+    const double w = std::abs(h[dim]) <= zero ? 0.0 : h[dim];
+    const double scale = w == 0.0 ? 1.0 : 1.0 / w;
+    for (int x = 0; x < dim; ++x) {
+      coordinates[static_cast<size_t>(i) * dim + x] = scale * h[x];
+    }
+    weights[static_cast<size_t>(i)] = w;
+  }
+}
+
+BezierCurveData ToBezierCurve(const Polygon& points, bool rational) {
+  BezierCurveData curve;
+  curve.dimension = rational ? points.dim - 1 : points.dim;
+  Project(points, rational, curve.coordinates, curve.weights);
+  return curve;
+}
+
+// Transpose swaps the indices of a rows x cols grid of blocks of `block`
+// values.
+std::vector<double> Transpose(const std::vector<double>& values, int rows,
+                              int cols, int block) {
+  std::vector<double> result(values.size());
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      std::copy_n(values.data() + (static_cast<size_t>(i) * cols + j) * block,
+                  block,
+                  result.data() + (static_cast<size_t>(j) * rows + i) * block);
+    }
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------------------
+// de Casteljau subdivision (seed 004).
+
+// SplitAt writes the left ([0, t]) and right ([t, 1]) halves of the Bezier
+// polygon `points`; either output may be null.
+void SplitAt(const Polygon& points, double t, Polygon* left, Polygon* right) {
+  const int n = points.count() - 1;
+  const int dim = points.dim;
+  Polygon work = points;
+  if (left != nullptr) *left = Polygon{dim, points.values};
+  if (right != nullptr) *right = Polygon{dim, points.values};
+  for (int r = 1; r <= n; ++r) {
+    for (int i = 0; i <= n - r; ++i) {
+      double* a = work.at(i);
+      const double* b = work.at(i + 1);
+      for (int x = 0; x < dim; ++x) a[x] = (1.0 - t) * a[x] + t * b[x];
+    }
+    if (left != nullptr) std::copy_n(work.at(0), dim, left->at(r));
+    if (right != nullptr) std::copy_n(work.at(n - r), dim, right->at(n - r));
+  }
+}
+
+// Piece returns the Bezier polygon of the curve on [a, b] within [0, 1].
+Polygon Piece(const Polygon& points, double a, double b) {
+  Polygon left = points;
+  if (b < 1.0) SplitAt(points, b, &left, nullptr);
+  if (a <= 0.0) return left;
+  Polygon right;
+  SplitAt(left, a / b, nullptr, &right);
+  return right;
+}
+
+absl::Status CheckSplitParameters(absl::Span<const double> parameters) {
+  for (size_t i = 0; i < parameters.size(); ++i) {
+    const double t = parameters[i];
+    const std::string field = IndexedField("parameters", i);
+    if (!std::isfinite(t) || t <= 0.0 || t >= 1.0) {
+      return InvalidFieldError(field, "must lie strictly between 0 and 1");
+    }
+    if (i > 0 && t <= parameters[i - 1]) {
+      return InvalidFieldError(field, "parameters must be strictly increasing");
+    }
+  }
+  return absl::OkStatus();
+}
+
+// ---------------------------------------------------------------------------
+// Knot refinement.
+
+// A B-spline's knots and (possibly homogeneous) control points.
+struct Spline {
+  int degree = 0;
+  std::vector<double> knots;
+  Polygon points;
+};
+
+// LastKnotAtOrBelow returns the largest index i in [p, n] with
+// knots[i] <= u (p when there is none), the span A5.4 starts from.
+int LastKnotAtOrBelow(const std::vector<double>& knots, int p, int n,
+                      double u) {
+  const int i =
+      static_cast<int>(std::upper_bound(knots.begin(), knots.end(), u) -
+                       knots.begin()) -
+      1;
+  return std::clamp(i, p, n);
+}
+
+// CheckKnotsToInsert checks the rules of InsertKnots for `x` against a
+// spline of degree p with `knots` and domain [lo, hi].
+absl::Status CheckKnotsToInsert(int p, absl::Span<const double> knots,
+                                absl::Span<const double> x) {
+  const size_t n = knots.size() - static_cast<size_t>(p) - 2;
+  const double lo = knots[static_cast<size_t>(p)];
+  const double hi = knots[n + 1];
+  int run = 0;  // copies of x[i] among x[0..i]
+  for (size_t i = 0; i < x.size(); ++i) {
+    const std::string field = IndexedField("knots", i);
+    const double u = x[i];
+    if (!std::isfinite(u)) return InvalidFieldError(field, "must be finite");
+    if (u < lo || u > hi) {
+      return InvalidFieldError(
+          field, absl::StrCat("must lie in the domain [", lo, ", ", hi, "]"));
+    }
+    if (i > 0 && u < x[i - 1]) {
+      return InvalidFieldError(field, "knots must be non-decreasing");
+    }
+    run = (i > 0 && u == x[i - 1]) ? run + 1 : 1;
+    const int existing =
+        static_cast<int>(std::count(knots.begin(), knots.end(), u));
+    const int limit = (u > lo && u < hi) ? p : p + 1;
+    if (existing + run > limit) {
+      return InvalidFieldError(
+          field, absl::StrCat("raises the multiplicity of ", u, " to ",
+                              existing + run, ", above the allowed ", limit,
+                              (limit == p ? " (the degree) inside the domain"
+                                          : " (degree + 1) at a domain end")));
+    }
+  }
+  return absl::OkStatus();
+}
+
+// Refine inserts the non-decreasing knots `x` into `spline` (The NURBS Book
+// A5.4, RefineKnotVectCurve), with the spans found by LastKnotAtOrBelow.
+Spline Refine(const Spline& spline, absl::Span<const double> x) {
+  if (x.empty()) return spline;
+  const int p = spline.degree;
+  const std::vector<double>& u = spline.knots;
+  const Polygon& pw = spline.points;
+  const int dim = pw.dim;
+  const int n = pw.count() - 1;
+  const int m = n + p + 1;
+  const int r = static_cast<int>(x.size()) - 1;
+  const int a = LastKnotAtOrBelow(u, p, n, x[0]);
+  const int b = LastKnotAtOrBelow(u, p, n, x[r]) + 1;
+  Spline out{
+      p, std::vector<double>(static_cast<size_t>(m + r + 2)),
+      Polygon{dim, std::vector<double>(static_cast<size_t>(n + r + 2) * dim)}};
+  std::vector<double>& ubar = out.knots;
+  Polygon& qw = out.points;
+  for (int j = 0; j <= a - p; ++j) std::copy_n(pw.at(j), dim, qw.at(j));
+  for (int j = b - 1; j <= n; ++j) std::copy_n(pw.at(j), dim, qw.at(j + r + 1));
+  for (int j = 0; j <= a; ++j) ubar[j] = u[j];
+  for (int j = b + p; j <= m; ++j) ubar[j + r + 1] = u[j];
+  int i = b + p - 1;
+  int k = b + p + r;
+  for (int j = r; j >= 0; --j) {
+    while (x[j] <= u[i] && i > a) {
+      std::copy_n(pw.at(i - p - 1), dim, qw.at(k - p - 1));
+      ubar[k] = u[i];
+      --k;
+      --i;
+    }
+    std::copy_n(qw.at(k - p), dim, qw.at(k - p - 1));
+    for (int l = 1; l <= p; ++l) {
+      const int ind = k - p + l;
+      double alpha = ubar[k + l] - x[j];
+      double* target = qw.at(ind - 1);
+      const double* next = qw.at(ind);
+      if (alpha == 0.0) {
+        std::copy_n(next, dim, target);
+        continue;
+      }
+      alpha /= ubar[k + l] - u[i - p + l];
+      for (int c = 0; c < dim; ++c) {
+        target[c] = alpha * target[c] + (1.0 - alpha) * next[c];
+      }
+    }
+    ubar[k] = x[j];
+    --k;
+  }
+  return out;
+}
+
+Spline LiftCurve(const BSplineCurveView& curve) {
+  return {curve.degree,
+          std::vector<double>(curve.knots.begin(), curve.knots.end()),
+          Lift(curve.control_points, curve.weights)};
+}
+
+// ---------------------------------------------------------------------------
+// Polygon subdivision (Lane-Riesenfeld; seed 002, subdivision matrix).
+
+// Mask returns s_k = binom(d + 1, k) / 2^d for k = 0..d+1.
+std::vector<double> Mask(int d) {
+  std::vector<double> mask(static_cast<size_t>(d) + 2);
+  long double binomial = 1.0L;
+  const long double scale = std::ldexp(1.0L, -d);
+  for (int k = 0; k <= d + 1; ++k) {
+    mask[static_cast<size_t>(k)] = static_cast<double>(binomial * scale);
+    binomial = binomial * (d + 1 - k) / (k + 1);
+  }
+  return mask;
+}
+
+// FloorDiv2 returns floor(a / 2) for any sign of a.
+int FloorDiv2(int a) { return a >= 0 ? a / 2 : -((1 - a) / 2); }
+
+// RefinePolygon applies one subdivision step: point r of the result is
+// Q_{r+d} = sum_i s_{r+d-2i} P_i, the indices i taken modulo m when closed;
+// open polygons keep r in [0, 2m - d), where every P_i lies in the polygon.
+Polygon RefinePolygon(const Polygon& points, bool closed,
+                      const std::vector<double>& mask) {
+  const int d = static_cast<int>(mask.size()) - 2;
+  const int m = points.count();
+  const int dim = points.dim;
+  const int count = closed ? 2 * m : 2 * m - d;
+  Polygon out{dim, std::vector<double>(static_cast<size_t>(count) * dim, 0.0)};
+  for (int r = 0; r < count; ++r) {
+    const int j = r + d;
+    double* q = out.at(r);
+    for (int i = FloorDiv2(j - d); i <= FloorDiv2(j); ++i) {
+      if (j - 2 * i > d + 1) continue;
+      const int index = closed ? ((i % m) + m) % m : i;  // m >= 3 if closed
+      const double s = mask[static_cast<size_t>(j - 2 * i)];
+      const double* point = points.at(index);
+      for (int x = 0; x < dim; ++x) q[x] += s * point[x];
+    }
+  }
+  return out;
+}
+
+absl::Status CheckSubdivision(size_t points, bool closed, int degree,
+                              int levels) {
+  if (levels < 1) return InvalidFieldError("levels", "must be at least 1");
+  if (degree < 1 || degree > kMaxSubdivisionDegree) {
+    return InvalidFieldError(
+        "degree", absl::StrCat("must lie in [1, ", kMaxSubdivisionDegree, "]"));
+  }
+  const size_t needed = closed ? 3 : static_cast<size_t>(degree) + 1;
+  if (points < needed) {
+    return InvalidFieldError(
+        "polygon.coordinates",
+        absl::StrCat(closed ? "a closed" : "an open", " polygon of degree ",
+                     degree, " needs at least ", needed, " points, got ",
+                     points));
+  }
+  return absl::OkStatus();
+}
+
+// ---------------------------------------------------------------------------
+// Surfaces.
+
+// RowsOf returns the net as a polygon of count_u "points", each a whole
+// (homogeneous) row of count_v points, or of count_v columns when !in_u.
+Polygon RowsOf(const ControlNetView& net, absl::Span<const double> weights,
+               bool in_u) {
+  const Polygon lifted =
+      Lift(PointsView{net.dimension, net.coordinates}, weights);
+  if (in_u) return {lifted.dim * net.count_v, lifted.values};
+  return {lifted.dim * net.count_u,
+          Transpose(lifted.values, net.count_u, net.count_v, lifted.dim)};
+}
+
+// FillNet writes `rows` (from RowsOf with the same in_u) into `surface`,
+// whose degrees, dimension and knots are already set.
+void FillNet(const Polygon& rows, bool in_u, bool rational,
+             SurfaceData& surface) {
+  const int point_dim = surface.dimension + (rational ? 1 : 0);
+  const int lines = rows.count();
+  const int per_line = rows.dim / point_dim;
+  surface.count_u = in_u ? lines : per_line;
+  surface.count_v = in_u ? per_line : lines;
+  Polygon net{
+      point_dim,
+      in_u ? rows.values : Transpose(rows.values, lines, per_line, point_dim)};
+  Project(net, rational, surface.coordinates, surface.weights);
+}
+
+// ---------------------------------------------------------------------------
+// Triangular patches.
+
+absl::Status CheckTrianglePoint(double u, double v) {
+  if (!std::isfinite(u) || u <= 0.0) {
+    return InvalidFieldError("u", "must be finite and positive (inside)");
+  }
+  if (!std::isfinite(v) || v <= 0.0 || u + v >= 1.0) {
+    return InvalidFieldError(
+        "v", "must be finite and positive with u + v < 1 (inside)");
+  }
+  return absl::OkStatus();
+}
+
+// Pyramid returns the triangular de Casteljau levels R^0..R^n at (u, v, w):
+// level l holds the degree n - l net in storage order (triangular.h).
+std::vector<Polygon> Pyramid(const Polygon& points, int n, double u, double v) {
+  const double w = 1.0 - u - v;
+  const int dim = points.dim;
+  std::vector<Polygon> levels{points};
+  for (int l = 1; l <= n; ++l) {
+    const Polygon& prev = levels.back();
+    const int deg = n - l;
+    Polygon next{dim, std::vector<double>(TriangularPointCount(deg) * dim)};
+    for (int i = 0; i <= deg; ++i) {
+      for (int j = 0; i + j <= deg; ++j) {
+        const double* a =
+            prev.at(static_cast<int>(TriangularIndex(deg + 1, i + 1, j)));
+        const double* b =
+            prev.at(static_cast<int>(TriangularIndex(deg + 1, i, j + 1)));
+        const double* c =
+            prev.at(static_cast<int>(TriangularIndex(deg + 1, i, j)));
+        double* q = next.at(static_cast<int>(TriangularIndex(deg, i, j)));
+        for (int x = 0; x < dim; ++x) q[x] = u * a[x] + v * b[x] + w * c[x];
+      }
+    }
+    levels.push_back(std::move(next));
+  }
+  return levels;
+}
+
+// SubPatch returns the control points of the piece that replaces vertex
+// `vertex` (0, 1, 2) by the pyramid's point: P(a,b,c) = R^a(0,b,c),
+// R^b(a,0,c) or R^c(a,b,0).
+Polygon SubPatch(const std::vector<Polygon>& levels, int n, int vertex) {
+  const int dim = levels[0].dim;
+  Polygon out{dim, std::vector<double>(TriangularPointCount(n) * dim)};
+  for (int a = 0; a <= n; ++a) {
+    for (int b = 0; a + b <= n; ++b) {
+      const int c = n - a - b;
+      const int level = vertex == 0 ? a : (vertex == 1 ? b : c);
+      const int i = vertex == 0 ? 0 : a;
+      const int j = vertex == 1 ? 0 : b;
+      const Polygon& source = levels[static_cast<size_t>(level)];
+      std::copy_n(source.at(static_cast<int>(TriangularIndex(n - level, i, j))),
+                  dim, out.at(static_cast<int>(TriangularIndex(n, a, b))));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
+    const BezierCurveView& curve, absl::Span<const double> parameters) {
+  if (absl::Status status = CheckSplitParameters(parameters); !status.ok()) {
+    return status;
+  }
+  const Polygon points = Lift(curve.control_points, curve.weights);
+  std::vector<BezierCurveData> pieces;
+  pieces.reserve(parameters.size() + 1);
+  for (size_t k = 0; k <= parameters.size(); ++k) {
+    const double a = k == 0 ? 0.0 : parameters[k - 1];
+    const double b = k == parameters.size() ? 1.0 : parameters[k];
+    pieces.push_back(ToBezierCurve(Piece(points, a, b), curve.rational()));
+  }
+  return pieces;
+}
+
+absl::StatusOr<BSplineCurveData> InsertKnots(const BSplineCurveView& curve,
+                                             absl::Span<const double> knots) {
+  if (absl::Status status =
+          CheckKnotsToInsert(curve.degree, curve.knots, knots);
+      !status.ok()) {
+    return status;
+  }
+  const Spline refined = Refine(LiftCurve(curve), knots);
+  BSplineCurveData result;
+  result.degree = curve.degree;
+  result.dimension = curve.control_points.dimension;
+  result.knots = refined.knots;
+  Project(refined.points, curve.rational(), result.coordinates, result.weights);
+  return result;
+}
+
+absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
+    const BSplineCurveView& curve) {
+  const int p = curve.degree;
+  const std::vector<double> knots(curve.knots.begin(), curve.knots.end());
+  const int n = static_cast<int>(curve.control_points.size()) - 1;
+  const double lo = knots[static_cast<size_t>(p)];
+  const double hi = knots[static_cast<size_t>(n) + 1];
+  // Every distinct value in the domain to multiplicity p (at least).
+  std::vector<double> insert;
+  for (size_t i = 0; i < knots.size(); ++i) {
+    const double u = knots[i];
+    if (u < lo || u > hi || (i > 0 && knots[i - 1] == u)) continue;
+    const int have =
+        static_cast<int>(std::count(knots.begin(), knots.end(), u));
+    for (int c = have; c < p; ++c) insert.push_back(u);
+  }
+  const Spline refined = Refine(LiftCurve(curve), insert);
+  const std::vector<double>& ubar = refined.knots;
+  const int last = refined.points.count() - 1;
+  const int dim = refined.points.dim;
+  BezierDecomposition result;
+  result.breakpoints.push_back(lo);
+  for (int s = p; s <= last; ++s) {
+    if (!(ubar[s] < ubar[s + 1])) continue;
+    const auto first = refined.points.values.begin() +
+                       static_cast<std::ptrdiff_t>(s - p) * dim;
+    Polygon segment{
+        dim, std::vector<double>(
+                 first, first + static_cast<std::ptrdiff_t>(p + 1) * dim)};
+    result.segments.push_back(ToBezierCurve(segment, curve.rational()));
+    result.breakpoints.push_back(ubar[s + 1]);
+  }
+  return result;
+}
+
+absl::StatusOr<std::vector<std::vector<double>>> SubdividePolygon(
+    const PointsView& polygon, bool closed, SubdivisionScheme scheme,
+    int degree, int levels) {
+  const int d = scheme == SubdivisionScheme::kChaikin ? 2 : degree;
+  if (absl::Status status = CheckSubdivision(polygon.size(), closed, d, levels);
+      !status.ok()) {
+    return status;
+  }
+  const std::vector<double> mask = Mask(d);
+  Polygon current{polygon.dimension,
+                  std::vector<double>(polygon.coordinates.begin(),
+                                      polygon.coordinates.end())};
+  std::vector<std::vector<double>> result;
+  result.reserve(static_cast<size_t>(levels));
+  for (int level = 0; level < levels; ++level) {
+    current = RefinePolygon(current, closed, mask);
+    result.push_back(current.values);
+  }
+  return result;
+}
+
+absl::StatusOr<SurfaceData> InsertSurfaceKnots(
+    const BSplineSurfaceView& surface, bool in_u,
+    absl::Span<const double> knots) {
+  const int degree = in_u ? surface.degree_u : surface.degree_v;
+  const absl::Span<const double> old_knots =
+      in_u ? surface.knots_u : surface.knots_v;
+  if (absl::Status status = CheckKnotsToInsert(degree, old_knots, knots);
+      !status.ok()) {
+    return status;
+  }
+  const Spline lines{degree,
+                     std::vector<double>(old_knots.begin(), old_knots.end()),
+                     RowsOf(surface.control_net, surface.weights, in_u)};
+  const Spline refined = Refine(lines, knots);
+  SurfaceData result;
+  result.degree_u = surface.degree_u;
+  result.degree_v = surface.degree_v;
+  result.dimension = surface.control_net.dimension;
+  result.knots_u.assign(surface.knots_u.begin(), surface.knots_u.end());
+  result.knots_v.assign(surface.knots_v.begin(), surface.knots_v.end());
+  (in_u ? result.knots_u : result.knots_v) = refined.knots;
+  FillNet(refined.points, in_u, surface.rational(), result);
+  return result;
+}
+
+absl::StatusOr<std::vector<SurfaceData>> SplitBezierSurface(
+    const BezierSurfaceView& surface, bool in_u, double t) {
+  if (!std::isfinite(t) || t <= 0.0 || t >= 1.0) {
+    return InvalidFieldError("parameter", "must lie strictly between 0 and 1");
+  }
+  const Polygon lines = RowsOf(surface.control_net, surface.weights, in_u);
+  Polygon halves[2];
+  SplitAt(lines, t, &halves[0], &halves[1]);
+  std::vector<SurfaceData> result(2);
+  for (int h = 0; h < 2; ++h) {
+    SurfaceData& piece = result[static_cast<size_t>(h)];
+    piece.dimension = surface.control_net.dimension;
+    FillNet(halves[h], in_u, surface.rational(), piece);
+    piece.degree_u = piece.count_u - 1;
+    piece.degree_v = piece.count_v - 1;
+  }
+  return result;
+}
+
+absl::StatusOr<std::vector<TriangularPatchData>> SplitTriangularPatch(
+    const TriangularPatchView& patch, double u, double v) {
+  if (absl::Status status = CheckTrianglePoint(u, v); !status.ok()) {
+    return status;
+  }
+  const int n = patch.degree;
+  const std::vector<Polygon> levels =
+      Pyramid(Lift(patch.control_points, patch.weights), n, u, v);
+  const double barycentric[3] = {u, v, 1.0 - u - v};
+  std::vector<TriangularPatchData> result(3);
+  for (int vertex = 0; vertex < 3; ++vertex) {
+    TriangularPatchData& piece = result[static_cast<size_t>(vertex)];
+    piece.degree = n;
+    piece.dimension = patch.control_points.dimension;
+    Project(SubPatch(levels, n, vertex), patch.rational(), piece.coordinates,
+            piece.weights);
+    if (patch.domain_triangle.empty()) continue;
+    piece.domain_triangle.assign(patch.domain_triangle.begin(),
+                                 patch.domain_triangle.end());
+    for (int x = 0; x < 2; ++x) {
+      double point = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        point += barycentric[c] * patch.domain_triangle[2 * c + x];
+      }
+      piece.domain_triangle[static_cast<size_t>(2 * vertex + x)] = point;
+    }
+  }
+  return result;
+}
+
+}  // namespace freeform

@@ -251,23 +251,6 @@ TEST_F(CurveServiceTest, DeadlineStopsALargeBatch) {
             std::chrono::seconds(5));
 }
 
-TEST_F(CurveServiceTest, PendingRpcsSayWhichIssueBringsThem) {
-  grpc::ClientContext context;
-  v1::SplitCurveRequest split;
-  v1::SplitCurveResponse pieces;
-  grpc::Status status = client_->curves().Split(&context, split, &pieces);
-  EXPECT_EQ(status.error_code(), grpc::StatusCode::UNIMPLEMENTED);
-  EXPECT_THAT(status.error_message(), HasSubstr("issue #5"));
-
-  grpc::ClientContext surface_context;
-  v1::TessellateSurfaceRequest surface;
-  v1::TessellateSurfaceResponse surface_response;
-  status = client_->surfaces().Tessellate(&surface_context, surface,
-                                          &surface_response);
-  EXPECT_EQ(status.error_code(), grpc::StatusCode::UNIMPLEMENTED);
-  EXPECT_THAT(status.error_message(), HasSubstr("issue #5"));
-}
-
 TEST_F(CurveServiceTest, HealthIsServingUntilShutdown) {
   EXPECT_TRUE(client_->CheckHealth().ok());
   EXPECT_TRUE(client_->CheckHealth("freeform.v1.CurveService").ok());

@@ -1,0 +1,265 @@
+// Split, knot insertion, decomposition, subdivision and tessellation
+// through the in-process server.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "freeform/client.h"
+#include "server.h"
+
+namespace freeform::server {
+namespace {
+
+using ::testing::DoubleNear;
+using ::testing::Pointwise;
+using ::testing::StartsWith;
+
+void Append(google::protobuf::RepeatedField<double>* field,
+            std::initializer_list<double> values) {
+  field->Add(values.begin(), values.end());
+}
+
+std::vector<double> Values(const google::protobuf::RepeatedField<double>& f) {
+  return {f.begin(), f.end()};
+}
+
+class RefinementTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ServerOptions options;
+    options.listen_address = "127.0.0.1:0";
+    options.threads = 2;
+    auto server = FreeformServer::Start(options);
+    ASSERT_TRUE(server.ok()) << server.status();
+    server_ = *std::move(server);
+    client_ =
+        std::make_unique<Client>(server_->InProcessChannel(), ClientOptions{});
+  }
+
+  void ExpectField(const absl::Status& status, absl::string_view prefix) {
+    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << status;
+    const auto violations = FieldViolationsOf(status);
+    ASSERT_EQ(violations.size(), 1u) << status;
+    EXPECT_THAT(violations[0].field, StartsWith(std::string(prefix))) << status;
+  }
+
+  std::unique_ptr<FreeformServer> server_;
+  std::unique_ptr<Client> client_;
+};
+
+// The de Casteljau slides: splitting at t gives P_0^0..P_0^n on the left
+// and P_0^n..P_n^0 on the right.
+TEST_F(RefinementTest, SplitsTheWorkedCubic) {
+  v1::SplitCurveRequest request;
+  v1::Points* points =
+      request.mutable_curve()->mutable_bezier()->mutable_control_points();
+  points->set_dimension(2);
+  Append(points->mutable_coordinates(), {0, 0, 1, 2, 3, 2, 4, 0});
+  request.add_parameters(0.5);
+  absl::StatusOr<v1::SplitCurveResponse> split = client_->SplitCurve(request);
+  ASSERT_TRUE(split.ok()) << split.status();
+  ASSERT_EQ(split->pieces_size(), 2);
+  EXPECT_THAT(Values(split->pieces(0).bezier().control_points().coordinates()),
+              Pointwise(DoubleNear(1e-15),
+                        std::vector<double>{0, 0, 0.5, 1, 1.25, 1.5, 2, 1.5}));
+  EXPECT_THAT(Values(split->pieces(1).bezier().control_points().coordinates()),
+              Pointwise(DoubleNear(1e-15),
+                        std::vector<double>{2, 1.5, 2.75, 1.5, 3.5, 1, 4, 0}));
+  request.set_parameters(0, 1.5);
+  ExpectField(client_->SplitCurve(request).status(), "parameters[0]");
+}
+
+// The course notes' half circle with knot 1/2 inserted: points (1,0),
+// (1,1), (-1,1), (-1,0) with weights 1, 1/2, 1/2, 1 (the notes print a
+// first weight of 0: a slip).
+TEST_F(RefinementTest, InsertsAKnotIntoTheHalfCircle) {
+  v1::InsertKnotsRequest request;
+  v1::BSplineCurve* bspline = request.mutable_curve()->mutable_bspline();
+  bspline->set_degree(2);
+  bspline->mutable_control_points()->set_dimension(2);
+  Append(bspline->mutable_control_points()->mutable_coordinates(),
+         {1, 0, 0, 1, -1, 0});
+  Append(bspline->mutable_knots(), {0, 0, 0, 1, 1, 1});
+  Append(bspline->mutable_weights(), {1, 0, 1});
+  request.add_knots(0.5);
+  absl::StatusOr<v1::InsertKnotsResponse> refined =
+      client_->InsertCurveKnots(request);
+  ASSERT_TRUE(refined.ok()) << refined.status();
+  EXPECT_THAT(Values(refined->curve().bspline().control_points().coordinates()),
+              Pointwise(DoubleNear(1e-15),
+                        std::vector<double>{1, 0, 1, 1, -1, 1, -1, 0}));
+  EXPECT_THAT(
+      Values(refined->curve().bspline().weights()),
+      Pointwise(DoubleNear(1e-15), std::vector<double>{1, 0.5, 0.5, 1}));
+  EXPECT_THAT(
+      Values(refined->curve().bspline().knots()),
+      Pointwise(DoubleNear(0), std::vector<double>{0, 0, 0, 0.5, 1, 1, 1}));
+  // Beyond the degree's multiplicity, or outside the domain: refused.
+  Append(request.mutable_knots(), {0.5, 0.5});
+  ExpectField(client_->InsertCurveKnots(request).status(), "knots[");
+  request.clear_knots();
+  request.add_knots(2.0);
+  ExpectField(client_->InsertCurveKnots(request).status(), "knots[0]");
+}
+
+TEST_F(RefinementTest, DecomposesTheNurbsCircle) {
+  v1::DecomposeCurveRequest request;
+  v1::BSplineCurve* bspline = request.mutable_curve()->mutable_bspline();
+  bspline->set_degree(2);
+  bspline->mutable_control_points()->set_dimension(2);
+  Append(bspline->mutable_control_points()->mutable_coordinates(),
+         {1, 0, 1, 1, 0, 1, -1, 1, -1, 0, -1, -1, 0, -1, 1, -1, 1, 0});
+  Append(bspline->mutable_knots(),
+         {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1});
+  const double h = std::numbers::sqrt2 / 2;
+  Append(bspline->mutable_weights(), {1, h, 1, h, 1, h, 1, h, 1});
+  absl::StatusOr<v1::DecomposeCurveResponse> pieces =
+      client_->DecomposeCurve(request);
+  ASSERT_TRUE(pieces.ok()) << pieces.status();
+  ASSERT_EQ(pieces->segments_size(), 4);
+  EXPECT_THAT(
+      Values(pieces->breakpoints()),
+      Pointwise(DoubleNear(0), std::vector<double>{0, 0.25, 0.5, 0.75, 1}));
+  for (const v1::Curve& segment : pieces->segments()) {
+    v1::EvaluateCurveRequest evaluate;
+    *evaluate.mutable_curve() = segment;
+    evaluate.mutable_parameters()->mutable_range()->set_count(101);
+    absl::StatusOr<CurveSamples> samples = client_->EvaluateCurve(evaluate);
+    ASSERT_TRUE(samples.ok()) << samples.status();
+    for (size_t r = 0; r < samples->count; ++r) {
+      const auto p = samples->Point(0, r);
+      EXPECT_NEAR(std::hypot(p[0], p[1]), 1.0, 1e-14);
+    }
+  }
+}
+
+TEST_F(RefinementTest, ChaikinCutsCorners) {
+  v1::SubdivideRequest request;
+  request.mutable_polygon()->set_dimension(2);
+  Append(request.mutable_polygon()->mutable_coordinates(),
+         {0, 0, 4, 0, 4, 4, 0, 4});
+  request.set_closed(true);
+  request.set_scheme(v1::SUBDIVISION_SCHEME_CHAIKIN);
+  request.set_levels(1);
+  absl::StatusOr<v1::SubdivideResponse> result =
+      client_->SubdividePolygon(request);
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_THAT(Values(result->polygon().coordinates()),
+              Pointwise(DoubleNear(1e-15),
+                        std::vector<double>{1, 0, 3, 0, 4, 1, 4, 3, 3, 4, 1, 4,
+                                            0, 3, 0, 1}));
+  request.set_levels(0);
+  ExpectField(client_->SubdividePolygon(request).status(), "levels");
+}
+
+TEST_F(RefinementTest, TessellatesCurvesWithinTolerance) {
+  v1::TessellateCurveRequest request;
+  v1::Points* points =
+      request.mutable_curve()->mutable_bezier()->mutable_control_points();
+  points->set_dimension(2);
+  Append(points->mutable_coordinates(), {0, 0, 1, 2, 3, 2, 4, 0});
+  request.set_tolerance(1e-4);
+  absl::StatusOr<v1::TessellateCurveResponse> polyline =
+      client_->TessellateCurve(request);
+  ASSERT_TRUE(polyline.ok()) << polyline.status();
+  ASSERT_GT(polyline->parameters_size(), 10);
+  EXPECT_EQ(polyline->parameters(0), 0.0);
+  EXPECT_EQ(polyline->parameters(polyline->parameters_size() - 1), 1.0);
+  request.set_max_points(5);
+  EXPECT_EQ(client_->TessellateCurve(request).status().code(),
+            absl::StatusCode::kResourceExhausted);
+  request.set_tolerance(0);
+  ExpectField(client_->TessellateCurve(request).status(), "tolerance");
+}
+
+TEST_F(RefinementTest, SplitsPatches) {
+  v1::SplitSurfaceRequest request;
+  v1::ControlNet* net =
+      request.mutable_surface()->mutable_bezier()->mutable_control_net();
+  net->set_dimension(3);
+  net->set_count_u(3);
+  net->set_count_v(3);
+  Append(net->mutable_coordinates(), {0, 0, 0, 2, 0, 0, 4, 0, 0,  //
+                                      0, 2, 0, 2, 2, 0, 4, 2, 2,  //
+                                      0, 4, 0, 2, 4, 4, 4, 4, 4});
+  request.set_direction(v1::SURFACE_DIRECTION_U);
+  request.set_parameter(0.5);
+  absl::StatusOr<v1::SplitSurfaceResponse> pieces =
+      client_->SplitSurface(request);
+  ASSERT_TRUE(pieces.ok()) << pieces.status();
+  ASSERT_EQ(pieces->pieces_size(), 2);
+  // The seed's S(1/2, 1/2) = (2, 2, 1) is the first piece's S(1, 1/2).
+  v1::EvaluateSurfaceRequest evaluate;
+  *evaluate.mutable_surface() = pieces->pieces(0);
+  Append(evaluate.mutable_parameters()->mutable_points()->mutable_uv(),
+         {1.0, 0.5});
+  absl::StatusOr<SurfaceEvaluation> at = client_->EvaluateSurface(evaluate);
+  ASSERT_TRUE(at.ok()) << at.status();
+  EXPECT_THAT(at->partials[0].values,
+              Pointwise(DoubleNear(1e-15), std::vector<double>{2, 2, 1}));
+  request.set_direction(v1::SURFACE_DIRECTION_UNSPECIFIED);
+  ExpectField(client_->SplitSurface(request).status(), "direction");
+}
+
+// The teapot meshed by the server: stream and unary agree, and the welded
+// mesh has no edge used by more than two triangles.
+TEST_F(RefinementTest, TessellatesTheTeapot) {
+  std::ifstream file(FREEFORM_SOURCE_DIR "/examples/teapot.json");
+  std::stringstream text;
+  text << file.rdbuf();
+  // Minimal reader of the patches' numbers: 16 points of 3 per patch after
+  // each "control_points".
+  v1::TessellateSurfaceRequest request;
+  const std::string json = text.str();
+  size_t at = 0;
+  while ((at = json.find("\"control_points\"", at)) != std::string::npos) {
+    v1::ControlNet* net =
+        request.add_surfaces()->mutable_bezier()->mutable_control_net();
+    net->set_dimension(3);
+    net->set_count_u(4);
+    net->set_count_v(4);
+    size_t cursor = json.find('[', at);
+    for (int value = 0; value < 48; ++value) {
+      cursor = json.find_first_of("-0123456789", cursor);
+      size_t used = 0;
+      net->add_coordinates(std::stod(json.substr(cursor, 32), &used));
+      cursor += used;
+    }
+    at = cursor;
+  }
+  ASSERT_EQ(request.surfaces_size(), 32);
+  request.set_tolerance(1e-3);
+  request.set_normals(true);
+  absl::StatusOr<v1::TessellateSurfaceResponse> mesh =
+      client_->TessellateSurfaces(request);
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  const size_t vertices = mesh->vertices().coordinates_size() / 3;
+  EXPECT_GT(vertices, 1000u);
+  std::map<std::pair<uint32_t, uint32_t>, int> edges;
+  for (int t = 0; t < mesh->triangles_size(); t += 3) {
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = mesh->triangles(t + e);
+      const uint32_t b = mesh->triangles(t + (e + 1) % 3);
+      ASSERT_LT(a, vertices);
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  for (const auto& [edge, uses] : edges) EXPECT_LE(uses, 2);
+  for (int i = 0; i < mesh->normals().coordinates_size(); i += 3) {
+    const auto& n = mesh->normals().coordinates();
+    EXPECT_NEAR(std::hypot(n[i], n[i + 1], n[i + 2]), 1.0, 1e-12);
+  }
+  request.set_tolerance(-1);
+  ExpectField(client_->TessellateSurfaces(request).status(), "tolerance");
+}
+
+}  // namespace
+}  // namespace freeform::server
