@@ -620,7 +620,9 @@ int RunTessellate(const CommonFlags& flags, const std::string& file,
   }
   freeform::cli::SvgDrawing drawing;
   int dimension = 0;
-  drawing.AddPolyline(ControlPolygon(request->curve(), dimension), dimension,
+  const absl::Span<const double> control =
+      ControlPolygon(request->curve(), dimension);
+  drawing.AddPolyline(control, dimension,
                       {.color = "#999999",
                        .width = 1,
                        .dashed = true,

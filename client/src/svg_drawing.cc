@@ -8,6 +8,7 @@ namespace freeform::cli {
 void SvgDrawing::AddPolyline(absl::Span<const double> points, int dimension,
                              const Style& style) {
   Polyline polyline{.xy = {}, .style = style};
+  if (dimension < 1) return;
   const size_t dim = static_cast<size_t>(dimension);
   for (size_t i = 0; i + dim <= points.size(); i += dim) {
     polyline.xy.push_back(points[i]);

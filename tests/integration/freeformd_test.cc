@@ -226,6 +226,21 @@ TEST_F(FreeformdTest, CliInterpolatesPointsFromCsv) {
   unlink(file.c_str());
 }
 
+// --svg draws the control polygon and the result of subdivision and
+// tessellation.
+TEST_F(FreeformdTest, CliDrawsSvg) {
+  for (const char* command :
+       {"subdivide --file " FREEFORM_SOURCE_DIR "/examples/chaikin.json",
+        "tessellate --file " FREEFORM_SOURCE_DIR
+        "/examples/nurbs_circle_polyline.json"}) {
+    CommandResult result = RunCommand(Cli(absl::StrCat(command, " --svg -")));
+    EXPECT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_THAT(result.output, HasSubstr("<svg"));
+    EXPECT_THAT(result.output, HasSubstr("</svg>"));
+    EXPECT_THAT(result.output, HasSubstr("stroke=\"#1f5fbf\""));
+  }
+}
+
 TEST_F(FreeformdTest, CliSurfaceBasis) {
   // Bilinear Bernstein products at (1/2, 1/4): (1/2)(3/4), (1/2)(1/4), ...
   const std::string file = WriteTempFile(R"({
