@@ -8,8 +8,7 @@
 #include <numbers>
 #include <string>
 
-#include "freeform/client.h"
-#include "server.h"
+#include "in_process_server.h"
 
 namespace freeform::server {
 namespace {
@@ -18,19 +17,8 @@ using ::testing::DoubleNear;
 using ::testing::ElementsAre;
 using ::testing::Pointwise;
 
-class CurveKindsTest : public ::testing::Test {
+class CurveKindsTest : public InProcessServerTest {
  protected:
-  void SetUp() override {
-    ServerOptions options;
-    options.listen_address = "127.0.0.1:0";
-    options.threads = 2;
-    auto server = FreeformServer::Start(options);
-    ASSERT_TRUE(server.ok()) << server.status();
-    server_ = *std::move(server);
-    client_ =
-        std::make_unique<Client>(server_->InProcessChannel(), ClientOptions{});
-  }
-
   absl::StatusOr<CurveSamples> Evaluate(const v1::Curve& curve,
                                         std::vector<double> params,
                                         int order = 0) {
@@ -41,22 +29,7 @@ class CurveKindsTest : public ::testing::Test {
     request.set_derivative_order(static_cast<uint32_t>(order));
     return client_->EvaluateCurve(request);
   }
-
-  void ExpectInvalid(const absl::Status& status, const std::string& field) {
-    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << status;
-    const auto violations = FieldViolationsOf(status);
-    ASSERT_EQ(violations.size(), 1u) << status;
-    EXPECT_EQ(violations[0].field, field) << status;
-  }
-
-  std::unique_ptr<FreeformServer> server_;
-  std::unique_ptr<Client> client_;
 };
-
-void Append(google::protobuf::RepeatedField<double>* field,
-            std::initializer_list<double> values) {
-  field->Add(values.begin(), values.end());
-}
 
 void SetPoints(v1::Points* points, int dimension,
                std::initializer_list<double> values) {

@@ -12,8 +12,7 @@
 #include <sstream>
 #include <string>
 
-#include "freeform/client.h"
-#include "server.h"
+#include "in_process_server.h"
 
 namespace freeform::server {
 namespace {
@@ -22,38 +21,11 @@ using ::testing::DoubleNear;
 using ::testing::Pointwise;
 using ::testing::StartsWith;
 
-void Append(google::protobuf::RepeatedField<double>* field,
-            std::initializer_list<double> values) {
-  field->Add(values.begin(), values.end());
-}
-
 std::vector<double> Values(const google::protobuf::RepeatedField<double>& f) {
   return {f.begin(), f.end()};
 }
 
-class RefinementTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    ServerOptions options;
-    options.listen_address = "127.0.0.1:0";
-    options.threads = 2;
-    auto server = FreeformServer::Start(options);
-    ASSERT_TRUE(server.ok()) << server.status();
-    server_ = *std::move(server);
-    client_ =
-        std::make_unique<Client>(server_->InProcessChannel(), ClientOptions{});
-  }
-
-  void ExpectField(const absl::Status& status, absl::string_view prefix) {
-    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << status;
-    const auto violations = FieldViolationsOf(status);
-    ASSERT_EQ(violations.size(), 1u) << status;
-    EXPECT_THAT(violations[0].field, StartsWith(std::string(prefix))) << status;
-  }
-
-  std::unique_ptr<FreeformServer> server_;
-  std::unique_ptr<Client> client_;
-};
+class RefinementTest : public InProcessServerTest {};
 
 // The de Casteljau slides: splitting at t gives P_0^0..P_0^n on the left
 // and P_0^n..P_n^0 on the right.
@@ -74,7 +46,7 @@ TEST_F(RefinementTest, SplitsTheWorkedCubic) {
               Pointwise(DoubleNear(1e-15),
                         std::vector<double>{2, 1.5, 2.75, 1.5, 3.5, 1, 4, 0}));
   request.set_parameters(0, 1.5);
-  ExpectField(client_->SplitCurve(request).status(), "parameters[0]");
+  ExpectInvalid(client_->SplitCurve(request).status(), "parameters[0]", true);
 }
 
 // The course notes' half circle with knot 1/2 inserted: points (1,0),
@@ -104,10 +76,10 @@ TEST_F(RefinementTest, InsertsAKnotIntoTheHalfCircle) {
       Pointwise(DoubleNear(0), std::vector<double>{0, 0, 0, 0.5, 1, 1, 1}));
   // Beyond the degree's multiplicity, or outside the domain: refused.
   Append(request.mutable_knots(), {0.5, 0.5});
-  ExpectField(client_->InsertCurveKnots(request).status(), "knots[");
+  ExpectInvalid(client_->InsertCurveKnots(request).status(), "knots[", true);
   request.clear_knots();
   request.add_knots(2.0);
-  ExpectField(client_->InsertCurveKnots(request).status(), "knots[0]");
+  ExpectInvalid(client_->InsertCurveKnots(request).status(), "knots[0]", true);
 }
 
 TEST_F(RefinementTest, DecomposesTheNurbsCircle) {
@@ -157,7 +129,7 @@ TEST_F(RefinementTest, ChaikinCutsCorners) {
                         std::vector<double>{1, 0, 3, 0, 4, 1, 4, 3, 3, 4, 1, 4,
                                             0, 3, 0, 1}));
   request.set_levels(0);
-  ExpectField(client_->SubdividePolygon(request).status(), "levels");
+  ExpectInvalid(client_->SubdividePolygon(request).status(), "levels", true);
 }
 
 TEST_F(RefinementTest, TessellatesCurvesWithinTolerance) {
@@ -177,7 +149,7 @@ TEST_F(RefinementTest, TessellatesCurvesWithinTolerance) {
   EXPECT_EQ(client_->TessellateCurve(request).status().code(),
             absl::StatusCode::kResourceExhausted);
   request.set_tolerance(0);
-  ExpectField(client_->TessellateCurve(request).status(), "tolerance");
+  ExpectInvalid(client_->TessellateCurve(request).status(), "tolerance", true);
 }
 
 TEST_F(RefinementTest, SplitsPatches) {
@@ -206,7 +178,7 @@ TEST_F(RefinementTest, SplitsPatches) {
   EXPECT_THAT(at->partials[0].values,
               Pointwise(DoubleNear(1e-15), std::vector<double>{2, 2, 1}));
   request.set_direction(v1::SURFACE_DIRECTION_UNSPECIFIED);
-  ExpectField(client_->SplitSurface(request).status(), "direction");
+  ExpectInvalid(client_->SplitSurface(request).status(), "direction", true);
 }
 
 // The teapot meshed by the server: stream and unary agree, and the welded
@@ -258,7 +230,8 @@ TEST_F(RefinementTest, TessellatesTheTeapot) {
     EXPECT_NEAR(std::hypot(n[i], n[i + 1], n[i + 2]), 1.0, 1e-12);
   }
   request.set_tolerance(-1);
-  ExpectField(client_->TessellateSurfaces(request).status(), "tolerance");
+  ExpectInvalid(client_->TessellateSurfaces(request).status(), "tolerance",
+                true);
 }
 
 }  // namespace

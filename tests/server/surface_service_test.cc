@@ -9,19 +9,13 @@
 #include <random>
 #include <string>
 
-#include "freeform/client.h"
-#include "server.h"
+#include "in_process_server.h"
 
 namespace freeform::server {
 namespace {
 
 using ::testing::DoubleNear;
 using ::testing::Pointwise;
-
-void Append(google::protobuf::RepeatedField<double>* field,
-            std::initializer_list<double> values) {
-  field->Add(values.begin(), values.end());
-}
 
 void SetNet(v1::ControlNet* net, int dimension, int count_u, int count_v,
             const std::vector<double>& coordinates) {
@@ -38,19 +32,8 @@ std::vector<double> RandomValues(std::mt19937_64& rng, size_t count) {
   return values;
 }
 
-class SurfaceServiceTest : public ::testing::Test {
+class SurfaceServiceTest : public InProcessServerTest {
  protected:
-  void SetUp() override {
-    ServerOptions options;
-    options.listen_address = "127.0.0.1:0";
-    options.threads = 2;
-    auto server = FreeformServer::Start(options);
-    ASSERT_TRUE(server.ok()) << server.status();
-    server_ = *std::move(server);
-    client_ =
-        std::make_unique<Client>(server_->InProcessChannel(), ClientOptions{});
-  }
-
   absl::StatusOr<SurfaceEvaluation> AtPoints(const v1::Surface& surface,
                                              std::vector<double> uv,
                                              int order = 0,
@@ -63,16 +46,6 @@ class SurfaceServiceTest : public ::testing::Test {
     request.set_normals(normals);
     return client_->EvaluateSurface(request);
   }
-
-  void ExpectInvalid(const absl::Status& status, const std::string& field) {
-    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << status;
-    const auto violations = FieldViolationsOf(status);
-    ASSERT_EQ(violations.size(), 1u) << status;
-    EXPECT_EQ(violations[0].field, field) << status;
-  }
-
-  std::unique_ptr<FreeformServer> server_;
-  std::unique_ptr<Client> client_;
 };
 
 // Exercise 4 of the course notes: the bi-quadratic patch at (1/2, 1/2).
