@@ -12,34 +12,19 @@
 #include <vector>
 
 #include "freeform/core/status.h"
+#include "test_util.h"
 
 namespace freeform {
 namespace {
+
+using ::freeform::testing_util::EvenlySpaced;
+using ::freeform::testing_util::RandomValues;
 
 using ::testing::ElementsAre;
 using ::testing::ElementsAreArray;
 using ::testing::Optional;
 
 using Buffers = std::vector<std::vector<double>>;
-
-std::vector<double> RandomValues(std::mt19937_64& rng, size_t count,
-                                 double lo = -1.0, double hi = 1.0) {
-  std::uniform_real_distribution<double> uniform(lo, hi);
-  std::vector<double> values(count);
-  for (double& value : values) value = uniform(rng);
-  return values;
-}
-
-// `count` parameters spread evenly over [start, end], both included.
-std::vector<double> Parameters(double start, double end, size_t count) {
-  std::vector<double> parameters(count);
-  for (size_t i = 0; i < count; ++i) {
-    parameters[i] = start + (end - start) * static_cast<double>(i) /
-                                static_cast<double>(count - 1);
-  }
-  parameters.back() = end;
-  return parameters;
-}
 
 double MaxAbs(const std::vector<double>& values) {
   double result = 0.0;
@@ -131,7 +116,7 @@ TEST(ElevateBezierCurve, HalfCircleWithPointAtInfinity) {
   ASSERT_TRUE(cubic.ok());
   EXPECT_THAT(cubic->weights, ElementsAre(1, testing::DoubleEq(1.0 / 3),
                                           testing::DoubleEq(1.0 / 3), 1));
-  const std::vector<double> parameters = Parameters(0, 1, 101);
+  const std::vector<double> parameters = EvenlySpaced(0, 1, 101);
   const Buffers values = EvaluateBezier(cubic->view(), parameters, 1);
   for (size_t i = 0; i < parameters.size(); ++i) {
     EXPECT_NEAR(std::hypot(values[0][2 * i], values[0][2 * i + 1]), 1.0, 1e-14);
@@ -163,7 +148,7 @@ TEST(ElevateBezierCurve, ZeroWeightResultKeepsDirection) {
   EXPECT_EQ(elevated->weights[2], 0.0);
   EXPECT_DOUBLE_EQ(elevated->coordinates[4], 0.4);
   EXPECT_DOUBLE_EQ(elevated->coordinates[5], 0.6);
-  const std::vector<double> parameters = Parameters(0, 1, 1001);
+  const std::vector<double> parameters = EvenlySpaced(0, 1, 1001);
   ExpectSameDerivatives(EvaluateBezier(curve, parameters, 2),
                         EvaluateBezier(elevated->view(), parameters, 2), 2.0,
                         1e-12, "zero weights");
@@ -171,7 +156,7 @@ TEST(ElevateBezierCurve, ZeroWeightResultKeepsDirection) {
 
 TEST(ElevateBezierCurve, EvaluatesUnchangedForAllDegrees) {
   std::mt19937_64 rng(11);
-  const std::vector<double> parameters = Parameters(0, 1, 10000);
+  const std::vector<double> parameters = EvenlySpaced(0, 1, 10000);
   for (int n = 1; n <= 20; ++n) {
     for (int rational = 0; rational < 2; ++rational) {
       const std::vector<double> points = RandomValues(rng, 3 * (n + 1));
@@ -328,7 +313,7 @@ void ExpectBSplineElevationExact(const BSplineCurveView& curve, int by,
   const std::vector<double> knots(curve.knots.begin(), curve.knots.end());
   const int n = static_cast<int>(curve.control_points.size()) - 1;
   const std::vector<double> parameters =
-      Parameters(knots[curve.degree], knots[n + 1], 10000);
+      EvenlySpaced(knots[curve.degree], knots[n + 1], 10000);
   const Buffers expected = EvaluateBSpline(curve, parameters, 2);
   const Buffers actual = EvaluateBSpline(elevated->view(), parameters, 2);
   ExpectSameDerivatives(
@@ -515,7 +500,7 @@ TEST(ReduceBezierCurve, RecoversElevatedCurvesExactly) {
 
 // The largest distance between the two curves at 10^4 parameters.
 double MeasuredDistance(const BezierCurveView& a, const BezierCurveView& b) {
-  const std::vector<double> parameters = Parameters(0, 1, 10000);
+  const std::vector<double> parameters = EvenlySpaced(0, 1, 10000);
   const Buffers x = EvaluateBezier(a, parameters, 1);
   const Buffers y = EvaluateBezier(b, parameters, 1);
   const int dim = a.control_points.dimension;
@@ -580,8 +565,8 @@ TEST(ReduceBezierCurve, RejectsBadByAndRationalCurves) {
 Buffers EvaluateSurface(const BezierSurfaceView* bezier,
                         const BSplineSurfaceView* bspline, SurfaceDomain domain,
                         int dimension) {
-  const std::vector<double> u = Parameters(domain.u_start, domain.u_end, 50);
-  const std::vector<double> v = Parameters(domain.v_start, domain.v_end, 50);
+  const std::vector<double> u = EvenlySpaced(domain.u_start, domain.u_end, 50);
+  const std::vector<double> v = EvenlySpaced(domain.v_start, domain.v_end, 50);
   Buffers buffers = MakeBuffers(PartialCount(1), 50 * 50 * dimension);
   std::vector<absl::Span<double>> output(buffers.begin(), buffers.end());
   const SurfaceSamples samples = SurfaceSamples::Grid(u, v);

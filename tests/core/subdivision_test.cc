@@ -9,33 +9,18 @@
 #include <vector>
 
 #include "freeform/core/status.h"
+#include "test_util.h"
 
 namespace freeform {
 namespace {
+
+using ::freeform::testing_util::EvenlySpaced;
+using ::freeform::testing_util::RandomValues;
 
 using ::testing::Optional;
 
 constexpr double kTolerance = 1e-12;
 constexpr size_t kSamples = 10000;
-
-std::vector<double> RandomValues(std::mt19937_64& rng, size_t count,
-                                 double lo = -1.0, double hi = 1.0) {
-  std::uniform_real_distribution<double> uniform(lo, hi);
-  std::vector<double> values(count);
-  for (double& value : values) value = uniform(rng);
-  return values;
-}
-
-// Count parameters evenly spread over [start, end].
-std::vector<double> Parameters(double start, double end, size_t count) {
-  std::vector<double> values(count);
-  for (size_t i = 0; i < count; ++i) {
-    values[i] = start + (end - start) * static_cast<double>(i) /
-                            static_cast<double>(count - 1);
-  }
-  values.back() = end;
-  return values;
-}
 
 double MaxDifference(const std::vector<double>& a,
                      const std::vector<double>& b) {
@@ -137,7 +122,7 @@ TEST(SplitBezierCurve, PiecesEvaluateToOriginalForAllDegrees) {
         const double a = k == 0 ? 0.0 : cuts[k - 1];
         const double b = k == cuts.size() ? 1.0 : cuts[k];
         const std::vector<double> local =
-            Parameters(0.0, 1.0, kSamples / pieces->size());
+            EvenlySpaced(0.0, 1.0, kSamples / pieces->size());
         std::vector<double> global(local.size());
         for (size_t i = 0; i < local.size(); ++i) {
           global[i] = a + (b - a) * local[i];
@@ -164,7 +149,7 @@ TEST(SplitBezierCurve, HalfCircleWithPointAtInfinity) {
   EXPECT_LT(MaxDifference((*pieces)[0].weights, {1, 0.5, 0.5}), 1e-15);
   for (const BezierCurveData& piece : *pieces) {
     const std::vector<double> xy =
-        EvaluateBezier(piece.view(), Parameters(0, 1, 101));
+        EvaluateBezier(piece.view(), EvenlySpaced(0, 1, 101));
     for (size_t i = 0; i < xy.size(); i += 2) {
       EXPECT_NEAR(std::hypot(xy[i], xy[i + 1]), 1.0, 1e-15);
     }
@@ -205,7 +190,7 @@ TEST(KnotInsertion, HalfCircleSeedExample) {
   EXPECT_LT(MaxDifference(refined->coordinates, {1, 0, 1, 1, -1, 1, -1, 0}),
             1e-15);
   EXPECT_LT(MaxDifference(refined->weights, {1, 0.5, 0.5, 1}), 1e-15);
-  const std::vector<double> params = Parameters(0, 1, 1001);
+  const std::vector<double> params = EvenlySpaced(0, 1, 1001);
   EXPECT_LT(MaxDifference(EvaluateBSpline(refined->view(), params),
                           EvaluateBSpline(curve, params)),
             1e-15);
@@ -235,7 +220,7 @@ TEST(KnotInsertion, RandomCurvesUnchangedForAllDegrees) {
         ASSERT_TRUE(ValidateBSplineCurve(refined->view()).ok());
         EXPECT_EQ(refined->coordinates.size(),
                   curve.coordinates.size() + 3 * x.size());
-        const std::vector<double> params = Parameters(lo, hi, kSamples);
+        const std::vector<double> params = EvenlySpaced(lo, hi, kSamples);
         EXPECT_LT(MaxDifference(EvaluateBSpline(refined->view(), params),
                                 EvaluateBSpline(curve.view(), params)),
                   kTolerance)
@@ -257,7 +242,7 @@ TEST(KnotInsertion, UnclampedWithRepeatedKnotAtDomainEnd) {
                                .knots = knots,
                                .weights = weights};
   ASSERT_TRUE(ValidateBSplineCurve(curve).ok());
-  const std::vector<double> params = Parameters(3, 5, kSamples);
+  const std::vector<double> params = EvenlySpaced(3, 5, kSamples);
   const std::vector<std::vector<double>> insertions = {
       {5}, {5, 5}, {3, 3, 3, 5, 5}, {4, 4, 5}, {3, 4.5, 5}};
   for (const std::vector<double>& x : insertions) {
@@ -274,7 +259,7 @@ TEST(KnotInsertion, UnclampedWithRepeatedKnotAtDomainEnd) {
   ASSERT_TRUE(pieces.ok());
   EXPECT_EQ(pieces->breakpoints, (std::vector<double>{3, 4, 5}));
   for (size_t k = 0; k < 2; ++k) {
-    const std::vector<double> local = Parameters(0, 1, 1000);
+    const std::vector<double> local = EvenlySpaced(0, 1, 1000);
     std::vector<double> global(local.size());
     for (size_t i = 0; i < local.size(); ++i)
       global[i] = 3.0 + static_cast<double>(k) + local[i];
@@ -348,8 +333,8 @@ TEST(KnotInsertion, SurfaceUnchangedOnGrid) {
       ASSERT_TRUE(ValidateBSplineSurface(refined->bspline_view()).ok());
       EXPECT_EQ(refined->count_u, in_u ? 10 : 6);
       EXPECT_EQ(refined->count_v, in_u ? 5 : 9);
-      const std::vector<double> us = Parameters(0, 1, 101);
-      const std::vector<double> vs = Parameters(0, 1, 99);
+      const std::vector<double> us = EvenlySpaced(0, 1, 101);
+      const std::vector<double> vs = EvenlySpaced(0, 1, 99);
       const SurfaceSamples grid = SurfaceSamples::Grid(us, vs);
       std::vector<double> before(grid.size() * 3), after(grid.size() * 3);
       const std::vector<absl::Span<double>> out_before = {
@@ -409,7 +394,7 @@ TEST(DecomposeBSplineCurve, SegmentsEvaluateToOriginalForAllDegrees) {
           EXPECT_EQ(segment.view().degree(), p);
           EXPECT_EQ(segment.weights.empty(), !rational);
           const std::vector<double> local =
-              Parameters(0, 1, kSamples / pieces->segments.size());
+              EvenlySpaced(0, 1, kSamples / pieces->segments.size());
           std::vector<double> global(local.size());
           for (size_t i = 0; i < local.size(); ++i) {
             global[i] = breaks[k] + (breaks[k + 1] - breaks[k]) * local[i];

@@ -17,9 +17,13 @@
 #include "freeform/core/normals.h"
 #include "freeform/core/status.h"
 #include "freeform/core/thread_pool.h"
+#include "test_util.h"
 
 namespace freeform {
 namespace {
+
+using ::freeform::testing_util::EvenlySpaced;
+using ::freeform::testing_util::RandomValues;
 
 using ::testing::ElementsAre;
 using ::testing::Optional;
@@ -58,23 +62,6 @@ Partials EvaluateBSpline(const BSplineSurfaceView& surface,
                          const SurfaceSamples& samples, int max_order,
                          const ExecutionContext& context = {}) {
   return Evaluate(EvaluateBSplineSurface, surface, samples, max_order, context);
-}
-
-std::vector<double> RandomValues(std::mt19937_64& rng, size_t count,
-                                 double lo = -1.0, double hi = 1.0) {
-  std::uniform_real_distribution<double> uniform(lo, hi);
-  std::vector<double> values(count);
-  for (double& value : values) value = uniform(rng);
-  return values;
-}
-
-std::vector<double> Linspace(double start, double end, size_t count) {
-  std::vector<double> values(count);
-  for (size_t i = 0; i < count; ++i) {
-    values[i] = start + (end - start) * static_cast<double>(i) /
-                            static_cast<double>(count - 1);
-  }
-  return values;
 }
 
 // Sorted random knots, unclamped: every value distinct, so any degree is
@@ -386,8 +373,10 @@ TEST(TensorSurfaceTest, GridEqualsPairsAndPoolEqualsSerial) {
   for (const bool rational : {false, true}) {
     const RandomNurbs nurbs = MakeRandomNurbs(rng, 3, 2, 7, 6, 3, rational);
     const SurfaceDomain domain = BSplineSurfaceDomain(nurbs.view);
-    const std::vector<double> u = Linspace(domain.u_start, domain.u_end, 23);
-    const std::vector<double> v = Linspace(domain.v_start, domain.v_end, 17);
+    const std::vector<double> u =
+        EvenlySpaced(domain.u_start, domain.u_end, 23);
+    const std::vector<double> v =
+        EvenlySpaced(domain.v_start, domain.v_end, 17);
     const std::vector<double> uv = GridPairs(u, v);
     const SurfaceSamples grid = SurfaceSamples::Grid(u, v);
     const Partials by_grid = EvaluateBSpline(nurbs.view, grid, 2);
@@ -399,7 +388,7 @@ TEST(TensorSurfaceTest, GridEqualsPairsAndPoolEqualsSerial) {
 
     const BezierSurfaceView bezier{.control_net = nurbs.view.control_net,
                                    .weights = nurbs.weights};
-    const std::vector<double> unit = Linspace(0, 1, 19);
+    const std::vector<double> unit = EvenlySpaced(0, 1, 19);
     const SurfaceSamples bezier_grid = SurfaceSamples::Grid(unit, unit);
     const std::vector<double> bezier_uv = GridPairs(unit, unit);
     const Partials bezier_by_grid = EvaluateBezier(bezier, bezier_grid, 2);
@@ -443,8 +432,8 @@ TEST(TensorSurfaceTest, EqualWeightsGiveTheNonRationalSurface) {
   BSplineSurfaceView rational = nurbs.view;
   rational.weights = weights;
   const SurfaceDomain domain = BSplineSurfaceDomain(nurbs.view);
-  const std::vector<double> u = Linspace(domain.u_start, domain.u_end, 9);
-  const std::vector<double> v = Linspace(domain.v_start, domain.v_end, 8);
+  const std::vector<double> u = EvenlySpaced(domain.u_start, domain.u_end, 9);
+  const std::vector<double> v = EvenlySpaced(domain.v_start, domain.v_end, 8);
   const SurfaceSamples grid = SurfaceSamples::Grid(u, v);
   ExpectSame(EvaluateBSpline(rational, grid, 3),
              EvaluateBSpline(nurbs.view, grid, 3), 1e-13);
@@ -477,7 +466,7 @@ TEST(TensorSurfaceTest, NurbsCylinderStaysOnTheCylinder) {
                                     .knots_u = knots_u,
                                     .knots_v = knots_v,
                                     .weights = weights};
-  const std::vector<double> grid = Linspace(0, 1, 100);
+  const std::vector<double> grid = EvenlySpaced(0, 1, 100);
   const Partials p =
       EvaluateBSpline(cylinder, SurfaceSamples::Grid(grid, grid), 0);
   for (size_t r = 0; r < grid.size() * grid.size(); ++r) {
@@ -523,7 +512,7 @@ SphereOctant MakeSphereOctant() {
 
 TEST(TensorSurfaceTest, NurbsSphereStaysOnTheSphereWithRadialNormals) {
   const SphereOctant sphere = MakeSphereOctant();
-  const std::vector<double> grid = Linspace(0, 1, 100);
+  const std::vector<double> grid = EvenlySpaced(0, 1, 100);
   const SurfaceSamples samples = SurfaceSamples::Grid(grid, grid);
   Partials p = EvaluateBSpline(sphere.view(), samples, 2);
   std::vector<double> normals(3 * samples.size());
@@ -564,8 +553,10 @@ TEST(NormalsTest, UnitAndOrthogonalOnRandomPatches) {
   for (const bool rational : {false, true}) {
     const RandomNurbs nurbs = MakeRandomNurbs(rng, 3, 3, 6, 7, 3, rational);
     const SurfaceDomain domain = BSplineSurfaceDomain(nurbs.view);
-    const std::vector<double> u = Linspace(domain.u_start, domain.u_end, 31);
-    const std::vector<double> v = Linspace(domain.v_start, domain.v_end, 29);
+    const std::vector<double> u =
+        EvenlySpaced(domain.u_start, domain.u_end, 31);
+    const std::vector<double> v =
+        EvenlySpaced(domain.v_start, domain.v_end, 29);
     const SurfaceSamples grid = SurfaceSamples::Grid(u, v);
     Partials p = EvaluateBSpline(nurbs.view, grid, 1);
     std::vector<double> normals(3 * grid.size());
@@ -601,7 +592,7 @@ std::vector<double> NormalsAt(const BezierSurfaceView& surface, double u,
 
 TEST(NormalsTest, CollapsedRowGivesTheLimitNormal) {
   std::mt19937_64 rng(18);
-  const std::vector<double> v = Linspace(0, 1, 11);
+  const std::vector<double> v = EvenlySpaced(0, 1, 11);
   for (const int row : {0, 3}) {
     const std::vector<double> net = CollapsedBicubic(rng, row);
     const BezierSurfaceView lid{.control_net = {.dimension = 3,
@@ -765,7 +756,7 @@ TEST(TensorSurfaceTest, EvaluationRejectsBadSamplesAndOutput) {
 
 TEST(TensorSurfaceTest, CancelledTokenStopsABigGrid) {
   const ValidSurface valid;
-  const std::vector<double> grid = Linspace(0, 1, 1000);
+  const std::vector<double> grid = EvenlySpaced(0, 1, 1000);
   const SurfaceSamples samples = SurfaceSamples::Grid(grid, grid);
   Partials buffers = Buffers(samples.size(), 3, 0);
   CancellationToken token;
