@@ -50,12 +50,10 @@ absl::StatusOr<EvaluationPlan> PlanFor(absl::StatusOr<PreparedCurve> curve,
   EvaluationPlan plan{.curve = *std::move(curve),
                       .parameters = *std::move(resolved),
                       .orders = derivative_order + 1u};
-  const size_t values = plan.parameters.size() * plan.ValuesPerParameter();
-  if (values > limits.max_output_values) {
-    return absl::ResourceExhaustedError(
-        absl::StrCat("parameters: the answer would hold ", values,
-                     " numbers, over the server's limit of ",
-                     limits.max_output_values, " (--max_output_values)"));
+  if (absl::Status status = CheckOutputLimit(
+          plan.parameters.size() * plan.ValuesPerParameter(), limits);
+      !status.ok()) {
+    return status;
   }
   return plan;
 }
@@ -86,14 +84,8 @@ absl::StatusOr<EvaluationPlan> PlanBasisEvaluation(
 absl::Status CheckUnaryAnswerSize(const EvaluationPlan& plan,
                                   const ServiceLimits& limits,
                                   absl::string_view streaming_hint) {
-  const size_t bytes = plan.parameters.size() * plan.ValuesPerParameter() * 8;
-  if (bytes > static_cast<size_t>(limits.max_message_bytes)) {
-    return absl::ResourceExhaustedError(
-        absl::StrCat("parameters: the answer would take ", bytes,
-                     " bytes, over the message limit of ",
-                     limits.max_message_bytes, streaming_hint));
-  }
-  return absl::OkStatus();
+  return CheckMessageLimit(plan.parameters.size() * plan.ValuesPerParameter(),
+                           limits, streaming_hint);
 }
 
 // Adds the derivative arrays of `count` points to `response` and returns

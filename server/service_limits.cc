@@ -39,4 +39,25 @@ absl::Status CheckPointLimit(uint64_t count, const ServiceLimits& limits,
   return absl::OkStatus();
 }
 
+absl::Status CheckOutputLimit(uint64_t values, const ServiceLimits& limits) {
+  if (values > limits.max_output_values) {
+    return absl::ResourceExhaustedError(
+        absl::StrCat("parameters: the answer would hold ", values,
+                     " numbers, over the server's limit of ",
+                     limits.max_output_values, " (--max_output_values)"));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status CheckMessageLimit(uint64_t values, const ServiceLimits& limits,
+                               absl::string_view hint) {
+  const uint64_t bytes = values * sizeof(double);
+  if (bytes > static_cast<uint64_t>(limits.max_message_bytes)) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "parameters: the answer would take ", bytes,
+        " bytes, over the message limit of ", limits.max_message_bytes, hint));
+  }
+  return absl::OkStatus();
+}
+
 }  // namespace freeform::server

@@ -58,6 +58,16 @@ absl::Status CheckDegreeLimit(int64_t degree, const ServiceLimits& limits,
 absl::Status CheckPointLimit(uint64_t count, const ServiceLimits& limits,
                              absl::string_view field);
 
+// CheckOutputLimit returns RESOURCE_EXHAUSTED naming "parameters" when an
+// answer of `values` numbers is over limits.max_output_values.
+absl::Status CheckOutputLimit(uint64_t values, const ServiceLimits& limits);
+
+// CheckMessageLimit returns RESOURCE_EXHAUSTED naming "parameters" when
+// `values` doubles do not fit one message of limits.max_message_bytes;
+// `hint` (e.g. "; use EvaluateStream") ends the message.
+absl::Status CheckMessageLimit(uint64_t values, const ServiceLimits& limits,
+                               absl::string_view hint = "");
+
 // A ticket for one heavy request; released when destroyed.
 class HeavyWorkAdmission {
  public:

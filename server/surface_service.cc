@@ -144,12 +144,10 @@ absl::StatusOr<SurfacePlan> PlanSurfaceEvaluation(
       !status.ok()) {
     return status;
   }
-  const size_t values = plan.size() * plan.ValuesPerPoint();
-  if (values > limits.max_output_values) {
-    return absl::ResourceExhaustedError(
-        absl::StrCat("parameters: the answer would hold ", values,
-                     " numbers, over the server's limit of ",
-                     limits.max_output_values, " (--max_output_values)"));
+  if (absl::Status status =
+          CheckOutputLimit(plan.size() * plan.ValuesPerPoint(), limits);
+      !status.ok()) {
+    return status;
   }
   return plan;
 }
@@ -218,12 +216,11 @@ grpc::Status SurfaceServiceImpl::Evaluate(
         absl::StatusOr<SurfacePlan> plan =
             PlanSurfaceEvaluation(*request, limits_);
         if (!plan.ok()) return plan.status();
-        const size_t bytes = plan->size() * plan->ValuesPerPoint() * 8;
-        if (bytes > static_cast<size_t>(limits_.max_message_bytes)) {
-          return absl::ResourceExhaustedError(
-              absl::StrCat("parameters: the answer would take ", bytes,
-                           " bytes, over the message limit of ",
-                           limits_.max_message_bytes, "; use EvaluateStream"));
+        if (absl::Status status =
+                CheckMessageLimit(plan->size() * plan->ValuesPerPoint(),
+                                  limits_, "; use EvaluateStream");
+            !status.ok()) {
+          return status;
         }
         absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
             admission_.Admit(plan->size() > limits_.grain);
@@ -319,12 +316,11 @@ absl::Status TensorBasis(const v1::EvaluateSurfaceBasisRequest& request,
   const size_t fu = static_cast<size_t>(u_basis->dimension);
   const size_t fv = static_cast<size_t>(v_basis->dimension);
   const size_t values = plan.size() * fu * fv;
-  if (values > limits.max_output_values ||
-      values * 8 > static_cast<size_t>(limits.max_message_bytes)) {
-    return absl::ResourceExhaustedError(
-        absl::StrCat("parameters: the answer would hold ", values,
-                     " numbers, over the server's limits (--max_output_values, "
-                     "--max_message_bytes)"));
+  if (absl::Status status = CheckOutputLimit(values, limits); !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = CheckMessageLimit(values, limits); !status.ok()) {
+    return status;
   }
   const std::vector<double> u_values =
       plan.grid ? plan.u : PairCoordinate(plan.uv, 0);
@@ -372,11 +368,11 @@ absl::Status TriangularBasis(const v1::EvaluateSurfaceBasisRequest& request,
   const size_t count = static_cast<size_t>(uv.size()) / 2;
   const size_t functions = TriangularPointCount(static_cast<int>(degree));
   const size_t values = count * functions;
-  if (values > limits.max_output_values ||
-      values * 8 > static_cast<size_t>(limits.max_message_bytes)) {
-    return absl::ResourceExhaustedError(
-        absl::StrCat("parameters: the answer would hold ", values,
-                     " numbers, over the server's limits"));
+  if (absl::Status status = CheckOutputLimit(values, limits); !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = CheckMessageLimit(values, limits); !status.ok()) {
+    return status;
   }
   response.set_function_count(static_cast<uint32_t>(functions));
   response.set_count(static_cast<uint32_t>(count));
