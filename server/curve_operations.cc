@@ -7,8 +7,8 @@
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
 #include "geometry_out.h"
-#include "prepared_curve.h"
-#include "rpc.h"
+#include "plan.h"
+#include "prepare.h"
 
 namespace freeform::server {
 namespace {
@@ -24,70 +24,95 @@ absl::Status CheckBy(uint32_t by, int degree, const ServiceLimits& limits) {
   return absl::OkStatus();
 }
 
-absl::Status ElevateCurve(const v1::ElevateCurveDegreeRequest& request,
-                          const ServiceLimits& limits,
-                          v1::ElevateCurveDegreeResponse& response) {
-  switch (request.curve().kind_case()) {
-    case v1::Curve::kBezier: {
-      absl::StatusOr<BezierCurveView> curve =
-          ValidatedBezier(request.curve().bezier(), limits);
-      if (!curve.ok()) {
-        return PrefixFieldPath(curve.status(), "curve.bezier");
-      }
-      if (absl::Status status = CheckBy(request.by(), curve->degree(), limits);
-          !status.ok()) {
-        return status;
-      }
-      absl::StatusOr<BezierCurveData> elevated =
-          ElevateBezierCurve(*curve, static_cast<int>(request.by()));
-      if (!elevated.ok()) return elevated.status();
-      ToProto(*elevated, *response.mutable_curve());
-      return absl::OkStatus();
+absl::StatusOr<UnaryWork> PlanElevate(
+    const v1::ElevateCurveDegreeRequest& request, const ServiceLimits& limits,
+    v1::ElevateCurveDegreeResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  const int by = static_cast<int>(std::min<uint32_t>(request.by(), 1 << 20));
+  if (const auto* bezier = std::get_if<BezierCurve>(&*curve)) {
+    if (absl::Status status = CheckBy(request.by(), bezier->degree(), limits);
+        !status.ok()) {
+      return status;
     }
-    case v1::Curve::kBspline: {
-      absl::StatusOr<BSplineCurveView> curve =
-          ValidatedBSpline(request.curve().bspline(), limits);
-      if (!curve.ok()) {
-        return PrefixFieldPath(curve.status(), "curve.bspline");
-      }
-      if (absl::Status status = CheckBy(request.by(), curve->degree, limits);
-          !status.ok()) {
-        return status;
-      }
-      absl::StatusOr<BSplineCurveData> elevated =
-          ElevateBSplineCurve(*curve, static_cast<int>(request.by()));
-      if (!elevated.ok()) return elevated.status();
-      ToProto(*elevated, *response.mutable_curve());
-      return absl::OkStatus();
-    }
-    default:
-      return InvalidFieldError(
-          "curve", "degree elevation takes a Bezier or B-spline/NURBS curve");
+    const BezierCurveView view = bezier->view();
+    const uint64_t values = (view.control_points.size() + by) *
+                            (static_cast<uint64_t>(bezier->dimension()) + 1);
+    return UnaryWork{
+        .plan = AnswerPlan(values, 8 * values, limits),
+        .run = [view, by, &response](const ExecutionContext&) -> absl::Status {
+          absl::StatusOr<BezierCurveData> elevated =
+              ElevateBezierCurve(view, by);
+          if (!elevated.ok()) return elevated.status();
+          ToProto(*elevated, *response.mutable_curve());
+          return absl::OkStatus();
+        }};
   }
+  if (const auto* bspline = std::get_if<BSplineCurve>(&*curve)) {
+    if (absl::Status status = CheckBy(request.by(), bspline->degree(), limits);
+        !status.ok()) {
+      return status;
+    }
+    const BSplineCurveView view = bspline->view();
+    // Every distinct knot gains `by` copies: at most (n + 2) by more points.
+    const uint64_t count =
+        view.control_points.size() + (view.control_points.size() + 1) * by;
+    if (absl::Status status = CheckPointLimit(count, limits, "by");
+        !status.ok()) {
+      return status;
+    }
+    const uint64_t values =
+        count * (static_cast<uint64_t>(bspline->dimension()) + 2) +
+        view.knots.size();
+    if (absl::Status status = UnaryAnswerCheck(values, limits, "by");
+        !status.ok()) {
+      return status;
+    }
+    return UnaryWork{
+        .plan = AnswerPlan(values, 8 * values, limits),
+        .run = [view, by, &response](const ExecutionContext&) -> absl::Status {
+          absl::StatusOr<BSplineCurveData> elevated =
+              ElevateBSplineCurve(view, by);
+          if (!elevated.ok()) return elevated.status();
+          ToProto(*elevated, *response.mutable_curve());
+          return absl::OkStatus();
+        }};
+  }
+  return InvalidFieldError(
+      "curve",
+      "degree elevation takes a Bezier, power-form or B-spline/NURBS curve");
 }
 
-absl::Status ReduceCurve(const v1::ReduceCurveDegreeRequest& request,
-                         const ServiceLimits& limits,
-                         v1::ReduceCurveDegreeResponse& response) {
-  if (!request.curve().has_bezier()) {
+absl::StatusOr<UnaryWork> PlanReduce(
+    const v1::ReduceCurveDegreeRequest& request, const ServiceLimits& limits,
+    v1::ReduceCurveDegreeResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  const auto* bezier = std::get_if<BezierCurve>(&*curve);
+  if (bezier == nullptr || bezier->view().rational()) {
     return InvalidFieldError(
         "curve", "degree reduction takes a polynomial Bezier curve");
   }
-  absl::StatusOr<BezierCurveView> curve =
-      ValidatedBezier(request.curve().bezier(), limits);
-  if (!curve.ok()) return PrefixFieldPath(curve.status(), "curve.bezier");
   if (request.by() < 1 ||
-      static_cast<int64_t>(request.by()) > curve->degree()) {
+      static_cast<int64_t>(request.by()) > bezier->degree()) {
     return InvalidFieldError(
-        "by", absl::StrCat("must be between 1 and the degree ", curve->degree(),
-                           ", got ", request.by()));
+        "by", absl::StrCat("must be between 1 and the degree ",
+                           bezier->degree(), ", got ", request.by()));
   }
-  absl::StatusOr<ReducedBezierCurve> reduced =
-      ReduceBezierCurve(*curve, static_cast<int>(request.by()));
-  if (!reduced.ok()) return PrefixFieldPath(reduced.status(), "curve.bezier");
-  ToProto(reduced->curve, *response.mutable_curve());
-  response.set_error_bound(reduced->error_bound);
-  return absl::OkStatus();
+  const BezierCurveView view = bezier->view();
+  const uint64_t values = view.control_points.coordinates.size() + 1;
+  return UnaryWork{.plan = AnswerPlan(values, 64 * values, limits),
+                   .run = [view, by = static_cast<int>(request.by()),
+                           &response](const ExecutionContext&) -> absl::Status {
+                     absl::StatusOr<ReducedBezierCurve> reduced =
+                         ReduceBezierCurve(view, by);
+                     if (!reduced.ok()) {
+                       return PrefixFieldPath(reduced.status(), "curve.bezier");
+                     }
+                     ToProto(reduced->curve, *response.mutable_curve());
+                     response.set_error_bound(reduced->error_bound);
+                     return absl::OkStatus();
+                   }};
 }
 
 Parameterization ToCore(v1::Parameterization parameterization) {
@@ -188,18 +213,8 @@ absl::Status WithMethodPrefix(const absl::Status& status,
 }
 
 absl::Status Interpolate(const v1::InterpolateCurveRequest& request,
-                         const ServiceLimits& limits,
+                         const PointsView& points, const ServiceLimits& limits,
                          v1::InterpolateCurveResponse& response) {
-  if (absl::Status status =
-          CheckDimensionLimit(request.points().dimension(), limits, "points");
-      !status.ok()) {
-    return status;
-  }
-  const PointsView points = ViewOf(request.points());
-  if (absl::Status status = CheckPointLimit(points.size(), limits, "points");
-      !status.ok()) {
-    return status;
-  }
   switch (request.method_case()) {
     case v1::InterpolateCurveRequest::kBspline:
       if (absl::Status status = CheckDegreeLimit(request.bspline().degree(),
@@ -229,34 +244,77 @@ absl::Status Interpolate(const v1::InterpolateCurveRequest& request,
       "bspline", "set a method: bspline, cubic_spline or least_squares");
 }
 
+absl::StatusOr<UnaryWork> PlanInterpolate(
+    const v1::InterpolateCurveRequest& request, const ServiceLimits& limits,
+    v1::InterpolateCurveResponse& response) {
+  if (absl::Status status =
+          CheckDimensionLimit(request.points().dimension(), limits, "points");
+      !status.ok()) {
+    return status;
+  }
+  const PointsView points = ViewOf(request.points());
+  const uint64_t count = points.size();
+  if (absl::Status status = CheckPointLimit(count, limits, "points");
+      !status.ok()) {
+    return status;
+  }
+  if (request.has_least_squares() &&
+      request.least_squares().control_point_count() > count) {
+    return InvalidFieldError(
+        "least_squares.control_point_count",
+        absl::StrCat("must be at most the number of points ", count, ", got ",
+                     request.least_squares().control_point_count()));
+  }
+  // The answer: control points (at most the points, their derivatives and
+  // a closing wrap), knots and parameters; the work: banded systems and
+  // copies of the data, a few values per point and degree.
+  const uint64_t dimension = static_cast<uint64_t>(points.dimension);
+  const uint64_t values = (count + 8) * (dimension + 3);
+  const uint64_t work = 8 * (count + 8) * (dimension + 2 * 64 + 8) * 2;
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "points");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{.plan = AnswerPlan(values, work, limits),
+                   .run = [points, &request, &limits,
+                           &response](const ExecutionContext&) -> absl::Status {
+                     return Interpolate(request, points, limits, response);
+                   }};
+}
+
 }  // namespace
 
-grpc::Status CurveServiceImpl::ElevateDegree(
-    grpc::ServerContext* context, const v1::ElevateCurveDegreeRequest* request,
+grpc::ServerUnaryReactor* CurveServiceImpl::ElevateDegree(
+    grpc::CallbackServerContext* context,
+    const v1::ElevateCurveDegreeRequest* request,
     v1::ElevateCurveDegreeResponse* response) {
-  return RunRpc("CurveService.ElevateDegree", context, *request, response,
-                [&](const CancellationToken&) {
-                  return ElevateCurve(*request, limits_, *response);
-                });
+  return frame_->Unary("CurveService.ElevateDegree", context, request, response,
+                       [this, request, response] {
+                         return PlanElevate(*request, frame_->limits(),
+                                            *response);
+                       });
 }
 
-grpc::Status CurveServiceImpl::ReduceDegree(
-    grpc::ServerContext* context, const v1::ReduceCurveDegreeRequest* request,
+grpc::ServerUnaryReactor* CurveServiceImpl::ReduceDegree(
+    grpc::CallbackServerContext* context,
+    const v1::ReduceCurveDegreeRequest* request,
     v1::ReduceCurveDegreeResponse* response) {
-  return RunRpc("CurveService.ReduceDegree", context, *request, response,
-                [&](const CancellationToken&) {
-                  return ReduceCurve(*request, limits_, *response);
-                });
+  return frame_->Unary("CurveService.ReduceDegree", context, request, response,
+                       [this, request, response] {
+                         return PlanReduce(*request, frame_->limits(),
+                                           *response);
+                       });
 }
 
-grpc::Status CurveServiceImpl::Interpolate(
-    grpc::ServerContext* context, const v1::InterpolateCurveRequest* request,
+grpc::ServerUnaryReactor* CurveServiceImpl::Interpolate(
+    grpc::CallbackServerContext* context,
+    const v1::InterpolateCurveRequest* request,
     v1::InterpolateCurveResponse* response) {
-  return RunRpc("CurveService.Interpolate", context, *request, response,
-                [&](const CancellationToken&) {
-                  return freeform::server::Interpolate(*request, limits_,
-                                                       *response);
-                });
+  return frame_->Unary("CurveService.Interpolate", context, request, response,
+                       [this, request, response] {
+                         return PlanInterpolate(*request, frame_->limits(),
+                                                *response);
+                       });
 }
 
 }  // namespace freeform::server

@@ -1,296 +1,382 @@
 // CurveService RPCs that refine or cut curves: Split, InsertKnots,
-// Decompose, Subdivide (polygons) and Tessellate.
+// Decompose, Subdivide (polygons) and Tessellate. Each visits the prepared
+// curve, so every curve kind is handled (or refused by name) explicitly.
+#include <algorithm>
 #include <cmath>
-#include <memory>
 
 #include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "curve_service.h"
-#include "freeform/core/bezier.h"
-#include "freeform/core/hermite.h"
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/tessellation.h"
 #include "geometry_out.h"
-#include "prepared_curve.h"
-#include "rpc.h"
+#include "plan.h"
+#include "prepare.h"
 
 namespace freeform::server {
 namespace {
 
-absl::Status Split(const v1::SplitCurveRequest& request,
-                   const ServiceLimits& limits,
-                   v1::SplitCurveResponse& response) {
-  if (!request.curve().has_bezier()) {
-    return InvalidFieldError(
-        "curve",
-        "Split takes a Bezier curve; use InsertKnots or Decompose "
-        "for B-splines");
+// Overloaded lambdas for std::visit.
+template <typename... Kinds>
+struct Overloaded : Kinds... {
+  using Kinds::operator()...;
+};
+template <typename... Kinds>
+Overloaded(Kinds...) -> Overloaded<Kinds...>;
+
+// Values of `count` control points of a (rational) curve of `dimension`.
+uint64_t CurveValues(uint64_t count, int dimension, bool rational) {
+  return SaturatingProduct(
+      count, static_cast<uint64_t>(dimension) + (rational ? 1 : 0));
+}
+
+absl::Status Refused(absl::string_view rpc, absl::string_view takes) {
+  return InvalidFieldError("curve", absl::StrCat(rpc, " takes ", takes));
+}
+
+absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitCurveRequest& request,
+                                    const ServiceLimits& limits,
+                                    v1::SplitCurveResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  const auto* bezier = std::get_if<BezierCurve>(&*curve);
+  if (bezier == nullptr) {
+    return Refused("Split",
+                   "a Bezier or power-form curve; use InsertKnots or "
+                   "Decompose for B-splines");
   }
-  absl::StatusOr<BezierCurveView> curve =
-      ValidatedBezier(request.curve().bezier(), limits);
-  if (!curve.ok()) return PrefixFieldPath(curve.status(), "curve.bezier");
-  if (request.parameters_size() == 0) {
+  const uint64_t cuts = static_cast<uint64_t>(request.parameters_size());
+  if (cuts == 0) {
     return InvalidFieldError("parameters", "needs at least one parameter");
   }
-  if (static_cast<size_t>(request.parameters_size()) >
-      limits.max_control_points) {
-    return absl::ResourceExhaustedError(
-        "parameters: more split parameters than --max_control_points");
+  if (absl::Status status = CheckPointLimit(cuts, limits, "parameters");
+      !status.ok()) {
+    return status;
   }
-  absl::StatusOr<std::vector<BezierCurveData>> pieces =
-      SplitBezierCurve(*curve, SpanOf(request.parameters()));
+  const BezierCurveView view = bezier->view();
+  const uint64_t values = SaturatingProduct(
+      cuts + 1, CurveValues(view.control_points.size(), bezier->dimension(),
+                            view.rational()));
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [view, &request,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<std::vector<BezierCurveData>> pieces =
+            SplitBezierCurve(view, SpanOf(request.parameters()));
+        if (!pieces.ok()) return pieces.status();
+        for (const BezierCurveData& piece : *pieces) {
+          if (execution.cancellation != nullptr &&
+              execution.cancellation->IsCancelled()) {
+            return execution.cancellation->status();
+          }
+          ToProto(piece, *response.add_pieces());
+        }
+        return absl::OkStatus();
+      }};
+}
+
+absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
+                                     const ServiceLimits& limits,
+                                     v1::InsertKnotsResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  const auto* bspline = std::get_if<BSplineCurve>(&*curve);
+  if (bspline == nullptr) {
+    return Refused("InsertKnots", "a B-spline or NURBS curve");
+  }
+  const BSplineCurveView view = bspline->view();
+  const uint64_t count =
+      view.control_points.size() + static_cast<uint64_t>(request.knots_size());
+  if (absl::Status status = CheckPointLimit(count, limits, "knots");
+      !status.ok()) {
+    return status;
+  }
+  const uint64_t values =
+      CurveValues(count, bspline->dimension(), view.rational()) + count +
+      static_cast<uint64_t>(view.degree) + 1;
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "knots");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
+                   .run = [view, &request,
+                           &response](const ExecutionContext&) -> absl::Status {
+                     absl::StatusOr<BSplineCurveData> refined =
+                         InsertKnots(view, SpanOf(request.knots()));
+                     if (!refined.ok()) return refined.status();
+                     ToProto(*refined, *response.mutable_curve());
+                     return absl::OkStatus();
+                   }};
+}
+
+// The Bezier pieces of a curve and the size of that answer.
+struct DecompositionPlan {
+  uint64_t values = 0;
+  absl::AnyInvocable<absl::StatusOr<BezierDecomposition>() const> decompose;
+};
+
+absl::StatusOr<DecompositionPlan> PlanPieces(const Curve& curve) {
+  return std::visit(
+      Overloaded{
+          [](const BezierCurve& bezier) -> absl::StatusOr<DecompositionPlan> {
+            const BezierCurveView view = bezier.view();
+            return DecompositionPlan{
+                .values = CurveValues(view.control_points.size(),
+                                      bezier.dimension(), view.rational()) +
+                          2,
+                .decompose = [view]() -> absl::StatusOr<BezierDecomposition> {
+                  BezierDecomposition single;
+                  single.segments.push_back(
+                      {.dimension = view.control_points.dimension,
+                       .coordinates = {view.control_points.coordinates.begin(),
+                                       view.control_points.coordinates.end()},
+                       .weights = {view.weights.begin(), view.weights.end()}});
+                  single.breakpoints = {0.0, 1.0};
+                  return single;
+                }};
+          },
+          [](const BSplineCurve& bspline) -> absl::StatusOr<DecompositionPlan> {
+            const BSplineCurveView view = bspline.view();
+            // At most one segment per span of the domain, n - p + 1.
+            const uint64_t spans =
+                view.control_points.size() - static_cast<uint64_t>(view.degree);
+            return DecompositionPlan{
+                .values =
+                    SaturatingProduct(
+                        spans, CurveValues(view.degree + 1, bspline.dimension(),
+                                           view.rational())) +
+                    spans + 1,
+                .decompose = [view] { return DecomposeBSplineCurve(view); }};
+          },
+          [](const HermiteCurve& hermite) -> absl::StatusOr<DecompositionPlan> {
+            const HermiteCurveView view = hermite.view();
+            const uint64_t pieces = view.points.size() - 1;
+            return DecompositionPlan{
+                .values =
+                    SaturatingProduct(
+                        pieces, CurveValues(4, hermite.dimension(), false)) +
+                    pieces + 1,
+                .decompose = [view]() -> absl::StatusOr<BezierDecomposition> {
+                  return DecomposeHermiteCurve(view);
+                }};
+          },
+          [](const LagrangeCurve&) -> absl::StatusOr<DecompositionPlan> {
+            return Refused("Decompose",
+                           "a Bezier, power-form, B-spline or Hermite curve");
+          }},
+      curve);
+}
+
+absl::StatusOr<UnaryWork> PlanDecompose(
+    const v1::DecomposeCurveRequest& request, const ServiceLimits& limits,
+    v1::DecomposeCurveResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  absl::StatusOr<DecompositionPlan> pieces = PlanPieces(*curve);
   if (!pieces.ok()) return pieces.status();
-  for (const BezierCurveData& piece : *pieces) {
-    ToProto(piece, *response.add_pieces());
-  }
-  return absl::OkStatus();
-}
-
-absl::Status Insert(const v1::InsertKnotsRequest& request,
-                    const ServiceLimits& limits,
-                    v1::InsertKnotsResponse& response) {
-  if (!request.curve().has_bspline()) {
-    return InvalidFieldError("curve",
-                             "InsertKnots takes a B-spline or NURBS curve");
-  }
-  absl::StatusOr<BSplineCurveView> curve =
-      ValidatedBSpline(request.curve().bspline(), limits);
-  if (!curve.ok()) return PrefixFieldPath(curve.status(), "curve.bspline");
-  if (absl::Status status = CheckPointLimit(
-          curve->control_points.size() + request.knots_size(), limits, "knots");
+  if (absl::Status status = UnaryAnswerCheck(pieces->values, limits, "curve");
       !status.ok()) {
     return status;
   }
-  absl::StatusOr<BSplineCurveData> refined =
-      InsertKnots(*curve, SpanOf(request.knots()));
-  if (!refined.ok()) return refined.status();
-  ToProto(*refined, *response.mutable_curve());
-  return absl::OkStatus();
+  const uint64_t values = pieces->values;
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [curve = *std::move(curve), pieces = *std::move(pieces),
+              &response](const ExecutionContext&) -> absl::Status {
+        absl::StatusOr<BezierDecomposition> decomposition = pieces.decompose();
+        if (!decomposition.ok()) return decomposition.status();
+        for (const BezierCurveData& segment : decomposition->segments) {
+          ToProto(segment, *response.add_segments());
+        }
+        response.mutable_breakpoints()->Add(decomposition->breakpoints.begin(),
+                                            decomposition->breakpoints.end());
+        return absl::OkStatus();
+      }};
 }
 
-// The Bezier pieces of a Hermite curve, one per segment.
-BezierDecomposition HermiteSegments(const HermiteCurveView& curve) {
-  BezierDecomposition decomposition;
-  decomposition.breakpoints = HermiteNodes(curve);
-  for (size_t k = 0; k + 1 < decomposition.breakpoints.size(); ++k) {
-    decomposition.segments.push_back({.dimension = curve.points.dimension,
-                                      .coordinates = HermiteSegmentBezier(
-                                          curve, decomposition.breakpoints, k),
-                                      .weights = {}});
-  }
-  return decomposition;
+// Points after `levels` doublings of `count` points (an upper bound: open
+// polygons lose a few per level), saturating.
+uint64_t SubdividedCount(uint64_t count, uint32_t levels) {
+  if (levels >= 63) return UINT64_MAX;
+  return SaturatingProduct(count, uint64_t{1} << levels);
 }
 
-absl::StatusOr<BezierDecomposition> Decompose(const v1::Curve& message,
-                                              const ServiceLimits& limits) {
-  switch (message.kind_case()) {
-    case v1::Curve::kBezier: {
-      absl::StatusOr<BezierCurveView> curve =
-          ValidatedBezier(message.bezier(), limits);
-      if (!curve.ok()) return PrefixFieldPath(curve.status(), "curve.bezier");
-      BezierDecomposition single;
-      single.segments.push_back(
-          {.dimension = curve->control_points.dimension,
-           .coordinates = {curve->control_points.coordinates.begin(),
-                           curve->control_points.coordinates.end()},
-           .weights = {curve->weights.begin(), curve->weights.end()}});
-      single.breakpoints = {0.0, 1.0};
-      return single;
-    }
-    case v1::Curve::kBspline: {
-      absl::StatusOr<BSplineCurveView> curve =
-          ValidatedBSpline(message.bspline(), limits);
-      if (!curve.ok()) return PrefixFieldPath(curve.status(), "curve.bspline");
-      return DecomposeBSplineCurve(*curve);
-    }
-    case v1::Curve::kPower: {
-      const PointsView coefficients = ViewOf(message.power().coefficients());
-      if (absl::Status status =
-              CheckDimensionLimit(message.power().coefficients().dimension(),
-                                  limits, "curve.power.coefficients");
-          !status.ok()) {
-        return status;
-      }
-      if (absl::Status status = PrefixFieldPath(
-              ValidatePoints(coefficients, "coefficients"), "curve.power");
-          !status.ok()) {
-        return status;
-      }
-      BezierDecomposition single;
-      single.segments.push_back({.dimension = coefficients.dimension,
-                                 .coordinates = PowerToBezier(coefficients),
-                                 .weights = {}});
-      single.breakpoints = {0.0, 1.0};
-      return single;
-    }
-    case v1::Curve::kHermite: {
-      const HermiteCurveView curve{
-          .points = ViewOf(message.hermite().points()),
-          .tangents = ViewOf(message.hermite().tangents()),
-          .nodes = SpanOf(message.hermite().nodes())};
-      if (absl::Status status =
-              CheckDimensionLimit(message.hermite().points().dimension(),
-                                  limits, "curve.hermite.points");
-          !status.ok()) {
-        return status;
-      }
-      if (absl::Status status =
-              PrefixFieldPath(ValidateHermiteCurve(curve), "curve.hermite");
-          !status.ok()) {
-        return status;
-      }
-      return HermiteSegments(curve);
-    }
+absl::StatusOr<UnaryWork> PlanSubdivide(const v1::SubdivideRequest& request,
+                                        const ServiceLimits& limits,
+                                        v1::SubdivideResponse& response) {
+  absl::StatusOr<PointsView> polygon =
+      PreparePoints(request.polygon(), limits, "polygon");
+  if (!polygon.ok()) return polygon.status();
+  SubdivisionScheme scheme;
+  switch (request.scheme()) {
+    case v1::SUBDIVISION_SCHEME_CHAIKIN:
+      scheme = SubdivisionScheme::kChaikin;
+      break;
+    case v1::SUBDIVISION_SCHEME_UNIFORM_BSPLINE:
+      scheme = SubdivisionScheme::kUniformBSpline;
+      break;
     default:
       return InvalidFieldError(
-          "curve",
-          "Decompose takes a Bezier, B-spline, Hermite or power-form "
-          "curve");
+          "scheme", absl::StrCat("choose CHAIKIN or UNIFORM_BSPLINE, got ",
+                                 request.scheme()));
   }
-}
-
-absl::Status Subdivide(const v1::SubdivideRequest& request,
-                       const ServiceLimits& limits,
-                       v1::SubdivideResponse& response) {
-  if (absl::Status status =
-          CheckDimensionLimit(request.polygon().dimension(), limits, "polygon");
+  if (request.levels() < 1) {
+    return InvalidFieldError("levels", "must be at least 1");
+  }
+  if (request.degree() > static_cast<uint32_t>(kMaxSubdivisionDegree)) {
+    return InvalidFieldError(
+        "degree", absl::StrCat("must be at most ", kMaxSubdivisionDegree));
+  }
+  const uint64_t last =
+      SaturatingProduct(SubdividedCount(polygon->size(), request.levels()),
+                        static_cast<uint64_t>(polygon->dimension));
+  // Every level is computed; with keep_levels every level is answered too,
+  // and the levels before the last add up to less than the last.
+  const uint64_t values = request.keep_levels() ? 3 * last : last;
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "levels");
       !status.ok()) {
     return status;
   }
-  const PointsView polygon = ViewOf(request.polygon());
-  if (absl::Status status = ValidatePoints(polygon, "polygon"); !status.ok()) {
-    return status;
-  }
-  if (request.scheme() == v1::SUBDIVISION_SCHEME_UNSPECIFIED) {
-    return InvalidFieldError("scheme", "choose CHAIKIN or UNIFORM_BSPLINE");
-  }
-  // Every level doubles the points: refuse answers over the output limit.
-  const double points = static_cast<double>(polygon.size()) *
-                        std::pow(2.0, static_cast<double>(request.levels()));
-  if (points * polygon.dimension >
-      static_cast<double>(limits.max_output_values)) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        "levels: ", request.levels(), " levels would make about ", points,
-        " points, over the server's limit (--max_output_values)"));
-  }
-  const SubdivisionScheme scheme =
-      request.scheme() == v1::SUBDIVISION_SCHEME_CHAIKIN
-          ? SubdivisionScheme::kChaikin
-          : SubdivisionScheme::kUniformBSpline;
-  absl::StatusOr<std::vector<std::vector<double>>> levels = SubdividePolygon(
-      polygon, request.closed(), scheme, static_cast<int>(request.degree()),
-      static_cast<int>(request.levels()));
-  if (!levels.ok()) return levels.status();
-  const uint32_t dimension = request.polygon().dimension();
-  for (size_t level = 0; level < levels->size(); ++level) {
-    const bool last = level + 1 == levels->size();
-    if (!last && !request.keep_levels()) continue;
-    v1::Points* out = last ? response.mutable_polygon() : response.add_levels();
-    out->set_dimension(dimension);
-    out->mutable_coordinates()->Add((*levels)[level].begin(),
-                                    (*levels)[level].end());
-    if (last && request.keep_levels()) *response.add_levels() = *out;
-  }
-  return absl::OkStatus();
+  return UnaryWork{.plan = AnswerPlan(values, 16 * last, limits),
+                   .run = [polygon = *polygon, scheme, &request,
+                           &response](const ExecutionContext&) -> absl::Status {
+                     absl::StatusOr<std::vector<std::vector<double>>> levels =
+                         SubdividePolygon(polygon, request.closed(), scheme,
+                                          static_cast<int>(request.degree()),
+                                          static_cast<int>(request.levels()));
+                     if (!levels.ok()) return levels.status();
+                     const uint32_t dimension = request.polygon().dimension();
+                     for (size_t level = 0; level < levels->size(); ++level) {
+                       const bool is_last = level + 1 == levels->size();
+                       if (!is_last && !request.keep_levels()) continue;
+                       v1::Points* out = is_last ? response.mutable_polygon()
+                                                 : response.add_levels();
+                       out->set_dimension(dimension);
+                       out->mutable_coordinates()->Add((*levels)[level].begin(),
+                                                       (*levels)[level].end());
+                       if (is_last && request.keep_levels())
+                         *response.add_levels() = *out;
+                     }
+                     return absl::OkStatus();
+                   }};
 }
 
-absl::Status Tessellate(const v1::TessellateCurveRequest& request,
-                        const ServiceLimits& limits,
-                        const CancellationToken& token,
-                        v1::TessellateCurveResponse& response) {
-  const size_t cap =
-      request.max_points() > 0
-          ? std::min<size_t>(request.max_points(), limits.max_parameters)
-          : limits.max_parameters;
-  absl::StatusOr<Polyline> polyline;
-  switch (request.curve().kind_case()) {
-    case v1::Curve::kBezier: {
-      absl::StatusOr<BezierCurveView> curve =
-          ValidatedBezier(request.curve().bezier(), limits);
-      if (!curve.ok()) return PrefixFieldPath(curve.status(), "curve.bezier");
-      polyline =
-          TessellateBezierCurve(*curve, request.tolerance(), cap, &token);
-      break;
-    }
-    case v1::Curve::kBspline: {
-      absl::StatusOr<BSplineCurveView> curve =
-          ValidatedBSpline(request.curve().bspline(), limits);
-      if (!curve.ok()) return PrefixFieldPath(curve.status(), "curve.bspline");
-      polyline =
-          TessellateBSplineCurve(*curve, request.tolerance(), cap, &token);
-      break;
-    }
-    default:
-      return InvalidFieldError(
-          "curve", "Tessellate takes a Bezier or B-spline/NURBS curve");
-  }
-  if (!polyline.ok()) return polyline.status();
-  response.mutable_points()->set_dimension(
-      static_cast<uint32_t>(polyline->dimension));
-  response.mutable_points()->mutable_coordinates()->Add(
-      polyline->points.begin(), polyline->points.end());
-  response.mutable_parameters()->Add(polyline->parameters.begin(),
-                                     polyline->parameters.end());
-  return absl::OkStatus();
+absl::StatusOr<UnaryWork> PlanTessellate(
+    const v1::TessellateCurveRequest& request, const ServiceLimits& limits,
+    v1::TessellateCurveResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  const int dimension = DimensionOf(*curve);
+  // A point costs its coordinates and its parameter.
+  const uint64_t per_point = static_cast<uint64_t>(dimension) + 1;
+  const uint64_t fit =
+      static_cast<uint64_t>(limits.max_message_bytes) / 8 / per_point;
+  const uint64_t requested =
+      request.max_points() > 0 ? request.max_points() : limits.max_parameters;
+  const uint64_t cap = std::min({requested, uint64_t{limits.max_parameters},
+                                 fit, limits.max_output_values / per_point});
+  using Tessellator = absl::AnyInvocable<absl::StatusOr<Polyline>(
+      size_t, const CancellationToken*) const>;
+  absl::StatusOr<Tessellator> tessellator = std::visit(
+      Overloaded{
+          [&](const BezierCurve& bezier) -> absl::StatusOr<Tessellator> {
+            return [view = bezier.view(), tolerance = request.tolerance()](
+                       size_t max_points, const CancellationToken* token) {
+              return TessellateBezierCurve(view, tolerance, max_points, token);
+            };
+          },
+          [&](const BSplineCurve& bspline) -> absl::StatusOr<Tessellator> {
+            return [view = bspline.view(), tolerance = request.tolerance()](
+                       size_t max_points, const CancellationToken* token) {
+              return TessellateBSplineCurve(view, tolerance, max_points, token);
+            };
+          },
+          [](const LagrangeCurve&) -> absl::StatusOr<Tessellator> {
+            return Refused("Tessellate",
+                           "a Bezier, power-form or B-spline/NURBS curve");
+          },
+          [](const HermiteCurve&) -> absl::StatusOr<Tessellator> {
+            return Refused("Tessellate",
+                           "a Bezier, power-form or B-spline/NURBS curve");
+          }},
+      *curve);
+  if (!tessellator.ok()) return tessellator.status();
+  const uint64_t values = cap * per_point;
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [curve = *std::move(curve), tessellator = *std::move(tessellator),
+              cap,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<Polyline> polyline =
+            tessellator(static_cast<size_t>(cap), execution.cancellation);
+        if (!polyline.ok()) return polyline.status();
+        response.mutable_points()->set_dimension(
+            static_cast<uint32_t>(polyline->dimension));
+        response.mutable_points()->mutable_coordinates()->Add(
+            polyline->points.begin(), polyline->points.end());
+        response.mutable_parameters()->Add(polyline->parameters.begin(),
+                                           polyline->parameters.end());
+        return absl::OkStatus();
+      }};
 }
 
 }  // namespace
 
-grpc::Status CurveServiceImpl::Split(grpc::ServerContext* context,
-                                     const v1::SplitCurveRequest* request,
-                                     v1::SplitCurveResponse* response) {
-  return RunRpc("CurveService.Split", context, *request, response,
-                [&](const CancellationToken&) {
-                  return freeform::server::Split(*request, limits_, *response);
-                });
+grpc::ServerUnaryReactor* CurveServiceImpl::Split(
+    grpc::CallbackServerContext* context, const v1::SplitCurveRequest* request,
+    v1::SplitCurveResponse* response) {
+  return frame_->Unary("CurveService.Split", context, request, response,
+                       [this, request, response] {
+                         return PlanSplit(*request, frame_->limits(),
+                                          *response);
+                       });
 }
 
-grpc::Status CurveServiceImpl::InsertKnots(
-    grpc::ServerContext* context, const v1::InsertKnotsRequest* request,
+grpc::ServerUnaryReactor* CurveServiceImpl::InsertKnots(
+    grpc::CallbackServerContext* context, const v1::InsertKnotsRequest* request,
     v1::InsertKnotsResponse* response) {
-  return RunRpc("CurveService.InsertKnots", context, *request, response,
-                [&](const CancellationToken&) {
-                  return Insert(*request, limits_, *response);
-                });
+  return frame_->Unary("CurveService.InsertKnots", context, request, response,
+                       [this, request, response] {
+                         return PlanInsert(*request, frame_->limits(),
+                                           *response);
+                       });
 }
 
-grpc::Status CurveServiceImpl::Decompose(
-    grpc::ServerContext* context, const v1::DecomposeCurveRequest* request,
+grpc::ServerUnaryReactor* CurveServiceImpl::Decompose(
+    grpc::CallbackServerContext* context,
+    const v1::DecomposeCurveRequest* request,
     v1::DecomposeCurveResponse* response) {
-  return RunRpc(
-      "CurveService.Decompose", context, *request, response,
-      [&](const CancellationToken&) -> absl::Status {
-        absl::StatusOr<BezierDecomposition> decomposition =
-            freeform::server::Decompose(request->curve(), limits_);
-        if (!decomposition.ok()) return decomposition.status();
-        for (const BezierCurveData& segment : decomposition->segments) {
-          ToProto(segment, *response->add_segments());
-        }
-        response->mutable_breakpoints()->Add(decomposition->breakpoints.begin(),
-                                             decomposition->breakpoints.end());
-        return absl::OkStatus();
-      });
+  return frame_->Unary("CurveService.Decompose", context, request, response,
+                       [this, request, response] {
+                         return PlanDecompose(*request, frame_->limits(),
+                                              *response);
+                       });
 }
 
-grpc::Status CurveServiceImpl::Subdivide(grpc::ServerContext* context,
-                                         const v1::SubdivideRequest* request,
-                                         v1::SubdivideResponse* response) {
-  return RunRpc("CurveService.Subdivide", context, *request, response,
-                [&](const CancellationToken&) {
-                  return freeform::server::Subdivide(*request, limits_,
-                                                     *response);
-                });
+grpc::ServerUnaryReactor* CurveServiceImpl::Subdivide(
+    grpc::CallbackServerContext* context, const v1::SubdivideRequest* request,
+    v1::SubdivideResponse* response) {
+  return frame_->Unary("CurveService.Subdivide", context, request, response,
+                       [this, request, response] {
+                         return PlanSubdivide(*request, frame_->limits(),
+                                              *response);
+                       });
 }
 
-grpc::Status CurveServiceImpl::Tessellate(
-    grpc::ServerContext* context, const v1::TessellateCurveRequest* request,
+grpc::ServerUnaryReactor* CurveServiceImpl::Tessellate(
+    grpc::CallbackServerContext* context,
+    const v1::TessellateCurveRequest* request,
     v1::TessellateCurveResponse* response) {
-  return RunRpc("CurveService.Tessellate", context, *request, response,
-                [&](const CancellationToken& token) {
-                  return freeform::server::Tessellate(*request, limits_, token,
-                                                      *response);
-                });
+  return frame_->Unary("CurveService.Tessellate", context, request, response,
+                       [this, request, response] {
+                         return PlanTessellate(*request, frame_->limits(),
+                                               *response);
+                       });
 }
 
 }  // namespace freeform::server

@@ -1,28 +1,42 @@
+// CurveService evaluation RPCs: Evaluate, EvaluateStream and EvaluateBasis.
 #include "curve_service.h"
 
 #include <algorithm>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "convert.h"
-#include "errors.h"
 #include "freeform/core/status.h"
-#include "prepared_curve.h"
-#include "rpc.h"
+#include "plan.h"
+#include "prepare.h"
 
 namespace freeform::server {
 namespace {
 
-// Everything an evaluation request resolves to before any math runs.
-struct EvaluationPlan {
-  PreparedCurve curve;
+// What an evaluation resolves to before any math runs: a curve or a basis,
+// the parameters, and the orders wanted.
+template <typename Geometry>
+struct Evaluation {
+  Geometry geometry;
   ParameterSet parameters;
   size_t orders = 1;  // derivative orders 0..orders-1
+  int dimension = 0;  // values per point and order
 
-  size_t ValuesPerParameter() const {
-    return orders * static_cast<size_t>(curve.dimension);
+  uint64_t ValuesPerParameter() const {
+    return orders * static_cast<uint64_t>(dimension);
+  }
+  uint64_t Values() const { return parameters.size() * ValuesPerParameter(); }
+
+  absl::Status Run(absl::Span<const double> values, CurveOutput output,
+                   const ExecutionContext& execution) const {
+    if constexpr (std::is_same_v<Geometry, Curve>) {
+      return EvaluateCurve(geometry, values, output, execution);
+    } else {
+      return EvaluateBasis(geometry, values, output, execution);
+    }
   }
 };
 
@@ -36,178 +50,190 @@ absl::Status CheckDerivativeOrder(uint32_t order, const ServiceLimits& limits) {
   return absl::OkStatus();
 }
 
-// Resolves the parameters against the prepared curve's domain and checks
-// the output limit.
-absl::StatusOr<EvaluationPlan> PlanFor(absl::StatusOr<PreparedCurve> curve,
-                                       const v1::Parameters& parameters,
-                                       uint32_t derivative_order,
-                                       const ServiceLimits& limits) {
-  if (!curve.ok()) return curve.status();
-  absl::StatusOr<ParameterSet> resolved =
-      ParameterSet::Resolve(parameters, curve->domain_start, curve->domain_end,
-                            limits.max_parameters);
+// Resolves the parameters against the domain and checks the output limit.
+template <typename Geometry>
+absl::StatusOr<Evaluation<Geometry>> Resolve(absl::StatusOr<Geometry> geometry,
+                                             int dimension,
+                                             const v1::Parameters& parameters,
+                                             uint32_t derivative_order,
+                                             const ServiceLimits& limits) {
+  if (!geometry.ok()) return geometry.status();
+  const ParameterDomain domain = DomainOf(*geometry);
+  absl::StatusOr<ParameterSet> resolved = ParameterSet::Resolve(
+      parameters, domain.start, domain.end, limits.max_parameters);
   if (!resolved.ok()) return PrefixFieldPath(resolved.status(), "parameters");
-  EvaluationPlan plan{.curve = *std::move(curve),
-                      .parameters = *std::move(resolved),
-                      .orders = derivative_order + 1u};
-  if (absl::Status status = CheckOutputLimit(
-          plan.parameters.size() * plan.ValuesPerParameter(), limits);
+  Evaluation<Geometry> evaluation{.geometry = *std::move(geometry),
+                                  .parameters = *std::move(resolved),
+                                  .orders = derivative_order + size_t{1},
+                                  .dimension = dimension};
+  if (absl::Status status = CheckOutputLimit(evaluation.Values(), limits);
       !status.ok()) {
     return status;
   }
-  return plan;
+  return evaluation;
 }
 
-absl::StatusOr<EvaluationPlan> PlanEvaluation(
+absl::StatusOr<Evaluation<Curve>> CurveEvaluation(
     const v1::EvaluateCurveRequest& request, const ServiceLimits& limits) {
   if (absl::Status status =
           CheckDerivativeOrder(request.derivative_order(), limits);
       !status.ok()) {
     return status;
   }
-  return PlanFor(
-      PrepareCurve(request.curve(), request.bezier_algorithm(), limits),
-      request.parameters(), request.derivative_order(), limits);
-}
-
-absl::StatusOr<EvaluationPlan> PlanBasisEvaluation(
-    const v1::EvaluateBasisRequest& request, const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDerivativeOrder(request.derivative_order(), limits);
-      !status.ok()) {
-    return status;
-  }
-  return PlanFor(PrepareBasis(request.basis(), limits), request.parameters(),
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits, "curve",
+                                             request.bezier_algorithm());
+  const int dimension = curve.ok() ? DimensionOf(*curve) : 0;
+  return Resolve(std::move(curve), dimension, request.parameters(),
                  request.derivative_order(), limits);
 }
 
-absl::Status CheckUnaryAnswerSize(const EvaluationPlan& plan,
-                                  const ServiceLimits& limits,
-                                  absl::string_view streaming_hint) {
-  return CheckMessageLimit(plan.parameters.size() * plan.ValuesPerParameter(),
-                           limits, streaming_hint);
-}
-
-// Adds the derivative arrays of `count` points to `response` and returns
-// spans over their (uninitialized) storage.
-std::vector<absl::Span<double>> AllocateDerivatives(
-    const EvaluationPlan& plan, size_t first, size_t count,
-    v1::EvaluateCurveResponse& response) {
-  response.set_dimension(static_cast<uint32_t>(plan.curve.dimension));
-  response.set_first_index(first);
-  response.set_count(static_cast<uint32_t>(count));
-  const size_t size = count * static_cast<size_t>(plan.curve.dimension);
+// Adds `orders` arrays of `size` values to a response and returns spans
+// over their (uninitialized) storage; `add` makes one array.
+template <typename AddArray>
+std::vector<absl::Span<double>> OutputArrays(size_t orders, size_t size,
+                                             AddArray add) {
   std::vector<absl::Span<double>> spans;
-  spans.reserve(plan.orders);
-  for (size_t k = 0; k < plan.orders; ++k) {
-    v1::Points* points = response.add_derivatives();
-    points->set_dimension(static_cast<uint32_t>(plan.curve.dimension));
-    spans.push_back(UninitializedArray(*points->mutable_coordinates(), size));
+  spans.reserve(orders);
+  for (size_t k = 0; k < orders; ++k) {
+    spans.push_back(UninitializedArray(*add(), size));
   }
   return spans;
 }
 
+// Evaluates parameters [first, last) into `response`.
+absl::Status EvaluateChunk(const Evaluation<Curve>& evaluation, size_t first,
+                           size_t last, const ExecutionContext& execution,
+                           v1::EvaluateCurveResponse& response) {
+  const uint32_t dimension = static_cast<uint32_t>(evaluation.dimension);
+  response.set_dimension(dimension);
+  response.set_first_index(first);
+  response.set_count(static_cast<uint32_t>(last - first));
+  const std::vector<absl::Span<double>> output =
+      OutputArrays(evaluation.orders, (last - first) * dimension, [&] {
+        v1::Points* points = response.add_derivatives();
+        points->set_dimension(dimension);
+        return points->mutable_coordinates();
+      });
+  std::vector<double> storage;
+  return evaluation.Run(evaluation.parameters.Values(first, last, storage),
+                        output, execution);
+}
+
+// Parameters per streamed chunk: the request's, or the default, within half
+// a message.
+size_t StreamChunk(uint32_t requested, uint64_t values_per_parameter,
+                   const ServiceLimits& limits) {
+  const uint64_t fit =
+      std::max<uint64_t>(1, static_cast<uint64_t>(limits.max_message_bytes) /
+                                2 / (8 * values_per_parameter));
+  return static_cast<size_t>(std::min<uint64_t>(
+      fit, requested > 0 ? requested : limits.default_stream_chunk));
+}
+
 }  // namespace
 
-CurveServiceImpl::CurveServiceImpl(ThreadPool* pool,
-                                   const ServiceLimits& limits)
-    : pool_(pool), limits_(limits), admission_(limits.max_concurrent_heavy) {}
-
-grpc::Status CurveServiceImpl::Evaluate(grpc::ServerContext* context,
-                                        const v1::EvaluateCurveRequest* request,
-                                        v1::EvaluateCurveResponse* response) {
-  return RunRpc(
-      "CurveService.Evaluate", context, *request, response,
-      [&](const CancellationToken& token) -> absl::Status {
-        absl::StatusOr<EvaluationPlan> plan = PlanEvaluation(*request, limits_);
-        if (!plan.ok()) return plan.status();
-        const size_t count = plan->parameters.size();
-        if (absl::Status status =
-                CheckUnaryAnswerSize(*plan, limits_, "; use EvaluateStream");
+grpc::ServerUnaryReactor* CurveServiceImpl::Evaluate(
+    grpc::CallbackServerContext* context,
+    const v1::EvaluateCurveRequest* request,
+    v1::EvaluateCurveResponse* response) {
+  return frame_->Unary(
+      "CurveService.Evaluate", context, request, response,
+      [this, request, response]() -> absl::StatusOr<UnaryWork> {
+        const ServiceLimits& limits = frame_->limits();
+        absl::StatusOr<Evaluation<Curve>> evaluation =
+            CurveEvaluation(*request, limits);
+        if (!evaluation.ok()) return evaluation.status();
+        if (absl::Status status = CheckMessageLimit(
+                evaluation->Values(), limits, "; use EvaluateStream");
             !status.ok()) {
           return status;
         }
-        absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
-            admission_.Admit(count > limits_.grain);
-        if (!ticket.ok()) return ticket.status();
-        std::vector<absl::Span<double>> output =
-            AllocateDerivatives(*plan, 0, count, *response);
-        std::vector<double> storage;
-        const ExecutionContext execution{
-            .pool = pool_, .cancellation = &token, .grain = limits_.grain};
-        return plan->curve.evaluate(plan->parameters.Values(0, count, storage),
-                                    output, execution);
+        const CallPlan plan = AnswerPlan(evaluation->Values(), 0, limits);
+        return UnaryWork{.plan = plan,
+                         .run = [evaluation = *std::move(evaluation),
+                                 response](const ExecutionContext& execution) {
+                           return EvaluateChunk(evaluation, 0,
+                                                evaluation.parameters.size(),
+                                                execution, *response);
+                         }};
       });
 }
 
-grpc::Status CurveServiceImpl::EvaluateStream(
-    grpc::ServerContext* context, const v1::EvaluateCurveRequest* request,
-    grpc::ServerWriter<v1::EvaluateCurveResponse>* writer) {
-  size_t streamed_bytes = 0;
-  return RunRpc(
-      "CurveService.EvaluateStream", context, *request, nullptr,
-      [&](const CancellationToken& token) -> absl::Status {
-        absl::StatusOr<EvaluationPlan> plan = PlanEvaluation(*request, limits_);
-        if (!plan.ok()) return plan.status();
-        const size_t per_parameter_bytes = plan->ValuesPerParameter() * 8;
-        const size_t max_chunk =
-            std::max<size_t>(1, static_cast<size_t>(limits_.max_message_bytes) /
-                                    2 / per_parameter_bytes);
-        const size_t chunk =
-            std::min(max_chunk, request->chunk_size() > 0
-                                    ? request->chunk_size()
-                                    : limits_.default_stream_chunk);
-        absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
-            admission_.Admit(plan->parameters.size() > limits_.grain);
-        if (!ticket.ok()) return ticket.status();
-        const ExecutionContext execution{
-            .pool = pool_, .cancellation = &token, .grain = limits_.grain};
-        std::vector<double> storage;
-        return StreamChunks<v1::EvaluateCurveResponse>(
-            plan->parameters.size(), chunk, token, writer, streamed_bytes,
-            [&](size_t first, size_t last,
-                v1::EvaluateCurveResponse& response) {
-              std::vector<absl::Span<double>> output =
-                  AllocateDerivatives(*plan, first, last - first, response);
-              return plan->curve.evaluate(
-                  plan->parameters.Values(first, last, storage), output,
-                  execution);
-            });
-      },
-      &streamed_bytes);
+grpc::ServerWriteReactor<v1::EvaluateCurveResponse>*
+CurveServiceImpl::EvaluateStream(grpc::CallbackServerContext* context,
+                                 const v1::EvaluateCurveRequest* request) {
+  using Work = StreamWork<v1::EvaluateCurveResponse>;
+  return frame_->Stream<v1::EvaluateCurveResponse>(
+      "CurveService.EvaluateStream", context, request,
+      [this, request]() -> absl::StatusOr<Work> {
+        const ServiceLimits& limits = frame_->limits();
+        absl::StatusOr<Evaluation<Curve>> evaluation =
+            CurveEvaluation(*request, limits);
+        if (!evaluation.ok()) return evaluation.status();
+        const size_t count = evaluation->parameters.size();
+        const size_t chunk = StreamChunk(
+            request->chunk_size(), evaluation->ValuesPerParameter(), limits);
+        auto shared =
+            std::make_shared<const Evaluation<Curve>>(*std::move(evaluation));
+        const uint64_t chunk_values = chunk * shared->ValuesPerParameter();
+        return Work{
+            .plan = {.memory_bytes = 2 * 8 * chunk_values * kChunksInFlight,
+                     .heavy = true},
+            .chunk_count = (count + chunk - 1) / chunk,
+            .prepare = {},
+            .fill = [shared, chunk, count](size_t k,
+                                           v1::EvaluateCurveResponse& response,
+                                           const ExecutionContext& execution) {
+              const size_t first = k * chunk;
+              return EvaluateChunk(*shared, first,
+                                   std::min(count, first + chunk), execution,
+                                   response);
+            }};
+      });
 }
 
-grpc::Status CurveServiceImpl::EvaluateBasis(
-    grpc::ServerContext* context, const v1::EvaluateBasisRequest* request,
+grpc::ServerUnaryReactor* CurveServiceImpl::EvaluateBasis(
+    grpc::CallbackServerContext* context,
+    const v1::EvaluateBasisRequest* request,
     v1::EvaluateBasisResponse* response) {
-  return RunRpc(
-      "CurveService.EvaluateBasis", context, *request, response,
-      [&](const CancellationToken& token) -> absl::Status {
-        absl::StatusOr<EvaluationPlan> plan =
-            PlanBasisEvaluation(*request, limits_);
-        if (!plan.ok()) return plan.status();
-        if (absl::Status status = CheckUnaryAnswerSize(*plan, limits_, "");
+  return frame_->Unary(
+      "CurveService.EvaluateBasis", context, request, response,
+      [this, request, response]() -> absl::StatusOr<UnaryWork> {
+        const ServiceLimits& limits = frame_->limits();
+        if (absl::Status status =
+                CheckDerivativeOrder(request->derivative_order(), limits);
             !status.ok()) {
           return status;
         }
-        const size_t count = plan->parameters.size();
-        absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
-            admission_.Admit(count > limits_.grain);
-        if (!ticket.ok()) return ticket.status();
-        response->set_function_count(
-            static_cast<uint32_t>(plan->curve.dimension));
-        response->set_count(static_cast<uint32_t>(count));
-        const size_t size = count * static_cast<size_t>(plan->curve.dimension);
-        std::vector<absl::Span<double>> output;
-        for (size_t k = 0; k < plan->orders; ++k) {
-          output.push_back(UninitializedArray(
-              *response->add_derivatives()->mutable_values(), size));
+        absl::StatusOr<CurveBasis> basis =
+            PrepareBasis(request->basis(), limits);
+        const int functions = basis.ok() ? FunctionCountOf(*basis) : 0;
+        absl::StatusOr<Evaluation<CurveBasis>> evaluation =
+            Resolve(std::move(basis), functions, request->parameters(),
+                    request->derivative_order(), limits);
+        if (!evaluation.ok()) return evaluation.status();
+        if (absl::Status status =
+                CheckMessageLimit(evaluation->Values(), limits);
+            !status.ok()) {
+          return status;
         }
-        std::vector<double> storage;
-        const ExecutionContext execution{
-            .pool = pool_, .cancellation = &token, .grain = limits_.grain};
-        return plan->curve.evaluate(plan->parameters.Values(0, count, storage),
-                                    output, execution);
+        return UnaryWork{
+            .plan = AnswerPlan(evaluation->Values(), 0, limits),
+            .run = [evaluation = *std::move(evaluation),
+                    response](const ExecutionContext& execution) {
+              const size_t count = evaluation.parameters.size();
+              response->set_function_count(
+                  static_cast<uint32_t>(evaluation.dimension));
+              response->set_count(static_cast<uint32_t>(count));
+              const std::vector<absl::Span<double>> output = OutputArrays(
+                  evaluation.orders, count * evaluation.dimension, [&] {
+                    return response->add_derivatives()->mutable_values();
+                  });
+              std::vector<double> storage;
+              return evaluation.Run(
+                  evaluation.parameters.Values(0, count, storage), output,
+                  execution);
+            }};
       });
 }
 

@@ -7,55 +7,60 @@
 #ifndef FREEFORM_SERVER_CURVE_SERVICE_H_
 #define FREEFORM_SERVER_CURVE_SERVICE_H_
 
-#include "freeform/core/thread_pool.h"
 #include "freeform/v1/curve_service.grpc.pb.h"
-#include "service_limits.h"
+#include "rpc.h"
 
 namespace freeform::server {
 
-class CurveServiceImpl final : public v1::CurveService::Service {
+class CurveServiceImpl final : public v1::CurveService::CallbackService {
  public:
-  // `pool` must outlive the service.
-  CurveServiceImpl(ThreadPool* pool, const ServiceLimits& limits);
+  // `frame` must outlive the service.
+  explicit CurveServiceImpl(RpcFrame* frame) : frame_(frame) {}
 
-  grpc::Status Evaluate(grpc::ServerContext* context,
-                        const v1::EvaluateCurveRequest* request,
-                        v1::EvaluateCurveResponse* response) override;
-  grpc::Status EvaluateStream(
-      grpc::ServerContext* context, const v1::EvaluateCurveRequest* request,
-      grpc::ServerWriter<v1::EvaluateCurveResponse>* writer) override;
-  grpc::Status EvaluateBasis(grpc::ServerContext* context,
-                             const v1::EvaluateBasisRequest* request,
-                             v1::EvaluateBasisResponse* response) override;
-  grpc::Status Split(grpc::ServerContext* context,
-                     const v1::SplitCurveRequest* request,
-                     v1::SplitCurveResponse* response) override;
-  grpc::Status InsertKnots(grpc::ServerContext* context,
-                           const v1::InsertKnotsRequest* request,
-                           v1::InsertKnotsResponse* response) override;
-  grpc::Status Decompose(grpc::ServerContext* context,
-                         const v1::DecomposeCurveRequest* request,
-                         v1::DecomposeCurveResponse* response) override;
-  grpc::Status Subdivide(grpc::ServerContext* context,
-                         const v1::SubdivideRequest* request,
-                         v1::SubdivideResponse* response) override;
-  grpc::Status Tessellate(grpc::ServerContext* context,
-                          const v1::TessellateCurveRequest* request,
-                          v1::TessellateCurveResponse* response) override;
-  grpc::Status ElevateDegree(grpc::ServerContext* context,
-                             const v1::ElevateCurveDegreeRequest* request,
-                             v1::ElevateCurveDegreeResponse* response) override;
-  grpc::Status ReduceDegree(grpc::ServerContext* context,
-                            const v1::ReduceCurveDegreeRequest* request,
-                            v1::ReduceCurveDegreeResponse* response) override;
-  grpc::Status Interpolate(grpc::ServerContext* context,
-                           const v1::InterpolateCurveRequest* request,
-                           v1::InterpolateCurveResponse* response) override;
+  grpc::ServerUnaryReactor* Evaluate(
+      grpc::CallbackServerContext* context,
+      const v1::EvaluateCurveRequest* request,
+      v1::EvaluateCurveResponse* response) override;
+  grpc::ServerWriteReactor<v1::EvaluateCurveResponse>* EvaluateStream(
+      grpc::CallbackServerContext* context,
+      const v1::EvaluateCurveRequest* request) override;
+  grpc::ServerUnaryReactor* EvaluateBasis(
+      grpc::CallbackServerContext* context,
+      const v1::EvaluateBasisRequest* request,
+      v1::EvaluateBasisResponse* response) override;
+  grpc::ServerUnaryReactor* Split(grpc::CallbackServerContext* context,
+                                  const v1::SplitCurveRequest* request,
+                                  v1::SplitCurveResponse* response) override;
+  grpc::ServerUnaryReactor* InsertKnots(
+      grpc::CallbackServerContext* context,
+      const v1::InsertKnotsRequest* request,
+      v1::InsertKnotsResponse* response) override;
+  grpc::ServerUnaryReactor* Decompose(
+      grpc::CallbackServerContext* context,
+      const v1::DecomposeCurveRequest* request,
+      v1::DecomposeCurveResponse* response) override;
+  grpc::ServerUnaryReactor* Subdivide(grpc::CallbackServerContext* context,
+                                      const v1::SubdivideRequest* request,
+                                      v1::SubdivideResponse* response) override;
+  grpc::ServerUnaryReactor* Tessellate(
+      grpc::CallbackServerContext* context,
+      const v1::TessellateCurveRequest* request,
+      v1::TessellateCurveResponse* response) override;
+  grpc::ServerUnaryReactor* ElevateDegree(
+      grpc::CallbackServerContext* context,
+      const v1::ElevateCurveDegreeRequest* request,
+      v1::ElevateCurveDegreeResponse* response) override;
+  grpc::ServerUnaryReactor* ReduceDegree(
+      grpc::CallbackServerContext* context,
+      const v1::ReduceCurveDegreeRequest* request,
+      v1::ReduceCurveDegreeResponse* response) override;
+  grpc::ServerUnaryReactor* Interpolate(
+      grpc::CallbackServerContext* context,
+      const v1::InterpolateCurveRequest* request,
+      v1::InterpolateCurveResponse* response) override;
 
  private:
-  ThreadPool* const pool_;
-  const ServiceLimits limits_;
-  HeavyWorkAdmission admission_;
+  RpcFrame* const frame_;
 };
 
 }  // namespace freeform::server

@@ -5,10 +5,14 @@
 // Prints "freeformd listening on HOST:PORT" on stdout once it serves (with
 // --listen=127.0.0.1:0 the kernel picks the port). SIGTERM or SIGINT: health
 // turns NOT_SERVING, in-flight RPCs get --grace_period to finish, exit 0.
+#include <malloc.h>
+#include <unistd.h>
+
 #include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <thread>
 
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
@@ -41,8 +45,10 @@ ABSL_FLAG(uint64_t, max_parameters, 10'000'000,
           "Most evaluation parameters per request");
 ABSL_FLAG(uint64_t, max_output_values, 64'000'000,
           "Most output numbers per request (streams included)");
-ABSL_FLAG(int, max_concurrent_heavy, 64,
-          "Large requests running at once; more get RESOURCE_EXHAUSTED");
+ABSL_FLAG(uint64_t, memory_budget, 768ull << 20,
+          "Bytes all calls together may hold for their answers and work; a "
+          "call that does not fit gets RESOURCE_EXHAUSTED. Keep it below the "
+          "container's memory limit, less about 100 MB for the process");
 
 namespace {
 
@@ -74,13 +80,29 @@ freeform::server::ServerOptions OptionsFromFlags() {
   limits.max_derivative_order = absl::GetFlag(FLAGS_max_derivative_order);
   limits.max_parameters = absl::GetFlag(FLAGS_max_parameters);
   limits.max_output_values = absl::GetFlag(FLAGS_max_output_values);
-  limits.max_concurrent_heavy = absl::GetFlag(FLAGS_max_concurrent_heavy);
+  limits.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget);
   return options;
 }
 
 }  // namespace
 
+// StopWithin makes sure the process is gone `limit` after the signal even
+// when a call or a connection would hold the drain longer: the graceful
+// path normally ends well before.
+void StopWithin(absl::Duration limit) {
+  std::thread([limit] {
+    absl::SleepFor(limit);
+    spdlog::warn("drain did not end within {}; exiting",
+                 absl::FormatDuration(limit));
+    spdlog::shutdown();
+    _exit(0);
+  }).detach();
+}
+
 int main(int argc, char** argv) {
+  // Large answers come from mmap and go back to the system when freed, so
+  // the resident size falls back after a burst of large calls.
+  mallopt(M_MMAP_THRESHOLD, 1 << 20);
   absl::SetProgramUsageMessage("freeform curve and surface gRPC server");
   absl::ParseCommandLine(argc, argv);
   ConfigureLogging();
@@ -109,6 +131,7 @@ int main(int argc, char** argv) {
   const absl::Duration grace = absl::GetFlag(FLAGS_grace_period);
   spdlog::info("signal {}: draining for up to {}", signal_number,
                absl::FormatDuration(grace));
+  StopWithin(grace + absl::Milliseconds(900));
   (*server)->Shutdown(absl::ToChronoMilliseconds(grace));
   (*server)->Wait();
   spdlog::info("stopped");

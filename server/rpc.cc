@@ -1,6 +1,10 @@
 #include "rpc.h"
 
-#include <chrono>
+#include <google/protobuf/descriptor.h>
+#include <google/protobuf/reflection.h>
+
+#include <cmath>
+#include <optional>
 
 #include "errors.h"
 #include "spdlog/spdlog.h"
@@ -11,7 +15,7 @@ namespace {
 // The call's deadline on the steady clock (gRPC reports it on the system
 // clock; an infinite deadline comes back as a far-future time point).
 std::optional<CancellationToken::Clock::time_point> SteadyDeadline(
-    const grpc::ServerContext& context) {
+    const grpc::CallbackServerContext& context) {
   const auto deadline = context.deadline();
   if (deadline == std::chrono::system_clock::time_point::max()) {
     return std::nullopt;
@@ -23,39 +27,177 @@ std::optional<CancellationToken::Clock::time_point> SteadyDeadline(
              remaining);
 }
 
+absl::Status QueueFull() {
+  return absl::ResourceExhaustedError(
+      "the server's work queue is full; retry later");
+}
+
+// A unary call: plan, reserve, run (inline or on the pool), answer.
+class UnaryCall final : public grpc::ServerUnaryReactor {
+ public:
+  UnaryCall(RpcFrame* frame, absl::string_view method,
+            grpc::CallbackServerContext* context,
+            const google::protobuf::Message* request,
+            google::protobuf::Message* response, UnaryPlanner planner)
+      : record_(frame, method, context, request),
+        response_(response),
+        planner_(std::move(planner)) {}
+
+  void Start() {
+    if (record_.request_bytes() > kInlinePlanningBytes) {
+      if (!record_.Schedule([this] { PlanAndRun(/*on_pool=*/true); })) {
+        Answer(QueueFull());
+      }
+      return;
+    }
+    PlanAndRun(/*on_pool=*/false);
+  }
+
+  void OnCancel() override { record_.Cancel(); }
+  void OnDone() override {
+    record_.Done(status_, response_bytes_);
+    delete this;
+  }
+
+ private:
+  void PlanAndRun(bool on_pool) {
+    if (record_.token().IsCancelled()) return Answer(record_.token().status());
+    absl::StatusOr<UnaryWork> work = std::move(planner_)();
+    if (!work.ok()) return Answer(work.status());
+    if (absl::Status status = record_.Reserve(work->plan); !status.ok()) {
+      return Answer(status);
+    }
+    run_ = std::move(work->run);
+    if (work->plan.heavy && !on_pool) {
+      if (!record_.Schedule([this] { Run(); })) Answer(QueueFull());
+      return;
+    }
+    Run();
+  }
+
+  void Run() { Answer(std::move(run_)(record_.execution())); }
+
+  void Answer(absl::Status status) {
+    if (status.ok() && kCheckAnswers) status = CheckAnswerFinite(*response_);
+    if (status.ok()) response_bytes_ = response_->ByteSizeLong();
+    status_ = status;
+    Finish(AnswerStatus(status));
+  }
+
+  CallRecord record_;
+  google::protobuf::Message* const response_;
+  UnaryPlanner planner_;
+  absl::AnyInvocable<absl::Status(const ExecutionContext&) &&> run_;
+  absl::Status status_;
+  size_t response_bytes_ = 0;
+};
+
+// Every double of `message` and its submessages is finite.
+bool AllFinite(const google::protobuf::Message& message) {
+  using google::protobuf::FieldDescriptor;
+  const google::protobuf::Reflection* reflection = message.GetReflection();
+  std::vector<const FieldDescriptor*> fields;
+  reflection->ListFields(message, &fields);
+  for (const FieldDescriptor* field : fields) {
+    if (field->cpp_type() == FieldDescriptor::CPPTYPE_DOUBLE) {
+      if (field->is_repeated()) {
+        for (const double value :
+             reflection->GetRepeatedFieldRef<double>(message, field)) {
+          if (!std::isfinite(value)) return false;
+        }
+      } else if (!std::isfinite(reflection->GetDouble(message, field))) {
+        return false;
+      }
+    } else if (field->cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE) {
+      if (field->is_repeated()) {
+        const int size = reflection->FieldSize(message, field);
+        for (int i = 0; i < size; ++i) {
+          if (!AllFinite(reflection->GetRepeatedMessage(message, field, i))) {
+            return false;
+          }
+        }
+      } else if (!AllFinite(reflection->GetMessage(message, field))) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
-grpc::Status RunRpc(
-    absl::string_view method, grpc::ServerContext* context,
-    const google::protobuf::Message& request,
-    const google::protobuf::Message* response,
-    absl::FunctionRef<absl::Status(const CancellationToken&)> handler,
-    const size_t* streamed_bytes) {
-  const auto started = std::chrono::steady_clock::now();
-  CancellationToken token;
+CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
+                       grpc::CallbackServerContext* context,
+                       const google::protobuf::Message* request)
+    : frame_(frame),
+      method_(method),
+      context_(context),
+      request_bytes_(request->ByteSizeLong()),
+      started_(std::chrono::steady_clock::now()) {
   if (auto deadline = SteadyDeadline(*context); deadline.has_value()) {
-    token.SetDeadline(*deadline);
+    token_.SetDeadline(*deadline);
   }
-  token.SetPoll([context] { return context->IsCancelled(); });
+  token_.SetPoll([context] { return context->IsCancelled(); });
+}
 
-  const absl::Status result = handler(token);
-  grpc::Status status = ToGrpcStatus(result);
+ExecutionContext CallRecord::execution() const {
+  return {.pool = frame_->pool(),
+          .cancellation = &token_,
+          .grain = frame_->limits().grain};
+}
 
+absl::Status CallRecord::Reserve(const CallPlan& plan) {
+  // The request stays in memory for the whole call too.
+  absl::StatusOr<MemoryBudget::Reservation> reservation =
+      frame_->budget().Reserve(plan.memory_bytes + request_bytes_, method_);
+  if (!reservation.ok()) return reservation.status();
+  reservation_ = *std::move(reservation);
+  return absl::OkStatus();
+}
+
+bool CallRecord::Schedule(absl::AnyInvocable<void() &&> task) {
+  return frame_->pool()->TrySchedule(std::move(task));
+}
+
+void CallRecord::Done(const absl::Status& status, size_t response_bytes) {
+  reservation_ = MemoryBudget::Reservation();
+  const bool failed = !status.ok();
+  const auto level = failed && status.code() == absl::StatusCode::kInternal
+                         ? spdlog::level::err
+                         : spdlog::level::info;
+  if (!spdlog::should_log(level)) return;
   const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
-                          std::chrono::steady_clock::now() - started)
+                          std::chrono::steady_clock::now() - started_)
                           .count();
-  const size_t response_bytes =
-      response != nullptr && status.ok()
-          ? response->ByteSizeLong()
-          : (streamed_bytes != nullptr ? *streamed_bytes : 0);
-  spdlog::info(
-      "rpc method={} peer={} request_bytes={} response_bytes={} "
-      "status={} micros={}{}{}",
-      std::string(method), context->peer(), request.ByteSizeLong(),
-      response_bytes, absl::StatusCodeToString(result.code()), micros,
-      status.ok() ? "" : " error=\"",
-      status.ok() ? "" : status.error_message() + "\"");
-  return status;
+  spdlog::log(level,
+              "rpc method={} peer={} request_bytes={} response_bytes={} "
+              "status={} micros={}{}{}{}",
+              std::string(method_), context_->peer(), request_bytes_,
+              response_bytes, absl::StatusCodeToString(status.code()), micros,
+              failed ? " error=\"" : "",
+              failed ? std::string(status.message()) : std::string(),
+              failed ? "\"" : "");
+}
+
+grpc::ServerUnaryReactor* RpcFrame::Unary(
+    absl::string_view method, grpc::CallbackServerContext* context,
+    const google::protobuf::Message* request,
+    google::protobuf::Message* response, UnaryPlanner planner) {
+  auto* call = new UnaryCall(this, method, context, request, response,
+                             std::move(planner));
+  call->Start();
+  return call;
+}
+
+absl::Status CheckAnswerFinite(const google::protobuf::Message& answer) {
+  if (AllFinite(answer)) return absl::OkStatus();
+  return absl::InternalError(
+      "the answer holds a value that is not finite (a server bug: please "
+      "report the request)");
+}
+
+grpc::Status AnswerStatus(const absl::Status& status) {
+  return ToGrpcStatus(status);
 }
 
 }  // namespace freeform::server

@@ -1,59 +1,356 @@
-// RunRpc: the frame every freeformd handler runs in.
+// RpcFrame: the frame every freeformd RPC runs in, on gRPC's callback API.
 //
-// It builds the RPC's CancellationToken (the call's deadline plus the
-// client's cancellation), runs the handler, turns its absl::Status into a
-// grpc::Status with field-path details, and writes one access-log line:
-// method, peer, request and response bytes, status and microseconds.
-// Thread-safe.
+// A handler only plans: from its request it returns the call's plan (the
+// memory its answer and work need, whether the work is heavy) and the work
+// itself. The frame does the rest, the same way for every RPC:
+//   1. plans on the gRPC thread, or on the pool for a large request;
+//   2. reserves the planned memory from the server's one MemoryBudget
+//      (RESOURCE_EXHAUSTED at once when it does not fit);
+//   3. runs light work inline and heavy work on the thread pool, under a
+//      CancellationToken that carries the deadline and client cancellation;
+//   4. streams chunk after chunk with compute and transfer overlapped: up to
+//      kChunksInFlight chunks are computed on the pool while the earlier
+//      ones are written;
+//   5. answers with the status (field paths as google.rpc.BadRequest), and
+//      writes one access-log line: method, peer, sizes, status, microseconds.
+// In debug and sanitizer builds it also checks that every OK answer is
+// finite. Thread-safe: one frame serves every call.
 #ifndef FREEFORM_SERVER_RPC_H_
 #define FREEFORM_SERVER_RPC_H_
 
 #include <google/protobuf/message.h>
 #include <grpcpp/server_context.h>
-#include <grpcpp/support/sync_stream.h>
+#include <grpcpp/support/server_callback.h>
 
-#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
-#include "absl/functional/function_ref.h"
+#include "absl/functional/any_invocable.h"
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "admission.h"
 #include "freeform/core/cancellation.h"
+#include "freeform/core/thread_pool.h"
+#include "service_limits.h"
 
 namespace freeform::server {
 
-// RunRpc runs `handler` for `method`. Field paths in the handler's errors
-// must be full paths into the request. `response` may be null for streaming
-// RPCs (the logged size is then `*streamed_bytes`, when given).
-grpc::Status RunRpc(
-    absl::string_view method, grpc::ServerContext* context,
-    const google::protobuf::Message& request,
-    const google::protobuf::Message* response,
-    absl::FunctionRef<absl::Status(const CancellationToken&)> handler,
-    const size_t* streamed_bytes = nullptr);
+// What a call needs, decided from its request before any work starts.
+struct CallPlan {
+  // Peak memory of the call: its answer (counted twice, the message and its
+  // serialized copy) plus its working memory.
+  uint64_t memory_bytes = 0;
+  // Large work runs on the thread pool, small work on the gRPC thread.
+  bool heavy = false;
+};
 
-// StreamChunks writes the answer for items [0, total) as consecutive chunks
-// of at most `chunk` items: `fill(first, last, response)` fills one message,
-// which is then written. Stops early when the token or the client stops;
-// adds the bytes written to `streamed_bytes`.
+// A planned unary call: run() fills the response.
+struct UnaryWork {
+  CallPlan plan;
+  absl::AnyInvocable<absl::Status(const ExecutionContext&) &&> run;
+};
+
+// A planned streaming call: prepare() runs once first when set and returns
+// the number of chunks (an answer made before it is cut, such as a mesh);
+// otherwise there are chunk_count chunks. fill(k, response) writes chunk k
+// into a cleared message; fills of different chunks may run at once.
 template <typename Response>
-absl::Status StreamChunks(
-    size_t total, size_t chunk, const CancellationToken& token,
-    grpc::ServerWriter<Response>* writer, size_t& streamed_bytes,
-    absl::FunctionRef<absl::Status(size_t, size_t, Response&)> fill) {
-  Response response;
-  for (size_t first = 0; first < total; first += chunk) {
-    if (token.IsCancelled()) return token.status();
-    response.Clear();
-    const size_t last = std::min(total, first + chunk);
-    if (absl::Status status = fill(first, last, response); !status.ok()) {
-      return status;
+struct StreamWork {
+  CallPlan plan;
+  size_t chunk_count = 0;
+  absl::AnyInvocable<absl::StatusOr<size_t>(const ExecutionContext&)> prepare;
+  absl::AnyInvocable<absl::Status(size_t, Response&, const ExecutionContext&)>
+      fill;
+};
+
+using UnaryPlanner = absl::AnyInvocable<absl::StatusOr<UnaryWork>() &&>;
+template <typename Response>
+using StreamPlanner =
+    absl::AnyInvocable<absl::StatusOr<StreamWork<Response>>() &&>;
+
+// Chunks of one stream computed or written at once.
+inline constexpr size_t kChunksInFlight = 3;
+
+class RpcFrame;
+
+// The bookkeeping every call shares: token, timing, reservation, log line.
+class CallRecord {
+ public:
+  CallRecord(RpcFrame* frame, absl::string_view method,
+             grpc::CallbackServerContext* context,
+             const google::protobuf::Message* request);
+
+  RpcFrame& frame() { return *frame_; }
+  const CancellationToken& token() const { return token_; }
+  ExecutionContext execution() const;
+  size_t request_bytes() const { return request_bytes_; }
+  // Reserve takes the plan's memory from the budget.
+  absl::Status Reserve(const CallPlan& plan);
+  // Schedule runs `task` on the pool; false when its queue is full.
+  bool Schedule(absl::AnyInvocable<void() &&> task);
+  void Cancel() { token_.Cancel(); }
+  // Done writes the access-log line for the call's final status.
+  void Done(const absl::Status& status, size_t response_bytes);
+
+ private:
+  RpcFrame* const frame_;
+  const absl::string_view method_;
+  grpc::CallbackServerContext* const context_;
+  const size_t request_bytes_;
+  const std::chrono::steady_clock::time_point started_;
+  CancellationToken token_;
+  MemoryBudget::Reservation reservation_;
+};
+
+class RpcFrame {
+ public:
+  // `pool` and `budget` must outlive the frame.
+  RpcFrame(ThreadPool* pool, MemoryBudget* budget, const ServiceLimits& limits)
+      : pool_(pool), budget_(budget), limits_(limits) {}
+
+  const ServiceLimits& limits() const { return limits_; }
+  ThreadPool* pool() const { return pool_; }
+  MemoryBudget& budget() const { return *budget_; }
+
+  // Unary serves a unary call whose handler is `planner`.
+  grpc::ServerUnaryReactor* Unary(absl::string_view method,
+                                  grpc::CallbackServerContext* context,
+                                  const google::protobuf::Message* request,
+                                  google::protobuf::Message* response,
+                                  UnaryPlanner planner);
+
+  // Stream serves a server-streaming call whose handler is `planner`.
+  template <typename Response>
+  grpc::ServerWriteReactor<Response>* Stream(
+      absl::string_view method, grpc::CallbackServerContext* context,
+      const google::protobuf::Message* request,
+      StreamPlanner<Response> planner);
+
+ private:
+  ThreadPool* const pool_;
+  MemoryBudget* const budget_;
+  const ServiceLimits limits_;
+};
+
+// Requests larger than this are planned on the pool, not the gRPC thread.
+inline constexpr size_t kInlinePlanningBytes = 64 * 1024;
+
+// CheckAnswerFinite returns INTERNAL when an OK answer holds a NaN or an
+// infinity; the frame calls it in debug and sanitizer builds.
+absl::Status CheckAnswerFinite(const google::protobuf::Message& answer);
+
+// Debug and sanitizer builds check every OK answer (CheckAnswerFinite).
+#ifdef NDEBUG
+inline constexpr bool kCheckAnswers = false;
+#else
+inline constexpr bool kCheckAnswers = true;
+#endif
+
+// AnswerStatus converts a call's final status for the wire, with field-path
+// details (errors.h).
+grpc::Status AnswerStatus(const absl::Status& status);
+
+// A server-streaming call: compute on the pool overlapped with writes.
+template <typename Response>
+class StreamCall final : public grpc::ServerWriteReactor<Response> {
+ public:
+  StreamCall(RpcFrame* frame, absl::string_view method,
+             grpc::CallbackServerContext* context,
+             const google::protobuf::Message* request,
+             StreamPlanner<Response> planner)
+      : record_(frame, method, context, request),
+        planner_(std::move(planner)) {}
+
+  void Start() {
+    if (record_.request_bytes() > kInlinePlanningBytes) {
+      if (!record_.Schedule([this] { Plan(); })) Fail(Busy());
+      return;
     }
-    streamed_bytes += response.ByteSizeLong();
-    if (!writer->Write(response)) {
-      return absl::CancelledError("the client stopped reading");
+    Plan();
+  }
+
+  void OnCancel() override { record_.Cancel(); }
+  void OnWriteDone(bool ok) override {
+    std::vector<Action> actions;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      writing_ = false;
+      slots_[next_write_ % kChunksInFlight].state = SlotState::kFree;
+      ++next_write_;
+      if (!ok && error_.ok()) {
+        error_ = absl::CancelledError("the client stopped reading");
+      }
+      actions = PumpLocked();
+    }
+    Execute(std::move(actions));
+  }
+  void OnDone() override {
+    record_.Done(final_status_, streamed_bytes_);
+    delete this;
+  }
+
+ private:
+  enum class SlotState { kFree, kComputing, kReady };
+  struct Slot {
+    SlotState state = SlotState::kFree;
+    size_t chunk = 0;
+    Response message;
+  };
+  // What to do once the lock is released.
+  struct Action {
+    enum Kind { kCompute, kWrite, kFinish } kind;
+    size_t slot = 0;
+  };
+
+  static absl::Status Busy() {
+    return absl::ResourceExhaustedError(
+        "the server's work queue is full; retry later");
+  }
+
+  void Plan() {
+    absl::StatusOr<StreamWork<Response>> work = std::move(planner_)();
+    if (!work.ok()) return Fail(work.status());
+    if (absl::Status status = record_.Reserve(work->plan); !status.ok()) {
+      return Fail(status);
+    }
+    work_ = *std::move(work);
+    if (!work_.prepare) return Begin();
+    if (!record_.Schedule([this] {
+          absl::StatusOr<size_t> chunks = work_.prepare(record_.execution());
+          if (!chunks.ok()) return Fail(chunks.status());
+          {
+            std::lock_guard<std::mutex> lock(mutex_);
+            work_.chunk_count = *chunks;
+          }
+          Begin();
+        })) {
+      Fail(Busy());
     }
   }
-  return absl::OkStatus();
+
+  void Begin() {
+    std::vector<Action> actions;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      actions = PumpLocked();
+    }
+    Execute(std::move(actions));
+  }
+
+  void Fail(const absl::Status& status) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      error_ = status;
+    }
+    Begin();
+  }
+
+  // Decides the next steps under the lock.
+  std::vector<Action> PumpLocked() {
+    std::vector<Action> actions;
+    if (finished_) return actions;
+    if (error_.ok() && record_.token().IsCancelled()) {
+      error_ = record_.token().status();
+    }
+    while (error_.ok() && next_compute_ < work_.chunk_count &&
+           next_compute_ < next_write_ + kChunksInFlight) {
+      const size_t slot = next_compute_ % kChunksInFlight;
+      slots_[slot].state = SlotState::kComputing;
+      slots_[slot].chunk = next_compute_++;
+      ++computing_;
+      actions.push_back({Action::kCompute, slot});
+    }
+    const size_t slot = next_write_ % kChunksInFlight;
+    if (error_.ok() && !writing_ && next_write_ < work_.chunk_count &&
+        slots_[slot].state == SlotState::kReady &&
+        slots_[slot].chunk == next_write_) {
+      writing_ = true;
+      actions.push_back({Action::kWrite, slot});
+    }
+    const bool all_written = next_write_ == work_.chunk_count;
+    if (!writing_ && computing_ == 0 && (all_written || !error_.ok())) {
+      finished_ = true;
+      final_status_ = error_;
+      actions.push_back({Action::kFinish, 0});
+    }
+    return actions;
+  }
+
+  void Execute(std::vector<Action> actions) {
+    for (const Action& action : actions) {
+      switch (action.kind) {
+        case Action::kCompute:
+          if (!record_.Schedule(
+                  [this, slot = action.slot] { Compute(slot); })) {
+            Computed(action.slot, Busy());
+          }
+          break;
+        case Action::kWrite:
+          streamed_bytes_ += slots_[action.slot].message.ByteSizeLong();
+          this->StartWrite(&slots_[action.slot].message);
+          break;
+        case Action::kFinish:
+          this->Finish(AnswerStatus(final_status_));
+          break;
+      }
+    }
+  }
+
+  void Compute(size_t slot) {
+    Response& message = slots_[slot].message;
+    message.Clear();
+    absl::Status status =
+        work_.fill(slots_[slot].chunk, message, record_.execution());
+    if (status.ok() && kCheckAnswers) status = CheckAnswerFinite(message);
+    Computed(slot, status);
+  }
+
+  void Computed(size_t slot, const absl::Status& status) {
+    std::vector<Action> actions;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      --computing_;
+      if (status.ok()) {
+        slots_[slot].state = SlotState::kReady;
+      } else if (error_.ok()) {
+        error_ = status;
+      }
+      actions = PumpLocked();
+    }
+    Execute(std::move(actions));
+  }
+
+  CallRecord record_;
+  StreamPlanner<Response> planner_;
+  StreamWork<Response> work_;
+  std::mutex mutex_;
+  std::array<Slot, kChunksInFlight> slots_;
+  size_t next_compute_ = 0;
+  size_t next_write_ = 0;
+  size_t computing_ = 0;
+  bool writing_ = false;
+  bool finished_ = false;
+  absl::Status error_;
+  absl::Status final_status_;
+  size_t streamed_bytes_ = 0;
+};
+
+template <typename Response>
+grpc::ServerWriteReactor<Response>* RpcFrame::Stream(
+    absl::string_view method, grpc::CallbackServerContext* context,
+    const google::protobuf::Message* request, StreamPlanner<Response> planner) {
+  auto* call = new StreamCall<Response>(this, method, context, request,
+                                        std::move(planner));
+  call->Start();
+  return call;
 }
 
 }  // namespace freeform::server

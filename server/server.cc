@@ -53,10 +53,14 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
           ? options.threads
           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   server->pool_ = std::make_unique<ThreadPool>(threads);
+  server->budget_ =
+      std::make_unique<MemoryBudget>(options.limits.memory_budget_bytes);
+  server->frame_ = std::make_unique<RpcFrame>(
+      server->pool_.get(), server->budget_.get(), options.limits);
   server->curve_service_ =
-      std::make_unique<CurveServiceImpl>(server->pool_.get(), options.limits);
+      std::make_unique<CurveServiceImpl>(server->frame_.get());
   server->surface_service_ =
-      std::make_unique<SurfaceServiceImpl>(server->pool_.get(), options.limits);
+      std::make_unique<SurfaceServiceImpl>(server->frame_.get());
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();

@@ -17,7 +17,9 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "admission.h"
 #include "freeform/core/thread_pool.h"
+#include "rpc.h"
 #include "service_limits.h"
 
 namespace freeform::server {
@@ -49,6 +51,8 @@ class FreeformServer {
 
   // port returns the bound port.
   int port() const { return port_; }
+  // budget returns the server's memory budget (admission.h).
+  const MemoryBudget& budget() const { return *budget_; }
   // pool_size returns the number of math threads.
   int pool_size() const { return pool_->size(); }
   // InProcessChannel returns a channel that skips the network.
@@ -62,6 +66,8 @@ class FreeformServer {
   FreeformServer() = default;
 
   std::unique_ptr<ThreadPool> pool_;
+  std::unique_ptr<MemoryBudget> budget_;
+  std::unique_ptr<RpcFrame> frame_;
   std::unique_ptr<CurveServiceImpl> curve_service_;
   std::unique_ptr<SurfaceServiceImpl> surface_service_;
   std::unique_ptr<grpc::Server> server_;

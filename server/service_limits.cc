@@ -32,17 +32,20 @@ absl::Status CheckDegreeLimit(int64_t degree, const ServiceLimits& limits,
 absl::Status CheckPointLimit(uint64_t count, const ServiceLimits& limits,
                              absl::string_view field) {
   if (count > limits.max_control_points) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        field, ": ", count, " points exceed the server's limit of ",
-        limits.max_control_points, " (--max_control_points)"));
+    return ExhaustedFieldError(
+        field,
+        absl::StrCat(count, " points exceed the server's limit of ",
+                     limits.max_control_points, " (--max_control_points)"));
   }
   return absl::OkStatus();
 }
 
-absl::Status CheckOutputLimit(uint64_t values, const ServiceLimits& limits) {
+absl::Status CheckOutputLimit(uint64_t values, const ServiceLimits& limits,
+                              absl::string_view field) {
   if (values > limits.max_output_values) {
-    return absl::ResourceExhaustedError(
-        absl::StrCat("parameters: the answer would hold ", values,
+    return ExhaustedFieldError(
+        field,
+        absl::StrCat("the answer would hold ", values,
                      " numbers, over the server's limit of ",
                      limits.max_output_values, " (--max_output_values)"));
   }
@@ -50,12 +53,16 @@ absl::Status CheckOutputLimit(uint64_t values, const ServiceLimits& limits) {
 }
 
 absl::Status CheckMessageLimit(uint64_t values, const ServiceLimits& limits,
-                               absl::string_view hint) {
-  const uint64_t bytes = values * sizeof(double);
-  if (bytes > static_cast<uint64_t>(limits.max_message_bytes)) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        "parameters: the answer would take ", bytes,
-        " bytes, over the message limit of ", limits.max_message_bytes, hint));
+                               absl::string_view hint,
+                               absl::string_view field) {
+  const uint64_t max_values =
+      static_cast<uint64_t>(limits.max_message_bytes) / sizeof(double);
+  if (values > max_values) {
+    return ExhaustedFieldError(
+        field,
+        absl::StrCat("the answer would take about ", values, " numbers (",
+                     values / 131072, " MiB), over the message limit of ",
+                     limits.max_message_bytes, " bytes", hint));
   }
   return absl::OkStatus();
 }

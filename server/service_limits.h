@@ -1,15 +1,12 @@
-// ServiceLimits: the request limits freeformd enforces, and the admission
-// control that bounds concurrent heavy work.
+// ServiceLimits: the request limits freeformd enforces, and the checks that
+// name them.
 //
 // Every limit is a server flag with a safe default; a request over a limit
-// gets RESOURCE_EXHAUSTED naming the limit. HeavyWorkAdmission hands out at
-// most `capacity` tickets for batches that go to the thread pool, so a
-// flood of big requests is refused instead of queueing without bound.
-// HeavyWorkAdmission is thread-safe.
+// gets RESOURCE_EXHAUSTED naming the limit (or INVALID_ARGUMENT for a rule
+// such as the highest degree). Thread-compatible.
 #ifndef FREEFORM_SERVER_SERVICE_LIMITS_H_
 #define FREEFORM_SERVER_SERVICE_LIMITS_H_
 
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 
@@ -36,8 +33,9 @@ struct ServiceLimits {
   size_t max_output_values = 64'000'000;
   // Items per chunk on the thread pool; smaller batches run inline.
   size_t grain = 4096;
-  // Heavy (pool) requests running at once; more get RESOURCE_EXHAUSTED.
-  int max_concurrent_heavy = 64;
+  // Memory all calls together may hold for their answers and work
+  // (admission.h); a call that does not fit gets RESOURCE_EXHAUSTED.
+  uint64_t memory_budget_bytes = 768ull << 20;
   // Points per streamed chunk when the request does not say.
   size_t default_stream_chunk = 65536;
 };
@@ -58,56 +56,17 @@ absl::Status CheckDegreeLimit(int64_t degree, const ServiceLimits& limits,
 absl::Status CheckPointLimit(uint64_t count, const ServiceLimits& limits,
                              absl::string_view field);
 
-// CheckOutputLimit returns RESOURCE_EXHAUSTED naming "parameters" when an
-// answer of `values` numbers is over limits.max_output_values.
-absl::Status CheckOutputLimit(uint64_t values, const ServiceLimits& limits);
+// CheckOutputLimit returns RESOURCE_EXHAUSTED naming `field` when an answer
+// of `values` numbers is over limits.max_output_values.
+absl::Status CheckOutputLimit(uint64_t values, const ServiceLimits& limits,
+                              absl::string_view field = "parameters");
 
-// CheckMessageLimit returns RESOURCE_EXHAUSTED naming "parameters" when
+// CheckMessageLimit returns RESOURCE_EXHAUSTED naming `field` when
 // `values` doubles do not fit one message of limits.max_message_bytes;
 // `hint` (e.g. "; use EvaluateStream") ends the message.
 absl::Status CheckMessageLimit(uint64_t values, const ServiceLimits& limits,
-                               absl::string_view hint = "");
-
-// A ticket for one heavy request; released when destroyed.
-class HeavyWorkAdmission {
- public:
-  class Ticket {
-   public:
-    explicit Ticket(std::atomic<int>* in_flight) : in_flight_(in_flight) {}
-    Ticket(Ticket&& other) noexcept : in_flight_(other.in_flight_) {
-      other.in_flight_ = nullptr;
-    }
-    Ticket(const Ticket&) = delete;
-    Ticket& operator=(const Ticket&) = delete;
-    Ticket& operator=(Ticket&&) = delete;
-    ~Ticket() {
-      if (in_flight_ != nullptr) in_flight_->fetch_sub(1);
-    }
-
-   private:
-    std::atomic<int>* in_flight_;
-  };
-
-  explicit HeavyWorkAdmission(int capacity) : capacity_(capacity) {}
-
-  // Admit returns a ticket for a request; heavy ones get RESOURCE_EXHAUSTED
-  // when `capacity` heavy requests are in flight. Light requests always get
-  // an empty ticket.
-  absl::StatusOr<Ticket> Admit(bool heavy) {
-    if (!heavy) return Ticket(nullptr);
-    if (in_flight_.fetch_add(1) >= capacity_) {
-      in_flight_.fetch_sub(1);
-      return absl::ResourceExhaustedError(
-          "too many large requests in flight (--max_concurrent_heavy); "
-          "retry later");
-    }
-    return Ticket(&in_flight_);
-  }
-
- private:
-  const int capacity_;
-  std::atomic<int> in_flight_{0};
-};
+                               absl::string_view hint = "",
+                               absl::string_view field = "parameters");
 
 }  // namespace freeform::server
 

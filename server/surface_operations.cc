@@ -7,8 +7,8 @@
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
 #include "geometry_out.h"
-#include "prepared_surface.h"
-#include "rpc.h"
+#include "plan.h"
+#include "prepare.h"
 #include "surface_service.h"
 
 namespace freeform::server {
@@ -59,87 +59,95 @@ absl::Status ElevateBezierNet(const BezierSurfaceView& surface,
   return absl::OkStatus();
 }
 
-absl::Status ElevateSurface(const v1::ElevateSurfaceDegreeRequest& request,
-                            const ServiceLimits& limits,
-                            v1::ElevateSurfaceDegreeResponse& response) {
-  const v1::Surface& surface = request.surface();
-  switch (surface.kind_case()) {
-    case v1::Surface::kBezier: {
-      absl::StatusOr<BezierSurfaceView> view =
-          ValidatedBezierSurface(surface.bezier(), limits);
-      if (!view.ok()) return PrefixFieldPath(view.status(), "surface.bezier");
-      return ElevateBezierNet(*view, request, limits, response);
+// Runs `elevate` with the answer size `values` planned.
+template <typename Elevate>
+UnaryWork ElevationWork(uint64_t values, const ServiceLimits& limits,
+                        v1::ElevateSurfaceDegreeResponse& response,
+                        Elevate elevate) {
+  return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
+                   .run = [elevate = std::move(elevate),
+                           &response](const ExecutionContext&) -> absl::Status {
+                     auto elevated = elevate();
+                     if (!elevated.ok()) return elevated.status();
+                     ToProto(*elevated, *response.mutable_surface());
+                     return absl::OkStatus();
+                   }};
+}
+
+absl::StatusOr<UnaryWork> PlanElevate(
+    const v1::ElevateSurfaceDegreeRequest& request, const ServiceLimits& limits,
+    v1::ElevateSurfaceDegreeResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  const int by_u =
+      static_cast<int>(std::min<uint32_t>(request.by_u(), 1 << 20));
+  const int by_v =
+      static_cast<int>(std::min<uint32_t>(request.by_v(), 1 << 20));
+  if (const auto* bezier = std::get_if<BezierSurface>(&*surface)) {
+    const BezierSurfaceView view = bezier->view();
+    if (absl::Status status =
+            CheckTensorElevation(request, view.control_net.count_u - 1,
+                                 view.control_net.count_v - 1, limits);
+        !status.ok()) {
+      return status;
     }
-    case v1::Surface::kBspline: {
-      absl::StatusOr<BSplineSurfaceView> view =
-          ValidatedBSplineSurface(surface.bspline(), limits);
-      if (!view.ok()) return PrefixFieldPath(view.status(), "surface.bspline");
-      if (absl::Status status = CheckTensorElevation(request, view->degree_u,
-                                                     view->degree_v, limits);
-          !status.ok()) {
-        return status;
-      }
-      absl::StatusOr<SurfaceData> elevated =
-          ElevateBSplineSurface(*view, static_cast<int>(request.by_u()),
-                                static_cast<int>(request.by_v()));
-      if (!elevated.ok()) return elevated.status();
-      ToProto(*elevated, *response.mutable_surface());
-      return absl::OkStatus();
-    }
-    case v1::Surface::kBicubicInterpolating: {
-      absl::StatusOr<ControlNetView> points = ValidatedNet(
-          surface.bicubic_interpolating().points(), limits, "points");
-      if (!points.ok()) {
-        return PrefixFieldPath(points.status(),
-                               "surface.bicubic_interpolating");
-      }
-      if (points->count_u != 4 || points->count_v != 4) {
-        return InvalidFieldError("surface.bicubic_interpolating.points",
-                                 "the interpolating patch takes 4 x 4 points");
-      }
-      const std::vector<double> net =
-          InterpolatingToBezierNet(points->dimension, points->coordinates);
-      return ElevateBezierNet({.control_net = {.dimension = points->dimension,
-                                               .count_u = 4,
-                                               .count_v = 4,
-                                               .coordinates = net},
-                               .weights = {}},
-                              request, limits, response);
-    }
-    case v1::Surface::kTriangularBezier: {
-      absl::StatusOr<TriangularPatchView> patch =
-          ValidatedTriangularPatch(surface.triangular_bezier(), limits);
-      if (!patch.ok()) {
-        return PrefixFieldPath(patch.status(), "surface.triangular_bezier");
-      }
-      if (request.by() < 1) {
-        return InvalidFieldError("by", "must be at least 1");
-      }
-      if (absl::Status status =
-              CheckElevation(request.by(), patch->degree, limits, "by");
-          !status.ok()) {
-        return status;
-      }
-      absl::StatusOr<TriangularPatchData> elevated =
-          ElevateTriangularPatch(*patch, static_cast<int>(request.by()));
-      if (!elevated.ok()) return elevated.status();
-      ToProto(*elevated, *response.mutable_surface());
-      return absl::OkStatus();
-    }
-    default:
-      return InvalidFieldError(
-          "surface",
-          "degree elevation takes a Bezier, B-spline/NURBS, bicubic "
-          "interpolating or triangular surface");
+    const uint64_t values = uint64_t(view.control_net.count_u + by_u) *
+                            (view.control_net.count_v + by_v) *
+                            (view.control_net.dimension + 1);
+    return ElevationWork(values, limits, response, [view, by_u, by_v] {
+      return ElevateBezierSurface(view, by_u, by_v);
+    });
   }
+  if (const auto* bspline = std::get_if<BSplineSurface>(&*surface)) {
+    const BSplineSurfaceView view = bspline->view();
+    if (absl::Status status =
+            CheckTensorElevation(request, view.degree_u, view.degree_v, limits);
+        !status.ok()) {
+      return status;
+    }
+    const uint64_t count_u = view.control_net.count_u +
+                             uint64_t(view.control_net.count_u + 1) * by_u;
+    const uint64_t count_v = view.control_net.count_v +
+                             uint64_t(view.control_net.count_v + 1) * by_v;
+    if (absl::Status status = CheckPointLimit(
+            SaturatingProduct(count_u, count_v), limits, "by_u");
+        !status.ok()) {
+      return status;
+    }
+    const uint64_t values = SaturatingProduct(
+        count_u * count_v, uint64_t(view.control_net.dimension) + 1);
+    if (absl::Status status = UnaryAnswerCheck(values, limits, "by_u");
+        !status.ok()) {
+      return status;
+    }
+    return ElevationWork(values, limits, response, [view, by_u, by_v] {
+      return ElevateBSplineSurface(view, by_u, by_v);
+    });
+  }
+  const TriangularPatchView view = std::get<TriangularPatch>(*surface).view();
+  if (request.by() < 1) return InvalidFieldError("by", "must be at least 1");
+  if (absl::Status status =
+          CheckElevation(request.by(), view.degree, limits, "by");
+      !status.ok()) {
+    return status;
+  }
+  const int by = static_cast<int>(request.by());
+  const uint64_t values = TriangularPointCount(view.degree + by) *
+                          (uint64_t(view.control_points.dimension) + 1);
+  return ElevationWork(values, limits, response,
+                       [view, by] { return ElevateTriangularPatch(view, by); });
 }
 
 absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,
                              const ServiceLimits& limits,
                              v1::InterpolateSurfaceResponse& response) {
   absl::StatusOr<ControlNetView> points =
-      ValidatedNet(request.points(), limits, "points");
+      PrepareNet(request.points(), limits, "points", false);
   if (!points.ok()) return points.status();
+  if (absl::Status status = ValidateControlNet(*points, "points");
+      !status.ok()) {
+    return status;
+  }
   for (auto [degree, field] : {std::pair{request.degree_u(), "degree_u"},
                                std::pair{request.degree_v(), "degree_v"}}) {
     if (absl::Status status = CheckDegreeLimit(degree, limits, field);
@@ -171,23 +179,38 @@ absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,
 
 }  // namespace
 
-grpc::Status SurfaceServiceImpl::ElevateDegree(
-    grpc::ServerContext* context,
+grpc::ServerUnaryReactor* SurfaceServiceImpl::ElevateDegree(
+    grpc::CallbackServerContext* context,
     const v1::ElevateSurfaceDegreeRequest* request,
     v1::ElevateSurfaceDegreeResponse* response) {
-  return RunRpc("SurfaceService.ElevateDegree", context, *request, response,
-                [&](const CancellationToken&) {
-                  return ElevateSurface(*request, limits_, *response);
-                });
+  return frame_->Unary("SurfaceService.ElevateDegree", context, request,
+                       response, [this, request, response] {
+                         return PlanElevate(*request, frame_->limits(),
+                                            *response);
+                       });
 }
 
-grpc::Status SurfaceServiceImpl::Interpolate(
-    grpc::ServerContext* context, const v1::InterpolateSurfaceRequest* request,
+grpc::ServerUnaryReactor* SurfaceServiceImpl::Interpolate(
+    grpc::CallbackServerContext* context,
+    const v1::InterpolateSurfaceRequest* request,
     v1::InterpolateSurfaceResponse* response) {
-  return RunRpc("SurfaceService.Interpolate", context, *request, response,
-                [&](const CancellationToken&) {
-                  return InterpolateGrid(*request, limits_, *response);
-                });
+  return frame_->Unary(
+      "SurfaceService.Interpolate", context, request, response,
+      [this, request, response]() -> absl::StatusOr<UnaryWork> {
+        const ServiceLimits& limits = frame_->limits();
+        const uint64_t values = SaturatingProduct(
+            uint64_t{request->points().count_u()} * request->points().count_v(),
+            uint64_t{request->points().dimension()} + 1);
+        if (absl::Status status = UnaryAnswerCheck(values, limits, "points");
+            !status.ok()) {
+          return status;
+        }
+        return UnaryWork{.plan = AnswerPlan(values, 32 * values, limits),
+                         .run = [request, response, &limits](
+                                    const ExecutionContext&) -> absl::Status {
+                           return InterpolateGrid(*request, limits, *response);
+                         }};
+      });
 }
 
 }  // namespace freeform::server

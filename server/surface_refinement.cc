@@ -10,143 +10,144 @@
 #include "freeform/core/subdivision.h"
 #include "freeform/core/tessellation.h"
 #include "geometry_out.h"
-#include "prepared_surface.h"
-#include "rpc.h"
+#include "plan.h"
+#include "prepare.h"
 #include "surface_service.h"
 
 namespace freeform::server {
 namespace {
 
-absl::Status Split(const v1::SplitSurfaceRequest& request,
-                   const ServiceLimits& limits,
-                   v1::SplitSurfaceResponse& response) {
-  const v1::Surface& surface = request.surface();
-  if (surface.has_triangular_bezier()) {
-    absl::StatusOr<TriangularPatchView> patch =
-        ValidatedTriangularPatch(surface.triangular_bezier(), limits);
-    if (!patch.ok()) {
-      return PrefixFieldPath(patch.status(), "surface.triangular_bezier");
-    }
-    absl::StatusOr<std::vector<TriangularPatchData>> pieces =
-        SplitTriangularPatch(*patch, request.u(), request.v());
-    if (!pieces.ok()) return pieces.status();
-    for (const TriangularPatchData& piece : *pieces) {
-      ToProto(piece, *response.add_pieces());
-    }
-    return absl::OkStatus();
+absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitSurfaceRequest& request,
+                                    const ServiceLimits& limits,
+                                    v1::SplitSurfaceResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  if (const auto* patch = std::get_if<TriangularPatch>(&*surface)) {
+    const TriangularPatchView view = patch->view();
+    const uint64_t values =
+        3 * view.control_points.coordinates.size() + 3 * view.weights.size();
+    return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
+                     .run = [view, &request, &response](
+                                const ExecutionContext&) -> absl::Status {
+                       absl::StatusOr<std::vector<TriangularPatchData>> pieces =
+                           SplitTriangularPatch(view, request.u(), request.v());
+                       if (!pieces.ok()) return pieces.status();
+                       for (const TriangularPatchData& piece : *pieces) {
+                         ToProto(piece, *response.add_pieces());
+                       }
+                       return absl::OkStatus();
+                     }};
   }
-  if (!surface.has_bezier()) {
+  const auto* bezier = std::get_if<BezierSurface>(&*surface);
+  if (bezier == nullptr || !request.surface().has_bezier()) {
     return InvalidFieldError(
         "surface", "Split takes a tensor Bezier or a triangular patch");
   }
-  absl::StatusOr<BezierSurfaceView> view =
-      ValidatedBezierSurface(surface.bezier(), limits);
-  if (!view.ok()) return PrefixFieldPath(view.status(), "surface.bezier");
-  if (request.direction() == v1::SURFACE_DIRECTION_UNSPECIFIED) {
-    return InvalidFieldError("direction", "choose U or V");
+  if (request.direction() != v1::SURFACE_DIRECTION_U &&
+      request.direction() != v1::SURFACE_DIRECTION_V) {
+    return InvalidFieldError(
+        "direction", absl::StrCat("choose U or V, got ", request.direction()));
   }
-  absl::StatusOr<std::vector<SurfaceData>> pieces =
-      SplitBezierSurface(*view, request.direction() == v1::SURFACE_DIRECTION_U,
-                         request.parameter());
-  if (!pieces.ok()) return pieces.status();
-  for (const SurfaceData& piece : *pieces) {
-    ToProto(piece, *response.add_pieces());
-  }
-  return absl::OkStatus();
+  const BezierSurfaceView view = bezier->view();
+  const uint64_t values =
+      2 * (view.control_net.coordinates.size() + view.weights.size());
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [view, &request,
+              &response](const ExecutionContext&) -> absl::Status {
+        absl::StatusOr<std::vector<SurfaceData>> pieces = SplitBezierSurface(
+            view, request.direction() == v1::SURFACE_DIRECTION_U,
+            request.parameter());
+        if (!pieces.ok()) return pieces.status();
+        for (const SurfaceData& piece : *pieces) {
+          ToProto(piece, *response.add_pieces());
+        }
+        return absl::OkStatus();
+      }};
 }
 
-absl::Status Insert(const v1::InsertSurfaceKnotsRequest& request,
-                    const ServiceLimits& limits,
-                    v1::InsertSurfaceKnotsResponse& response) {
-  if (!request.surface().has_bspline()) {
+absl::StatusOr<UnaryWork> PlanInsert(
+    const v1::InsertSurfaceKnotsRequest& request, const ServiceLimits& limits,
+    v1::InsertSurfaceKnotsResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  const auto* bspline = std::get_if<BSplineSurface>(&*surface);
+  if (bspline == nullptr) {
     return InvalidFieldError("surface",
                              "InsertKnots takes a B-spline or NURBS surface");
   }
-  absl::StatusOr<BSplineSurfaceView> view =
-      ValidatedBSplineSurface(request.surface().bspline(), limits);
-  if (!view.ok()) return PrefixFieldPath(view.status(), "surface.bspline");
-  if (request.direction() == v1::SURFACE_DIRECTION_UNSPECIFIED) {
-    return InvalidFieldError("direction", "choose U or V");
+  if (request.direction() != v1::SURFACE_DIRECTION_U &&
+      request.direction() != v1::SURFACE_DIRECTION_V) {
+    return InvalidFieldError(
+        "direction", absl::StrCat("choose U or V, got ", request.direction()));
   }
+  const BSplineSurfaceView view = bspline->view();
   const bool in_u = request.direction() == v1::SURFACE_DIRECTION_U;
+  const uint64_t knots = static_cast<uint64_t>(request.knots_size());
   const uint64_t points =
-      uint64_t{static_cast<uint32_t>(view->control_net.count_u +
-                                     (in_u ? request.knots_size() : 0))} *
-      static_cast<uint32_t>(view->control_net.count_v +
-                            (in_u ? 0 : request.knots_size()));
+      SaturatingProduct(view.control_net.count_u + (in_u ? knots : 0),
+                        view.control_net.count_v + (in_u ? 0 : knots));
   if (absl::Status status = CheckPointLimit(points, limits, "knots");
       !status.ok()) {
     return status;
   }
-  absl::StatusOr<SurfaceData> refined =
-      InsertSurfaceKnots(*view, in_u, SpanOf(request.knots()));
-  if (!refined.ok()) return refined.status();
-  ToProto(*refined, *response.mutable_surface());
-  return absl::OkStatus();
+  const uint64_t values = SaturatingProduct(
+      points, static_cast<uint64_t>(view.control_net.dimension) + 1);
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "knots");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
+                   .run = [view, in_u, &request,
+                           &response](const ExecutionContext&) -> absl::Status {
+                     absl::StatusOr<SurfaceData> refined = InsertSurfaceKnots(
+                         view, in_u, SpanOf(request.knots()));
+                     if (!refined.ok()) return refined.status();
+                     ToProto(*refined, *response.mutable_surface());
+                     return absl::OkStatus();
+                   }};
 }
 
-// Bezier nets of every surface to mesh (interpolating and Hermite patches
-// become their Bezier nets); `storage` owns converted nets.
-absl::StatusOr<std::vector<BezierSurfaceView>> PatchesOf(
+// The Bezier patches to mesh, held by their prepared surfaces.
+struct MeshInput {
+  std::vector<Surface> surfaces;
+  std::vector<BezierSurfaceView> patches;
+  size_t cap = 0;
+};
+
+// Bytes of one vertex in an answer: position, normal, (u, v), its patch,
+// and about two triangles of three indices.
+constexpr uint64_t kVertexBytes = 8 * (3 + 3 + 2) + 4 + 2 * 3 * 4;
+
+absl::StatusOr<MeshInput> PrepareMesh(
     const v1::TessellateSurfaceRequest& request, const ServiceLimits& limits,
-    std::vector<std::vector<double>>& storage) {
+    uint64_t message_limit) {
   if (request.surfaces_size() == 0) {
     return InvalidFieldError("surfaces", "needs at least one surface");
   }
-  std::vector<BezierSurfaceView> patches;
-  storage.reserve(static_cast<size_t>(request.surfaces_size()));
+  MeshInput input;
+  input.surfaces.reserve(static_cast<size_t>(request.surfaces_size()));
   for (int i = 0; i < request.surfaces_size(); ++i) {
-    const v1::Surface& surface = request.surfaces(i);
     const std::string field = absl::StrCat("surfaces[", i, "]");
-    if (surface.has_bezier()) {
-      absl::StatusOr<BezierSurfaceView> view =
-          ValidatedBezierSurface(surface.bezier(), limits);
-      if (!view.ok()) {
-        return PrefixFieldPath(view.status(), absl::StrCat(field, ".bezier"));
-      }
-      patches.push_back(*view);
-    } else if (surface.has_bicubic_interpolating()) {
-      absl::StatusOr<ControlNetView> points = ValidatedNet(
-          surface.bicubic_interpolating().points(), limits, "points");
-      if (!points.ok() || points->count_u != 4 || points->count_v != 4) {
-        return InvalidFieldError(
-            absl::StrCat(field, ".bicubic_interpolating.points"),
-            "the interpolating patch takes 4 x 4 valid points");
-      }
-      storage.push_back(
-          InterpolatingToBezierNet(points->dimension, points->coordinates));
-      patches.push_back({.control_net = {.dimension = points->dimension,
-                                         .count_u = 4,
-                                         .count_v = 4,
-                                         .coordinates = storage.back()},
-                         .weights = {}});
-    } else {
+    absl::StatusOr<Surface> surface =
+        PrepareSurface(request.surfaces(i), limits, field);
+    if (!surface.ok()) return surface.status();
+    const auto* bezier = std::get_if<BezierSurface>(&*surface);
+    if (bezier == nullptr) {
       return InvalidFieldError(
           field,
-          "Tessellate takes tensor Bezier or bicubic interpolating "
-          "patches");
+          "Tessellate takes tensor Bezier, bicubic interpolating and bicubic "
+          "Hermite patches");
     }
-    if (patches.back().control_net.dimension != 3) {
-      return InvalidFieldError(
-          absl::StrCat(field, ".bezier.control_net.dimension"),
-          "meshes are 3D");
-    }
+    input.patches.push_back(bezier->view());
+    input.surfaces.push_back(*std::move(surface));
   }
-  return patches;
-}
-
-absl::StatusOr<Mesh> MeshOf(const v1::TessellateSurfaceRequest& request,
-                            const ServiceLimits& limits,
-                            const CancellationToken& token) {
-  std::vector<std::vector<double>> storage;
-  absl::StatusOr<std::vector<BezierSurfaceView>> patches =
-      PatchesOf(request, limits, storage);
-  if (!patches.ok()) return patches.status();
-  const size_t cap =
-      std::min<size_t>(request.max_vertices() > 0 ? request.max_vertices()
-                                                  : limits.max_parameters,
-                       limits.max_output_values / 16);
-  return TessellateBezierPatches(*patches, request.tolerance(), cap, &token);
+  const uint64_t requested = request.max_vertices() > 0 ? request.max_vertices()
+                                                        : limits.max_parameters;
+  input.cap = static_cast<size_t>(
+      std::min({requested, uint64_t{limits.max_parameters},
+                limits.max_output_values / 16, message_limit / kVertexBytes}));
+  return input;
 }
 
 // Fills `response` with vertices [first_vertex, last_vertex) and triangles
@@ -174,80 +175,109 @@ void FillMesh(const Mesh& mesh, bool normals, size_t first_vertex,
 
 }  // namespace
 
-grpc::Status SurfaceServiceImpl::Split(grpc::ServerContext* context,
-                                       const v1::SplitSurfaceRequest* request,
-                                       v1::SplitSurfaceResponse* response) {
-  return RunRpc("SurfaceService.Split", context, *request, response,
-                [&](const CancellationToken&) {
-                  return freeform::server::Split(*request, limits_, *response);
-                });
+grpc::ServerUnaryReactor* SurfaceServiceImpl::Split(
+    grpc::CallbackServerContext* context,
+    const v1::SplitSurfaceRequest* request,
+    v1::SplitSurfaceResponse* response) {
+  return frame_->Unary("SurfaceService.Split", context, request, response,
+                       [this, request, response] {
+                         return PlanSplit(*request, frame_->limits(),
+                                          *response);
+                       });
 }
 
-grpc::Status SurfaceServiceImpl::InsertKnots(
-    grpc::ServerContext* context, const v1::InsertSurfaceKnotsRequest* request,
+grpc::ServerUnaryReactor* SurfaceServiceImpl::InsertKnots(
+    grpc::CallbackServerContext* context,
+    const v1::InsertSurfaceKnotsRequest* request,
     v1::InsertSurfaceKnotsResponse* response) {
-  return RunRpc("SurfaceService.InsertKnots", context, *request, response,
-                [&](const CancellationToken&) {
-                  return Insert(*request, limits_, *response);
-                });
+  return frame_->Unary("SurfaceService.InsertKnots", context, request, response,
+                       [this, request, response] {
+                         return PlanInsert(*request, frame_->limits(),
+                                           *response);
+                       });
 }
 
-grpc::Status SurfaceServiceImpl::Tessellate(
-    grpc::ServerContext* context, const v1::TessellateSurfaceRequest* request,
+grpc::ServerUnaryReactor* SurfaceServiceImpl::Tessellate(
+    grpc::CallbackServerContext* context,
+    const v1::TessellateSurfaceRequest* request,
     v1::TessellateSurfaceResponse* response) {
-  return RunRpc(
-      "SurfaceService.Tessellate", context, *request, response,
-      [&](const CancellationToken& token) -> absl::Status {
-        absl::StatusOr<Mesh> mesh = MeshOf(*request, limits_, token);
-        if (!mesh.ok()) return mesh.status();
-        const size_t bytes =
-            mesh->vertices.size() * 8 * 3 + mesh->triangles.size() * 4;
-        if (bytes > static_cast<size_t>(limits_.max_message_bytes)) {
-          return absl::ResourceExhaustedError(
-              "the mesh is larger than one message; use TessellateStream");
-        }
-        FillMesh(*mesh, request->normals(), 0, mesh->vertices.size() / 3, 0,
-                 mesh->triangles.size() / 3, *response);
-        return absl::OkStatus();
+  return frame_->Unary(
+      "SurfaceService.Tessellate", context, request, response,
+      [this, request, response]() -> absl::StatusOr<UnaryWork> {
+        const ServiceLimits& limits = frame_->limits();
+        absl::StatusOr<MeshInput> input = PrepareMesh(
+            *request, limits, static_cast<uint64_t>(limits.max_message_bytes));
+        if (!input.ok()) return input.status();
+        const uint64_t bytes = input->cap * kVertexBytes;
+        return UnaryWork{
+            .plan = {.memory_bytes = 3 * bytes, .heavy = true},
+            .run = [input = *std::move(input), request, response](
+                       const ExecutionContext& execution) -> absl::Status {
+              absl::StatusOr<Mesh> mesh =
+                  TessellateBezierPatches(input.patches, request->tolerance(),
+                                          input.cap, execution.cancellation);
+              if (!mesh.ok()) return mesh.status();
+              FillMesh(*mesh, request->normals(), 0, mesh->vertices.size() / 3,
+                       0, mesh->triangles.size() / 3, *response);
+              return absl::OkStatus();
+            }};
       });
 }
 
-grpc::Status SurfaceServiceImpl::TessellateStream(
-    grpc::ServerContext* context, const v1::TessellateSurfaceRequest* request,
-    grpc::ServerWriter<v1::TessellateSurfaceResponse>* writer) {
-  size_t streamed_bytes = 0;
-  return RunRpc(
-      "SurfaceService.TessellateStream", context, *request, nullptr,
-      [&](const CancellationToken& token) -> absl::Status {
-        absl::StatusOr<Mesh> mesh = MeshOf(*request, limits_, token);
-        if (!mesh.ok()) return mesh.status();
+grpc::ServerWriteReactor<v1::TessellateSurfaceResponse>*
+SurfaceServiceImpl::TessellateStream(
+    grpc::CallbackServerContext* context,
+    const v1::TessellateSurfaceRequest* request) {
+  using Work = StreamWork<v1::TessellateSurfaceResponse>;
+  return frame_->Stream<v1::TessellateSurfaceResponse>(
+      "SurfaceService.TessellateStream", context, request,
+      [this, request]() -> absl::StatusOr<Work> {
+        const ServiceLimits& limits = frame_->limits();
+        absl::StatusOr<MeshInput> input =
+            PrepareMesh(*request, limits, UINT64_MAX);
+        if (!input.ok()) return input.status();
         const size_t chunk = request->chunk_size() > 0
                                  ? request->chunk_size()
-                                 : limits_.default_stream_chunk;
-        const size_t vertices = mesh->vertices.size() / 3;
-        const size_t triangles = mesh->triangles.size() / 3;
-        // Vertices first, then triangles: indices always refer to vertices
-        // already sent.
-        if (absl::Status status = StreamChunks<v1::TessellateSurfaceResponse>(
-                vertices, chunk, token, writer, streamed_bytes,
-                [&](size_t first, size_t last,
-                    v1::TessellateSurfaceResponse& response) {
-                  FillMesh(*mesh, request->normals(), first, last, 0, 0,
-                           response);
+                                 : limits.default_stream_chunk;
+        const uint64_t bytes = input->cap * kVertexBytes;
+        // The mesh is made first; chunks of vertices, then of triangles,
+        // are cut from it (indices always refer to vertices already sent).
+        auto mesh = std::make_shared<Mesh>();
+        auto shared = std::make_shared<MeshInput>(*std::move(input));
+        return Work{
+            .plan = {.memory_bytes = 2 * bytes, .heavy = true},
+            .chunk_count = 0,
+            .prepare = [mesh, shared, chunk,
+                        request](const ExecutionContext& execution)
+                -> absl::StatusOr<size_t> {
+              absl::StatusOr<Mesh> made =
+                  TessellateBezierPatches(shared->patches, request->tolerance(),
+                                          shared->cap, execution.cancellation);
+              if (!made.ok()) return made.status();
+              *mesh = *std::move(made);
+              const size_t vertices = mesh->vertices.size() / 3;
+              const size_t triangles = mesh->triangles.size() / 3;
+              return (vertices + chunk - 1) / chunk +
+                     (triangles + chunk - 1) / chunk;
+            },
+            .fill =
+                [mesh, chunk, request](size_t k,
+                                       v1::TessellateSurfaceResponse& out,
+                                       const ExecutionContext&) {
+                  const size_t vertices = mesh->vertices.size() / 3;
+                  const size_t triangles = mesh->triangles.size() / 3;
+                  const size_t vertex_chunks = (vertices + chunk - 1) / chunk;
+                  if (k < vertex_chunks) {
+                    FillMesh(*mesh, request->normals(), k * chunk,
+                             std::min(vertices, (k + 1) * chunk), 0, 0, out);
+                  } else {
+                    const size_t first = (k - vertex_chunks) * chunk;
+                    FillMesh(*mesh, false, 0, 0, first,
+                             std::min(triangles, first + chunk), out);
+                  }
                   return absl::OkStatus();
-                });
-            !status.ok()) {
-          return status;
-        }
-        return StreamChunks<v1::TessellateSurfaceResponse>(
-            triangles, chunk, token, writer, streamed_bytes,
-            [&](size_t first, size_t last,
-                v1::TessellateSurfaceResponse& response) {
-              FillMesh(*mesh, false, 0, 0, first, last, response);
-              return absl::OkStatus();
-            });
-      },
-      &streamed_bytes);
+                }};
+      });
 }
 
 }  // namespace freeform::server

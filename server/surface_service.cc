@@ -1,6 +1,9 @@
+// SurfaceService evaluation RPCs: Evaluate, EvaluateStream and
+// EvaluateBasis.
 #include "surface_service.h"
 
 #include <algorithm>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,19 +11,23 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/str_cat.h"
 #include "convert.h"
-#include "freeform/core/normals.h"
+#include "freeform/core/basis.h"
 #include "freeform/core/status.h"
+#include "freeform/core/surface.h"
 #include "freeform/core/triangular.h"
-#include "prepared_curve.h"
-#include "prepared_surface.h"
-#include "rpc.h"
+#include "plan.h"
+#include "prepare.h"
 
 namespace freeform::server {
 namespace {
 
 // Everything a surface evaluation request resolves to before any math runs.
 struct SurfacePlan {
-  PreparedSurface surface;
+  // The surface (absent for a basis) and where its samples must lie.
+  std::optional<Surface> surface;
+  int dimension = 0;
+  SurfaceDomain domain;
+  bool triangular = false;
   // (u, v) pairs (a view into the request), or a grid.
   absl::Span<const double> uv;
   bool grid = false;
@@ -45,7 +52,7 @@ struct SurfacePlan {
   }
 
   size_t ValuesPerPoint() const {
-    return PartialCount(order) * static_cast<size_t>(surface.dimension) +
+    return PartialCount(order) * static_cast<size_t>(dimension) +
            (normals ? 3 : 0);
   }
 };
@@ -64,7 +71,6 @@ absl::StatusOr<std::vector<double>> ResolveAxis(const v1::Parameters& axis,
 
 absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
                             const ServiceLimits& limits, SurfacePlan& plan) {
-  const PreparedSurface& surface = plan.surface;
   switch (parameters.kind_case()) {
     case v1::SurfaceParameters::kPoints: {
       const auto& uv = parameters.points().uv();
@@ -79,26 +85,26 @@ absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
                          " points exceed the server's limit of ",
                          limits.max_parameters, " (--max_parameters)"));
       }
-      if (surface.triangular) return absl::OkStatus();  // checked by the core
+      if (plan.triangular) return absl::OkStatus();  // checked by the core
       return PrefixFieldPath(
           ValidateSurfaceSamples(SurfaceSamples::Pairs(plan.uv),
-                                 surface.u_start, surface.u_end,
-                                 surface.v_start, surface.v_end),
+                                 plan.domain.u_start, plan.domain.u_end,
+                                 plan.domain.v_start, plan.domain.v_end),
           "parameters.points");
     }
     case v1::SurfaceParameters::kGrid: {
-      if (surface.triangular) {
+      if (plan.triangular) {
         return InvalidFieldError(
             "parameters.grid",
             "a triangular patch takes (u, v) points, not a grid");
       }
       absl::StatusOr<std::vector<double>> u =
-          ResolveAxis(parameters.grid().u(), surface.u_start, surface.u_end,
-                      limits, "parameters.grid.u");
+          ResolveAxis(parameters.grid().u(), plan.domain.u_start,
+                      plan.domain.u_end, limits, "parameters.grid.u");
       if (!u.ok()) return u.status();
       absl::StatusOr<std::vector<double>> v =
-          ResolveAxis(parameters.grid().v(), surface.v_start, surface.v_end,
-                      limits, "parameters.grid.v");
+          ResolveAxis(parameters.grid().v(), plan.domain.v_start,
+                      plan.domain.v_end, limits, "parameters.grid.v");
       if (!v.ok()) return v.status();
       plan.grid = true;
       plan.u = *std::move(u);
@@ -126,20 +132,20 @@ absl::StatusOr<SurfacePlan> PlanSurfaceEvaluation(
         absl::StrCat("must be at most ", limits.max_derivative_order, ", got ",
                      request.derivative_order()));
   }
-  absl::StatusOr<PreparedSurface> surface =
-      PrepareSurface(request.surface(), limits);
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
-  if (request.normals() && surface->dimension != 3) {
+  SurfacePlan plan;
+  plan.dimension = DimensionOf(*surface);
+  plan.domain = DomainOf(*surface);
+  plan.triangular = IsTriangular(*surface);
+  plan.surface = *std::move(surface);
+  if (request.normals() && plan.dimension != 3) {
     return InvalidFieldError(
         "normals", absl::StrCat("normals need a 3D surface, this one is ",
-                                surface->dimension, "D"));
+                                plan.dimension, "D"));
   }
-  SurfacePlan plan;
-  plan.surface = *std::move(surface);
   plan.order = static_cast<int>(request.derivative_order());
   plan.normals = request.normals();
-  plan.evaluated_order =
-      request.normals() ? std::max(plan.order, 2) : plan.order;
   if (absl::Status status = ResolveSamples(request.parameters(), limits, plan);
       !status.ok()) {
     return status;
@@ -152,212 +158,96 @@ absl::StatusOr<SurfacePlan> PlanSurfaceEvaluation(
   return plan;
 }
 
+// Memory of evaluating `points` points of the plan: the answer, and the
+// partials the normals need besides.
+CallPlan EvaluationMemory(const SurfacePlan& plan, uint64_t points,
+                          const ServiceLimits& limits) {
+  const uint64_t scratch = plan.normals ? 8 * points * 3 * PartialCount(2) : 0;
+  return AnswerPlan(points * plan.ValuesPerPoint(), scratch, limits);
+}
+
 // Evaluates points [first, last) of the plan into `response`.
 absl::Status EvaluateChunk(const SurfacePlan& plan, size_t first, size_t last,
                            const ExecutionContext& execution,
                            v1::EvaluateSurfaceResponse& response) {
   const size_t count = last - first;
-  const int dimension = plan.surface.dimension;
+  const int dimension = plan.dimension;
   const size_t size = count * static_cast<size_t>(dimension);
   response.set_dimension(static_cast<uint32_t>(dimension));
   response.set_first_index(first);
   response.set_count(static_cast<uint32_t>(count));
-  // Returned partials go straight into the response; the extra ones the
-  // normals need into local storage.
   std::vector<absl::Span<double>> output;
-  std::vector<std::vector<double>> extra;
-  extra.reserve(PartialCount(plan.evaluated_order));
-  for (int total = 0; total <= plan.evaluated_order; ++total) {
+  for (int total = 0; total <= plan.order; ++total) {
     for (int order_v = 0; order_v <= total; ++order_v) {
-      if (total <= plan.order) {
-        v1::PartialDerivative* partial = response.add_partials();
-        partial->set_order_u(static_cast<uint32_t>(total - order_v));
-        partial->set_order_v(static_cast<uint32_t>(order_v));
-        partial->mutable_values()->set_dimension(
-            static_cast<uint32_t>(dimension));
-        output.push_back(UninitializedArray(
-            *partial->mutable_values()->mutable_coordinates(), size));
-      } else {
-        output.push_back(absl::MakeSpan(extra.emplace_back(size)));
-      }
+      v1::PartialDerivative* partial = response.add_partials();
+      partial->set_order_u(static_cast<uint32_t>(total - order_v));
+      partial->set_order_v(static_cast<uint32_t>(order_v));
+      partial->mutable_values()->set_dimension(
+          static_cast<uint32_t>(dimension));
+      output.push_back(UninitializedArray(
+          *partial->mutable_values()->mutable_coordinates(), size));
     }
   }
-  const SurfaceSamples samples = plan.Chunk(first, last);
-  if (absl::Status status = plan.surface.evaluate(samples, output, execution);
-      !status.ok()) {
-    return status;
+  absl::Span<double> normals;
+  if (plan.normals) {
+    response.mutable_normals()->set_dimension(3);
+    normals = UninitializedArray(
+        *response.mutable_normals()->mutable_coordinates(), 3 * count);
   }
-  if (!plan.normals) return absl::OkStatus();
-  response.mutable_normals()->set_dimension(3);
-  const absl::Span<double> normals = UninitializedArray(
-      *response.mutable_normals()->mutable_coordinates(), 3 * count);
-  if (plan.surface.triangular) {
-    return ComputeUnitNormals(output, count, normals);
-  }
-  const SurfaceDomain domain{.u_start = plan.surface.u_start,
-                             .u_end = plan.surface.u_end,
-                             .v_start = plan.surface.v_start,
-                             .v_end = plan.surface.v_end};
-  return ComputeUnitNormals(output, samples, domain, normals);
+  return EvaluateSurface(*plan.surface, plan.Chunk(first, last), output,
+                         normals, execution);
 }
 
-}  // namespace
-
-SurfaceServiceImpl::SurfaceServiceImpl(ThreadPool* pool,
-                                       const ServiceLimits& limits)
-    : pool_(pool), limits_(limits), admission_(limits.max_concurrent_heavy) {}
-
-grpc::Status SurfaceServiceImpl::Evaluate(
-    grpc::ServerContext* context, const v1::EvaluateSurfaceRequest* request,
-    v1::EvaluateSurfaceResponse* response) {
-  return RunRpc(
-      "SurfaceService.Evaluate", context, *request, response,
-      [&](const CancellationToken& token) -> absl::Status {
-        absl::StatusOr<SurfacePlan> plan =
-            PlanSurfaceEvaluation(*request, limits_);
-        if (!plan.ok()) return plan.status();
-        if (absl::Status status =
-                CheckMessageLimit(plan->size() * plan->ValuesPerPoint(),
-                                  limits_, "; use EvaluateStream");
-            !status.ok()) {
-          return status;
-        }
-        absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
-            admission_.Admit(plan->size() > limits_.grain);
-        if (!ticket.ok()) return ticket.status();
-        const ExecutionContext execution{
-            .pool = pool_, .cancellation = &token, .grain = limits_.grain};
-        return EvaluateChunk(*plan, 0, plan->size(), execution, *response);
-      });
-}
-
-grpc::Status SurfaceServiceImpl::EvaluateStream(
-    grpc::ServerContext* context, const v1::EvaluateSurfaceRequest* request,
-    grpc::ServerWriter<v1::EvaluateSurfaceResponse>* writer) {
-  size_t streamed_bytes = 0;
-  return RunRpc(
-      "SurfaceService.EvaluateStream", context, *request, nullptr,
-      [&](const CancellationToken& token) -> absl::Status {
-        absl::StatusOr<SurfacePlan> plan =
-            PlanSurfaceEvaluation(*request, limits_);
-        if (!plan.ok()) return plan.status();
-        const size_t max_points =
-            std::max<size_t>(1, static_cast<size_t>(limits_.max_message_bytes) /
-                                    2 / (plan->ValuesPerPoint() * 8));
-        size_t chunk = std::min(max_points, request->chunk_size() > 0
-                                                ? request->chunk_size()
-                                                : limits_.default_stream_chunk);
-        if (plan->grid) {  // whole rows of the grid
-          const size_t row = plan->v.size();
-          chunk = std::max<size_t>(1, chunk / row) * row;
-        }
-        absl::StatusOr<HeavyWorkAdmission::Ticket> ticket =
-            admission_.Admit(plan->size() > limits_.grain);
-        if (!ticket.ok()) return ticket.status();
-        const ExecutionContext execution{
-            .pool = pool_, .cancellation = &token, .grain = limits_.grain};
-        return StreamChunks<v1::EvaluateSurfaceResponse>(
-            plan->size(), chunk, token, writer, streamed_bytes,
-            [&](size_t first, size_t last,
-                v1::EvaluateSurfaceResponse& response) {
-              return EvaluateChunk(*plan, first, last, execution, response);
-            });
-      },
-      &streamed_bytes);
-}
-
-namespace {
-
-// Values of one curve basis at `parameters`: [r * functions + i].
-absl::StatusOr<std::vector<double>> CurveBasisValues(
-    const PreparedCurve& basis, absl::Span<const double> parameters,
-    const ExecutionContext& execution) {
-  std::vector<double> values(parameters.size() *
-                             static_cast<size_t>(basis.dimension));
-  const absl::Span<double> output[] = {absl::MakeSpan(values)};
-  if (absl::Status status = basis.evaluate(parameters, output, execution);
-      !status.ok()) {
-    return status;
-  }
-  return values;
-}
-
-// The u (or v) coordinate of every (u, v) pair.
-std::vector<double> PairCoordinate(absl::Span<const double> uv, size_t which) {
-  std::vector<double> values(uv.size() / 2);
-  for (size_t r = 0; r < values.size(); ++r) values[r] = uv[2 * r + which];
-  return values;
-}
-
-// Tensor-product basis: value of function (i, j) at point r is
-// U_i(u_r) V_j(v_r), stored at r * (fu * fv) + i * fv + j.
-absl::Status TensorBasis(const v1::EvaluateSurfaceBasisRequest& request,
-                         const ServiceLimits& limits,
-                         const ExecutionContext& execution,
-                         v1::EvaluateSurfaceBasisResponse& response) {
-  absl::StatusOr<PreparedCurve> u_basis =
+absl::StatusOr<UnaryWork> PlanTensorBasis(
+    const v1::EvaluateSurfaceBasisRequest& request, const ServiceLimits& limits,
+    v1::EvaluateSurfaceBasisResponse& response) {
+  absl::StatusOr<CurveBasis> u =
       PrepareBasis(request.tensor().u(), limits, "tensor.u");
-  if (!u_basis.ok()) return u_basis.status();
-  absl::StatusOr<PreparedCurve> v_basis =
+  if (!u.ok()) return u.status();
+  absl::StatusOr<CurveBasis> v =
       PrepareBasis(request.tensor().v(), limits, "tensor.v");
-  if (!v_basis.ok()) return v_basis.status();
+  if (!v.ok()) return v.status();
   SurfacePlan plan;
-  plan.surface = {.dimension = 1,
-                  .u_start = u_basis->domain_start,
-                  .u_end = u_basis->domain_end,
-                  .v_start = v_basis->domain_start,
-                  .v_end = v_basis->domain_end,
-                  .triangular = false,
-                  .evaluate = {}};
+  plan.dimension = 1;
+  const ParameterDomain du = DomainOf(*u);
+  const ParameterDomain dv = DomainOf(*v);
+  plan.domain = {.u_start = du.start,
+                 .u_end = du.end,
+                 .v_start = dv.start,
+                 .v_end = dv.end};
   if (absl::Status status = ResolveSamples(request.parameters(), limits, plan);
       !status.ok()) {
     return status;
   }
-  const size_t fu = static_cast<size_t>(u_basis->dimension);
-  const size_t fv = static_cast<size_t>(v_basis->dimension);
-  const size_t values = plan.size() * fu * fv;
-  if (absl::Status status = CheckOutputLimit(values, limits); !status.ok()) {
+  const uint64_t functions = static_cast<uint64_t>(FunctionCountOf(*u)) *
+                             static_cast<uint64_t>(FunctionCountOf(*v));
+  const uint64_t values = SaturatingProduct(plan.size(), functions);
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
+      !status.ok()) {
     return status;
   }
-  if (absl::Status status = CheckMessageLimit(values, limits); !status.ok()) {
-    return status;
-  }
-  const std::vector<double> u_values =
-      plan.grid ? plan.u : PairCoordinate(plan.uv, 0);
-  const std::vector<double> v_values =
-      plan.grid ? plan.v : PairCoordinate(plan.uv, 1);
-  absl::StatusOr<std::vector<double>> u =
-      CurveBasisValues(*u_basis, u_values, execution);
-  if (!u.ok()) return u.status();
-  absl::StatusOr<std::vector<double>> v =
-      CurveBasisValues(*v_basis, v_values, execution);
-  if (!v.ok()) return v.status();
-  response.set_function_count(static_cast<uint32_t>(fu * fv));
-  response.set_count(static_cast<uint32_t>(plan.size()));
-  const absl::Span<double> out =
-      UninitializedArray(*response.mutable_values(), values);
-  for (size_t r = 0; r < plan.size(); ++r) {
-    const size_t ru = plan.grid ? r / plan.v.size() : r;
-    const size_t rv = plan.grid ? r % plan.v.size() : r;
-    for (size_t i = 0; i < fu; ++i) {
-      for (size_t j = 0; j < fv; ++j) {
-        out[(r * fu + i) * fv + j] = (*u)[ru * fu + i] * (*v)[rv * fv + j];
-      }
-    }
-  }
-  return absl::OkStatus();
+  const uint64_t work =
+      8 * plan.size() * (FunctionCountOf(*u) + FunctionCountOf(*v));
+  return UnaryWork{
+      .plan = AnswerPlan(values, work, limits),
+      .run = [u = *std::move(u), v = *std::move(v), plan = std::move(plan),
+              functions, values, &response](const ExecutionContext& execution) {
+        response.set_function_count(static_cast<uint32_t>(functions));
+        response.set_count(static_cast<uint32_t>(plan.size()));
+        return EvaluateTensorBasis(
+            u, v, plan.Chunk(0, plan.size()),
+            UninitializedArray(*response.mutable_values(), values), execution);
+      }};
 }
 
-absl::Status TriangularBasis(const v1::EvaluateSurfaceBasisRequest& request,
-                             const ServiceLimits& limits,
-                             const ExecutionContext& execution,
-                             v1::EvaluateSurfaceBasisResponse& response) {
+absl::StatusOr<UnaryWork> PlanTriangularBasis(
+    const v1::EvaluateSurfaceBasisRequest& request, const ServiceLimits& limits,
+    v1::EvaluateSurfaceBasisResponse& response) {
   const uint32_t degree = request.triangular_degree();
-  if (degree > static_cast<uint32_t>(limits.max_degree)) {
-    return InvalidFieldError(
-        "triangular_degree",
-        absl::StrCat("degree ", degree, " exceeds the server's limit of ",
-                     limits.max_degree, " (--max_degree)"));
+  if (absl::Status status =
+          CheckDegreeLimit(degree, limits, "triangular_degree");
+      !status.ok()) {
+    return status;
   }
   if (!request.parameters().has_points()) {
     return InvalidFieldError(
@@ -365,40 +255,110 @@ absl::Status TriangularBasis(const v1::EvaluateSurfaceBasisRequest& request,
         "triangular Bernstein polynomials take (u, v) points");
   }
   const auto& uv = request.parameters().points().uv();
-  const size_t count = static_cast<size_t>(uv.size()) / 2;
-  const size_t functions = TriangularPointCount(static_cast<int>(degree));
-  const size_t values = count * functions;
-  if (absl::Status status = CheckOutputLimit(values, limits); !status.ok()) {
+  const uint64_t count = static_cast<uint64_t>(uv.size()) / 2;
+  const uint64_t functions = TriangularPointCount(static_cast<int>(degree));
+  const uint64_t values = SaturatingProduct(count, functions);
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
+      !status.ok()) {
     return status;
   }
-  if (absl::Status status = CheckMessageLimit(values, limits); !status.ok()) {
-    return status;
-  }
-  response.set_function_count(static_cast<uint32_t>(functions));
-  response.set_count(static_cast<uint32_t>(count));
-  return PrefixFieldPath(
-      EvaluateTriangularBasis(
-          static_cast<int>(degree), absl::MakeConstSpan(uv.data(), uv.size()),
-          UninitializedArray(*response.mutable_values(), values), execution),
-      "parameters.points");
+  return UnaryWork{
+      .plan = AnswerPlan(values, 0, limits),
+      .run = [&uv, degree, count, functions, values,
+              &response](const ExecutionContext& execution) {
+        response.set_function_count(static_cast<uint32_t>(functions));
+        response.set_count(static_cast<uint32_t>(count));
+        return PrefixFieldPath(
+            EvaluateTriangularBasis(
+                static_cast<int>(degree),
+                absl::MakeConstSpan(uv.data(), uv.size()),
+                UninitializedArray(*response.mutable_values(), values),
+                execution),
+            "parameters.points");
+      }};
 }
 
 }  // namespace
 
-grpc::Status SurfaceServiceImpl::EvaluateBasis(
-    grpc::ServerContext* context,
+grpc::ServerUnaryReactor* SurfaceServiceImpl::Evaluate(
+    grpc::CallbackServerContext* context,
+    const v1::EvaluateSurfaceRequest* request,
+    v1::EvaluateSurfaceResponse* response) {
+  return frame_->Unary(
+      "SurfaceService.Evaluate", context, request, response,
+      [this, request, response]() -> absl::StatusOr<UnaryWork> {
+        const ServiceLimits& limits = frame_->limits();
+        absl::StatusOr<SurfacePlan> plan =
+            PlanSurfaceEvaluation(*request, limits);
+        if (!plan.ok()) return plan.status();
+        if (absl::Status status =
+                CheckMessageLimit(plan->size() * plan->ValuesPerPoint(), limits,
+                                  "; use EvaluateStream");
+            !status.ok()) {
+          return status;
+        }
+        const CallPlan memory = EvaluationMemory(*plan, plan->size(), limits);
+        return UnaryWork{.plan = memory,
+                         .run = [plan = *std::move(plan),
+                                 response](const ExecutionContext& execution) {
+                           return EvaluateChunk(plan, 0, plan.size(), execution,
+                                                *response);
+                         }};
+      });
+}
+
+grpc::ServerWriteReactor<v1::EvaluateSurfaceResponse>*
+SurfaceServiceImpl::EvaluateStream(grpc::CallbackServerContext* context,
+                                   const v1::EvaluateSurfaceRequest* request) {
+  using Work = StreamWork<v1::EvaluateSurfaceResponse>;
+  return frame_->Stream<v1::EvaluateSurfaceResponse>(
+      "SurfaceService.EvaluateStream", context, request,
+      [this, request]() -> absl::StatusOr<Work> {
+        const ServiceLimits& limits = frame_->limits();
+        absl::StatusOr<SurfacePlan> plan =
+            PlanSurfaceEvaluation(*request, limits);
+        if (!plan.ok()) return plan.status();
+        const size_t max_points =
+            std::max<size_t>(1, static_cast<size_t>(limits.max_message_bytes) /
+                                    2 / (plan->ValuesPerPoint() * 8));
+        size_t chunk = std::min(max_points, request->chunk_size() > 0
+                                                ? request->chunk_size()
+                                                : limits.default_stream_chunk);
+        if (plan->grid) {  // whole rows of the grid
+          const size_t row = plan->v.size();
+          chunk = std::max<size_t>(1, chunk / row) * row;
+        }
+        const size_t count = plan->size();
+        CallPlan memory = EvaluationMemory(*plan, chunk, limits);
+        memory.memory_bytes *= kChunksInFlight;
+        memory.heavy = true;
+        auto shared = std::make_shared<const SurfacePlan>(*std::move(plan));
+        return Work{.plan = memory,
+                    .chunk_count = (count + chunk - 1) / chunk,
+                    .prepare = {},
+                    .fill = [shared, chunk, count](
+                                size_t k, v1::EvaluateSurfaceResponse& response,
+                                const ExecutionContext& execution) {
+                      const size_t first = k * chunk;
+                      return EvaluateChunk(*shared, first,
+                                           std::min(count, first + chunk),
+                                           execution, response);
+                    }};
+      });
+}
+
+grpc::ServerUnaryReactor* SurfaceServiceImpl::EvaluateBasis(
+    grpc::CallbackServerContext* context,
     const v1::EvaluateSurfaceBasisRequest* request,
     v1::EvaluateSurfaceBasisResponse* response) {
-  return RunRpc(
-      "SurfaceService.EvaluateBasis", context, *request, response,
-      [&](const CancellationToken& token) -> absl::Status {
-        const ExecutionContext execution{
-            .pool = pool_, .cancellation = &token, .grain = limits_.grain};
+  return frame_->Unary(
+      "SurfaceService.EvaluateBasis", context, request, response,
+      [this, request, response]() -> absl::StatusOr<UnaryWork> {
         switch (request->kind_case()) {
           case v1::EvaluateSurfaceBasisRequest::kTensor:
-            return TensorBasis(*request, limits_, execution, *response);
+            return PlanTensorBasis(*request, frame_->limits(), *response);
           case v1::EvaluateSurfaceBasisRequest::kTriangularDegree:
-            return TriangularBasis(*request, limits_, execution, *response);
+            return PlanTriangularBasis(*request, frame_->limits(), *response);
           case v1::EvaluateSurfaceBasisRequest::KIND_NOT_SET:
             break;
         }

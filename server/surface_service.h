@@ -8,50 +8,52 @@
 #ifndef FREEFORM_SERVER_SURFACE_SERVICE_H_
 #define FREEFORM_SERVER_SURFACE_SERVICE_H_
 
-#include "freeform/core/thread_pool.h"
 #include "freeform/v1/surface_service.grpc.pb.h"
-#include "service_limits.h"
+#include "rpc.h"
 
 namespace freeform::server {
 
-class SurfaceServiceImpl final : public v1::SurfaceService::Service {
+class SurfaceServiceImpl final : public v1::SurfaceService::CallbackService {
  public:
-  SurfaceServiceImpl(ThreadPool* pool, const ServiceLimits& limits);
+  // `frame` must outlive the service.
+  explicit SurfaceServiceImpl(RpcFrame* frame) : frame_(frame) {}
 
-  grpc::Status Evaluate(grpc::ServerContext* context,
-                        const v1::EvaluateSurfaceRequest* request,
-                        v1::EvaluateSurfaceResponse* response) override;
-  grpc::Status EvaluateStream(
-      grpc::ServerContext* context, const v1::EvaluateSurfaceRequest* request,
-      grpc::ServerWriter<v1::EvaluateSurfaceResponse>* writer) override;
-  grpc::Status EvaluateBasis(
-      grpc::ServerContext* context,
+  grpc::ServerUnaryReactor* Evaluate(
+      grpc::CallbackServerContext* context,
+      const v1::EvaluateSurfaceRequest* request,
+      v1::EvaluateSurfaceResponse* response) override;
+  grpc::ServerWriteReactor<v1::EvaluateSurfaceResponse>* EvaluateStream(
+      grpc::CallbackServerContext* context,
+      const v1::EvaluateSurfaceRequest* request) override;
+  grpc::ServerUnaryReactor* EvaluateBasis(
+      grpc::CallbackServerContext* context,
       const v1::EvaluateSurfaceBasisRequest* request,
       v1::EvaluateSurfaceBasisResponse* response) override;
-  grpc::Status Split(grpc::ServerContext* context,
-                     const v1::SplitSurfaceRequest* request,
-                     v1::SplitSurfaceResponse* response) override;
-  grpc::Status InsertKnots(grpc::ServerContext* context,
-                           const v1::InsertSurfaceKnotsRequest* request,
-                           v1::InsertSurfaceKnotsResponse* response) override;
-  grpc::Status Tessellate(grpc::ServerContext* context,
-                          const v1::TessellateSurfaceRequest* request,
-                          v1::TessellateSurfaceResponse* response) override;
-  grpc::Status TessellateStream(
-      grpc::ServerContext* context, const v1::TessellateSurfaceRequest* request,
-      grpc::ServerWriter<v1::TessellateSurfaceResponse>* writer) override;
-  grpc::Status ElevateDegree(
-      grpc::ServerContext* context,
+  grpc::ServerUnaryReactor* Split(grpc::CallbackServerContext* context,
+                                  const v1::SplitSurfaceRequest* request,
+                                  v1::SplitSurfaceResponse* response) override;
+  grpc::ServerUnaryReactor* InsertKnots(
+      grpc::CallbackServerContext* context,
+      const v1::InsertSurfaceKnotsRequest* request,
+      v1::InsertSurfaceKnotsResponse* response) override;
+  grpc::ServerUnaryReactor* Tessellate(
+      grpc::CallbackServerContext* context,
+      const v1::TessellateSurfaceRequest* request,
+      v1::TessellateSurfaceResponse* response) override;
+  grpc::ServerWriteReactor<v1::TessellateSurfaceResponse>* TessellateStream(
+      grpc::CallbackServerContext* context,
+      const v1::TessellateSurfaceRequest* request) override;
+  grpc::ServerUnaryReactor* ElevateDegree(
+      grpc::CallbackServerContext* context,
       const v1::ElevateSurfaceDegreeRequest* request,
       v1::ElevateSurfaceDegreeResponse* response) override;
-  grpc::Status Interpolate(grpc::ServerContext* context,
-                           const v1::InterpolateSurfaceRequest* request,
-                           v1::InterpolateSurfaceResponse* response) override;
+  grpc::ServerUnaryReactor* Interpolate(
+      grpc::CallbackServerContext* context,
+      const v1::InterpolateSurfaceRequest* request,
+      v1::InterpolateSurfaceResponse* response) override;
 
  private:
-  ThreadPool* const pool_;
-  const ServiceLimits limits_;
-  HeavyWorkAdmission admission_;
+  RpcFrame* const frame_;
 };
 
 }  // namespace freeform::server

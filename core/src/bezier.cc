@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "validated.h"
 
 namespace freeform {
 namespace {}  // namespace
@@ -283,6 +284,17 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
   if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
     return status;
   }
+  return internal::EvaluateValidBezierCurve(curve, parameters, output, context,
+                                            algorithm);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidBezierCurve(const BezierCurveView& curve,
+                                      absl::Span<const double> parameters,
+                                      CurveOutput output,
+                                      const ExecutionContext& context,
+                                      BezierAlgorithm algorithm) {
   const int dimension = curve.control_points.dimension;
   if (absl::Status status =
           ValidateBatch(parameters, 0.0, 1.0, output, dimension);
@@ -310,5 +322,7 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
     }
   });
 }
+
+}  // namespace internal
 
 }  // namespace freeform

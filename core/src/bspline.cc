@@ -11,6 +11,7 @@
 #include "freeform/core/bezier.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "validated.h"
 
 namespace freeform {
 namespace {
@@ -661,6 +662,16 @@ absl::Status EvaluateBSplineCurve(const BSplineCurveView& curve,
   if (absl::Status status = ValidateBSplineCurve(curve); !status.ok()) {
     return status;
   }
+  return internal::EvaluateValidBSplineCurve(curve, parameters, output,
+                                             context);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidBSplineCurve(const BSplineCurveView& curve,
+                                       absl::Span<const double> parameters,
+                                       CurveOutput output,
+                                       const ExecutionContext& context) {
   const ParameterDomain domain = BSplineDomain(curve);
   const int dimension = curve.control_points.dimension;
   if (absl::Status status = ValidateBatch(parameters, domain.start, domain.end,
@@ -689,6 +700,8 @@ absl::Status EvaluateBSplineCurve(const BSplineCurveView& curve,
   });
 }
 
+}  // namespace internal
+
 absl::Status EvaluateBSplineBasis(int degree, absl::Span<const double> knots,
                                   absl::Span<const double> weights,
                                   absl::Span<const double> parameters,
@@ -698,6 +711,18 @@ absl::Status EvaluateBSplineBasis(int degree, absl::Span<const double> knots,
       !status.ok()) {
     return status;
   }
+  return internal::EvaluateValidBSplineBasis(degree, knots, weights, parameters,
+                                             output, context);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidBSplineBasis(int degree,
+                                       absl::Span<const double> knots,
+                                       absl::Span<const double> weights,
+                                       absl::Span<const double> parameters,
+                                       CurveOutput output,
+                                       const ExecutionContext& context) {
   const int function_count = static_cast<int>(knots.size()) - degree - 1;
   if (absl::Status status = ValidateBatch(
           parameters, knots[static_cast<size_t>(degree)],
@@ -718,5 +743,7 @@ absl::Status EvaluateBSplineBasis(int degree, absl::Span<const double> knots,
     });
   });
 }
+
+}  // namespace internal
 
 }  // namespace freeform

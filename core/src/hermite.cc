@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/status.h"
+#include "validated.h"
 
 namespace freeform {
 namespace {
@@ -105,6 +106,16 @@ absl::Status EvaluateHermiteCurve(const HermiteCurveView& curve,
   if (absl::Status status = ValidateHermiteCurve(curve); !status.ok()) {
     return status;
   }
+  return internal::EvaluateValidHermiteCurve(curve, parameters, output,
+                                             context);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidHermiteCurve(const HermiteCurveView& curve,
+                                       absl::Span<const double> parameters,
+                                       CurveOutput output,
+                                       const ExecutionContext& context) {
   const auto [start, end] = HermiteDomain(curve);
   const int dimension = curve.points.dimension;
   if (absl::Status status =
@@ -145,6 +156,8 @@ absl::Status EvaluateHermiteCurve(const HermiteCurveView& curve,
         }
       });
 }
+
+}  // namespace internal
 
 absl::Status EvaluateHermiteBasis(absl::Span<const double> parameters,
                                   CurveOutput output,

@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "freeform/core/status.h"
+#include "validated.h"
 
 namespace freeform {
 namespace {
@@ -261,6 +262,16 @@ absl::Status EvaluateLagrangeCurve(const LagrangeCurveView& curve,
   if (absl::Status status = ValidateLagrangeCurve(curve); !status.ok()) {
     return status;
   }
+  return internal::EvaluateValidLagrangeCurve(curve, parameters, output,
+                                              context);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidLagrangeCurve(const LagrangeCurveView& curve,
+                                        absl::Span<const double> parameters,
+                                        CurveOutput output,
+                                        const ExecutionContext& context) {
   const std::pair<double, double> domain = LagrangeDomain(curve);
   const int dimension = curve.points.dimension;
   if (absl::Status status = ValidateBatch(parameters, domain.first,
@@ -295,6 +306,8 @@ absl::Status EvaluateLagrangeCurve(const LagrangeCurveView& curve,
   });
 }
 
+}  // namespace internal
+
 absl::Status EvaluateLagrangeBasis(absl::Span<const double> nodes,
                                    absl::Span<const double> parameters,
                                    CurveOutput output,
@@ -303,6 +316,16 @@ absl::Status EvaluateLagrangeBasis(absl::Span<const double> nodes,
     return InvalidFieldError("nodes", "needs at least one node");
   }
   if (absl::Status status = ValidateNodes(nodes); !status.ok()) return status;
+  return internal::EvaluateValidLagrangeBasis(nodes, parameters, output,
+                                              context);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidLagrangeBasis(absl::Span<const double> nodes,
+                                        absl::Span<const double> parameters,
+                                        CurveOutput output,
+                                        const ExecutionContext& context) {
   const size_t count = nodes.size();
   if (absl::Status status =
           ValidateBatch(parameters, nodes.front(), nodes.back(), output,
@@ -324,5 +347,7 @@ absl::Status EvaluateLagrangeBasis(absl::Span<const double> nodes,
     }
   });
 }
+
+}  // namespace internal
 
 }  // namespace freeform

@@ -8,14 +8,23 @@ namespace {
 
 constexpr absl::string_view kFieldPathPayload = "type.freeform.dev/field_path";
 
+absl::Status FieldError(absl::StatusCode code, absl::string_view field,
+                        absl::string_view rule) {
+  absl::Status status(code, absl::StrCat(field, ": ", rule));
+  status.SetPayload(kFieldPathPayload, absl::Cord(field));
+  return status;
+}
+
 }  // namespace
 
 absl::Status InvalidFieldError(absl::string_view field,
                                absl::string_view rule) {
-  absl::Status status =
-      absl::InvalidArgumentError(absl::StrCat(field, ": ", rule));
-  status.SetPayload(kFieldPathPayload, absl::Cord(field));
-  return status;
+  return FieldError(absl::StatusCode::kInvalidArgument, field, rule);
+}
+
+absl::Status ExhaustedFieldError(absl::string_view field,
+                                 absl::string_view rule) {
+  return FieldError(absl::StatusCode::kResourceExhausted, field, rule);
 }
 
 std::optional<std::string> FieldPathOf(const absl::Status& status) {
@@ -41,7 +50,7 @@ absl::Status PrefixFieldPath(const absl::Status& status,
   const absl::string_view separator =
       (path->empty() || path->front() == '[') ? "" : ".";
   const std::string joined = absl::StrCat(prefix, separator, *path);
-  return InvalidFieldError(joined, FieldRuleOf(status));
+  return FieldError(status.code(), joined, FieldRuleOf(status));
 }
 
 std::string IndexedField(absl::string_view name, size_t index) {

@@ -567,4 +567,18 @@ absl::StatusOr<std::vector<TriangularPatchData>> SplitTriangularPatch(
   return result;
 }
 
+BezierDecomposition DecomposeHermiteCurve(const HermiteCurveView& curve) {
+  BezierDecomposition decomposition;
+  decomposition.breakpoints = HermiteNodes(curve);
+  const size_t pieces = decomposition.breakpoints.size() - 1;
+  decomposition.segments.reserve(pieces);
+  for (size_t k = 0; k < pieces; ++k) {
+    decomposition.segments.push_back({.dimension = curve.points.dimension,
+                                      .coordinates = HermiteSegmentBezier(
+                                          curve, decomposition.breakpoints, k),
+                                      .weights = {}});
+  }
+  return decomposition;
+}
+
 }  // namespace freeform

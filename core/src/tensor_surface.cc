@@ -12,6 +12,7 @@
 #include "freeform/core/points.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "validated.h"
 
 namespace freeform {
 namespace {
@@ -539,6 +540,16 @@ absl::Status EvaluateBezierSurface(const BezierSurfaceView& surface,
   if (absl::Status status = ValidateBezierSurface(surface); !status.ok()) {
     return status;
   }
+  return internal::EvaluateValidBezierSurface(surface, samples, output,
+                                              context);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidBezierSurface(const BezierSurfaceView& surface,
+                                        const SurfaceSamples& samples,
+                                        SurfaceOutput output,
+                                        const ExecutionContext& context) {
   // The Bernstein basis is the B-spline basis on [0..0, 1..1], and A2.3
   // computes it with its derivatives by the triangular recurrence.
   const ControlNetView& net = surface.control_net;
@@ -550,6 +561,8 @@ absl::Status EvaluateBezierSurface(const BezierSurfaceView& surface,
       surface.weights, BezierSurfaceDomain(), samples, output, context);
 }
 
+}  // namespace internal
+
 absl::Status EvaluateBSplineSurface(const BSplineSurfaceView& surface,
                                     const SurfaceSamples& samples,
                                     SurfaceOutput output,
@@ -557,12 +570,24 @@ absl::Status EvaluateBSplineSurface(const BSplineSurfaceView& surface,
   if (absl::Status status = ValidateBSplineSurface(surface); !status.ok()) {
     return status;
   }
+  return internal::EvaluateValidBSplineSurface(surface, samples, output,
+                                               context);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidBSplineSurface(const BSplineSurfaceView& surface,
+                                         const SurfaceSamples& samples,
+                                         SurfaceOutput output,
+                                         const ExecutionContext& context) {
   const ControlNetView& net = surface.control_net;
   return EvaluateTensorSurface(
       BSplineDirection(surface.degree_u, net.count_u, surface.knots_u),
       BSplineDirection(surface.degree_v, net.count_v, surface.knots_v), net,
       surface.weights, BSplineSurfaceDomain(surface), samples, output, context);
 }
+
+}  // namespace internal
 
 void ProjectHomogeneousSurfaceDerivatives(const double* homogeneous,
                                           int dimension, int max_order,

@@ -9,6 +9,7 @@
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/tensor_surface.h"
+#include "validated.h"
 
 namespace freeform {
 namespace {
@@ -329,6 +330,15 @@ absl::Status EvaluateTriangularPatch(const TriangularPatchView& patch,
   if (absl::Status status = ValidateTriangularPatch(patch); !status.ok()) {
     return status;
   }
+  return internal::EvaluateValidTriangularPatch(patch, uv, output, context);
+}
+
+namespace internal {
+
+absl::Status EvaluateValidTriangularPatch(const TriangularPatchView& patch,
+                                          absl::Span<const double> uv,
+                                          SurfaceOutput output,
+                                          const ExecutionContext& context) {
   const ParameterMap map(patch.domain_triangle);
   if (absl::Status status = ValidatePairs(uv, map); !status.ok()) {
     return status;
@@ -356,6 +366,8 @@ absl::Status EvaluateTriangularPatch(const TriangularPatchView& patch,
     }
   });
 }
+
+}  // namespace internal
 
 absl::Status EvaluateTriangularBasis(int n, absl::Span<const double> uv,
                                      absl::Span<double> values,

@@ -22,6 +22,11 @@ namespace freeform {
 // e.g. InvalidFieldError("knots[4]", "knots must be non-decreasing").
 absl::Status InvalidFieldError(absl::string_view field, absl::string_view rule);
 
+// ExhaustedFieldError returns RESOURCE_EXHAUSTED for `field` going over a
+// limit, with the field path carried the same way.
+absl::Status ExhaustedFieldError(absl::string_view field,
+                                 absl::string_view rule);
+
 // FieldPathOf returns the field path carried by `status`, if any.
 std::optional<std::string> FieldPathOf(const absl::Status& status);
 
@@ -30,8 +35,9 @@ std::optional<std::string> FieldPathOf(const absl::Status& status);
 std::string FieldRuleOf(const absl::Status& status);
 
 // PrefixFieldPath returns `status` with `prefix` put in front of its field
-// path ("curve.bezier" + "weights[2]" -> "curve.bezier.weights[2]"). Errors
-// without a field path and OK are returned unchanged.
+// path ("curve.bezier" + "weights[2]" -> "curve.bezier.weights[2]"), in
+// the payload and the message, keeping the code. Errors without a field path
+// and OK are returned unchanged.
 absl::Status PrefixFieldPath(const absl::Status& status,
                              absl::string_view prefix);
 

@@ -31,6 +31,7 @@
 #include "freeform/core/bspline.h"
 #include "freeform/core/elevation.h"
 #include "freeform/core/geometry_data.h"
+#include "freeform/core/hermite.h"
 #include "freeform/core/points.h"
 #include "freeform/core/tensor_surface.h"
 #include "freeform/core/triangular.h"
@@ -78,6 +79,11 @@ struct BezierDecomposition {
 // each span are its Bezier points. Never fails for a valid curve.
 absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
     const BSplineCurveView& curve);
+
+// DecomposeHermiteCurve returns the cubic Bezier segment of every piece of
+// a valid Hermite curve (HermiteSegmentBezier) with its nodes as
+// breakpoints.
+BezierDecomposition DecomposeHermiteCurve(const HermiteCurveView& curve);
 
 // Corner-cutting schemes for SubdividePolygon.
 enum class SubdivisionScheme {

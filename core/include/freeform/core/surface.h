@@ -1,0 +1,132 @@
+// Surface: a validated surface of any kind the core evaluates, ready to be
+// evaluated again and again (the surface counterpart of curve.h).
+//
+// Tensor-product Bezier and B-spline/NURBS surfaces and triangular Bezier
+// patches are made by Create functions that validate them once. The bicubic
+// interpolating patch and the bicubic Hermite (Ferguson) patch become the
+// BezierSurface of the same surface, whose net the object owns. `Surface` is
+// the std::variant over the kinds; code that handles every kind uses
+// std::visit, so a new kind is a compile error wherever it is missing.
+//
+// Thread-safe: evaluation is const.
+#ifndef FREEFORM_CORE_SURFACE_H_
+#define FREEFORM_CORE_SURFACE_H_
+
+#include <memory>
+#include <variant>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "absl/types/span.h"
+#include "freeform/core/surface_output.h"
+#include "freeform/core/tensor_surface.h"
+#include "freeform/core/thread_pool.h"
+#include "freeform/core/triangular.h"
+
+namespace freeform {
+
+// A polynomial or rational tensor-product Bezier surface on [0, 1]^2.
+class BezierSurface {
+ public:
+  // Create validates `view` (ValidateBezierSurface).
+  static absl::StatusOr<BezierSurface> Create(const BezierSurfaceView& view);
+  // FromInterpolatingPatch validates a 4 x 4 net of points ("points...",
+  // "points.count_u" / "points.count_v" when it is not 4 x 4) and returns
+  // the bicubic patch through them at 0, 1/3, 2/3, 1 (patches.h).
+  static absl::StatusOr<BezierSurface> FromInterpolatingPatch(
+      const ControlNetView& points);
+  // FromHermitePatch validates the 2 x 2 corner nets of a Ferguson patch
+  // (each "<name>.dimension" equal to the positions', "<name>.count_u" for a
+  // net that is not 2 x 2, "<name>.coordinates..."; empty twists mean zero)
+  // and returns its bicubic Bezier form (patches.h).
+  static absl::StatusOr<BezierSurface> FromHermitePatch(
+      const ControlNetView& positions, const ControlNetView& derivatives_u,
+      const ControlNetView& derivatives_v, const ControlNetView& twists);
+
+  const BezierSurfaceView& view() const { return view_; }
+  int dimension() const { return view_.control_net.dimension; }
+  SurfaceDomain domain() const { return BezierSurfaceDomain(); }
+  absl::Status Evaluate(const SurfaceSamples& samples, SurfaceOutput output,
+                        const ExecutionContext& context = {}) const;
+
+ private:
+  BezierSurface(const BezierSurfaceView& view,
+                std::shared_ptr<const std::vector<double>> owned)
+      : view_(view), owned_(std::move(owned)) {}
+  static BezierSurface OwnedBicubic(int dimension, std::vector<double> net);
+
+  BezierSurfaceView view_;
+  std::shared_ptr<const std::vector<double>> owned_;
+};
+
+// A B-spline or NURBS surface on its knot domain.
+class BSplineSurface {
+ public:
+  // Create validates `view` (ValidateBSplineSurface).
+  static absl::StatusOr<BSplineSurface> Create(const BSplineSurfaceView& view);
+
+  const BSplineSurfaceView& view() const { return view_; }
+  int dimension() const { return view_.control_net.dimension; }
+  SurfaceDomain domain() const { return domain_; }
+  absl::Status Evaluate(const SurfaceSamples& samples, SurfaceOutput output,
+                        const ExecutionContext& context = {}) const;
+
+ private:
+  explicit BSplineSurface(const BSplineSurfaceView& view)
+      : view_(view), domain_(BSplineSurfaceDomain(view)) {}
+
+  BSplineSurfaceView view_;
+  SurfaceDomain domain_;
+};
+
+// A triangular Bezier patch, barycentric or on a domain triangle. It takes
+// (u, v) pairs only: a grid of samples is an error ("grid").
+class TriangularPatch {
+ public:
+  // Create validates `view` (ValidateTriangularPatch).
+  static absl::StatusOr<TriangularPatch> Create(
+      const TriangularPatchView& view);
+
+  const TriangularPatchView& view() const { return view_; }
+  int dimension() const { return view_.control_points.dimension; }
+  // The unit square; the patch checks its own triangle.
+  SurfaceDomain domain() const { return BezierSurfaceDomain(); }
+  absl::Status Evaluate(const SurfaceSamples& samples, SurfaceOutput output,
+                        const ExecutionContext& context = {}) const;
+
+ private:
+  explicit TriangularPatch(const TriangularPatchView& view) : view_(view) {}
+
+  TriangularPatchView view_;
+};
+
+// Every surface kind the core evaluates.
+using Surface = std::variant<BezierSurface, BSplineSurface, TriangularPatch>;
+
+// DimensionOf returns the surface's point dimension.
+int DimensionOf(const Surface& surface);
+
+// DomainOf returns the parameter rectangle of a tensor-product surface (the
+// unit square for a triangular patch).
+SurfaceDomain DomainOf(const Surface& surface);
+
+// IsTriangular returns true for a triangular patch.
+bool IsTriangular(const Surface& surface);
+
+// EvaluateSurface writes every partial d^(k+l) S / du^k dv^l with
+// k + l <= MaxOrderOf(partials) at every sample into `partials`, and, when
+// `normals` is not empty, the unit normals (3 * samples.size() doubles; 3D
+// surfaces only, "normals") by ComputeUnitNormals. Normals need the partials
+// of order 1 and, for the limit at degenerate points, of order 2: those the
+// caller did not ask for are computed in scratch memory. Fails like the
+// kind's evaluator.
+absl::Status EvaluateSurface(const Surface& surface,
+                             const SurfaceSamples& samples,
+                             SurfaceOutput partials, absl::Span<double> normals,
+                             const ExecutionContext& context = {});
+
+}  // namespace freeform
+
+#endif  // FREEFORM_CORE_SURFACE_H_

@@ -1,0 +1,113 @@
+#include "freeform/core/curve.h"
+
+#include <utility>
+
+#include "validated.h"
+
+namespace freeform {
+
+absl::StatusOr<BezierCurve> BezierCurve::Create(const BezierCurveView& view,
+                                                BezierAlgorithm algorithm) {
+  if (absl::Status status = ValidateBezierCurve(view); !status.ok()) {
+    return status;
+  }
+  return BezierCurve(view, algorithm, nullptr);
+}
+
+absl::StatusOr<BezierCurve> BezierCurve::FromPowerForm(
+    const PointsView& coefficients, BezierAlgorithm algorithm) {
+  if (absl::Status status = ValidatePoints(coefficients, "coefficients");
+      !status.ok()) {
+    return status;
+  }
+  auto owned =
+      std::make_shared<const std::vector<double>>(PowerToBezier(coefficients));
+  const BezierCurveView view{
+      .control_points = {.dimension = coefficients.dimension,
+                         .coordinates = *owned},
+      .weights = {}};
+  return BezierCurve(view, algorithm, std::move(owned));
+}
+
+absl::Status BezierCurve::Evaluate(absl::Span<const double> parameters,
+                                   CurveOutput output,
+                                   const ExecutionContext& context) const {
+  return internal::EvaluateValidBezierCurve(view_, parameters, output, context,
+                                            algorithm_);
+}
+
+absl::StatusOr<BSplineCurve> BSplineCurve::Create(
+    const BSplineCurveView& view) {
+  if (absl::Status status = ValidateBSplineCurve(view); !status.ok()) {
+    return status;
+  }
+  return BSplineCurve(view);
+}
+
+absl::Status BSplineCurve::Evaluate(absl::Span<const double> parameters,
+                                    CurveOutput output,
+                                    const ExecutionContext& context) const {
+  return internal::EvaluateValidBSplineCurve(view_, parameters, output,
+                                             context);
+}
+
+LagrangeCurve::LagrangeCurve(const LagrangeCurveView& view) : view_(view) {
+  const auto [start, end] = LagrangeDomain(view);
+  domain_ = {.start = start, .end = end};
+}
+
+absl::StatusOr<LagrangeCurve> LagrangeCurve::Create(
+    const LagrangeCurveView& view) {
+  if (absl::Status status = ValidateLagrangeCurve(view); !status.ok()) {
+    return status;
+  }
+  return LagrangeCurve(view);
+}
+
+absl::Status LagrangeCurve::Evaluate(absl::Span<const double> parameters,
+                                     CurveOutput output,
+                                     const ExecutionContext& context) const {
+  return internal::EvaluateValidLagrangeCurve(view_, parameters, output,
+                                              context);
+}
+
+HermiteCurve::HermiteCurve(const HermiteCurveView& view) : view_(view) {
+  const auto [start, end] = HermiteDomain(view);
+  domain_ = {.start = start, .end = end};
+}
+
+absl::StatusOr<HermiteCurve> HermiteCurve::Create(
+    const HermiteCurveView& view) {
+  if (absl::Status status = ValidateHermiteCurve(view); !status.ok()) {
+    return status;
+  }
+  return HermiteCurve(view);
+}
+
+absl::Status HermiteCurve::Evaluate(absl::Span<const double> parameters,
+                                    CurveOutput output,
+                                    const ExecutionContext& context) const {
+  return internal::EvaluateValidHermiteCurve(view_, parameters, output,
+                                             context);
+}
+
+int DimensionOf(const Curve& curve) {
+  return std::visit([](const auto& kind) { return kind.dimension(); }, curve);
+}
+
+ParameterDomain DomainOf(const Curve& curve) {
+  return std::visit([](const auto& kind) { return kind.domain(); }, curve);
+}
+
+absl::Status EvaluateCurve(const Curve& curve,
+                           absl::Span<const double> parameters,
+                           CurveOutput output,
+                           const ExecutionContext& context) {
+  return std::visit(
+      [&](const auto& kind) {
+        return kind.Evaluate(parameters, output, context);
+      },
+      curve);
+}
+
+}  // namespace freeform

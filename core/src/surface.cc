@@ -1,0 +1,176 @@
+#include "freeform/core/surface.h"
+
+#include <algorithm>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "freeform/core/normals.h"
+#include "freeform/core/patches.h"
+#include "freeform/core/status.h"
+#include "validated.h"
+
+namespace freeform {
+namespace {
+
+// A 2 x 2 net of `dimension` (or, when `optional`, an empty one).
+absl::Status ValidateCornerNet(const ControlNetView& net, int dimension,
+                               absl::string_view field, bool optional) {
+  if (optional && net.coordinates.empty()) return absl::OkStatus();
+  if (net.dimension != dimension) {
+    return InvalidFieldError(
+        absl::StrCat(field, ".dimension"),
+        absl::StrCat("must equal the positions' dimension ", dimension,
+                     ", got ", net.dimension));
+  }
+  if (net.count_u != 2 || net.count_v != 2) {
+    return InvalidFieldError(absl::StrCat(field, ".count_u"),
+                             "a Hermite patch has 2 x 2 corners");
+  }
+  return ValidateControlNet(net, field);
+}
+
+}  // namespace
+
+absl::StatusOr<BezierSurface> BezierSurface::Create(
+    const BezierSurfaceView& view) {
+  if (absl::Status status = ValidateBezierSurface(view); !status.ok()) {
+    return status;
+  }
+  return BezierSurface(view, nullptr);
+}
+
+BezierSurface BezierSurface::OwnedBicubic(int dimension,
+                                          std::vector<double> net) {
+  auto owned = std::make_shared<const std::vector<double>>(std::move(net));
+  const BezierSurfaceView view{.control_net = {.dimension = dimension,
+                                               .count_u = 4,
+                                               .count_v = 4,
+                                               .coordinates = *owned},
+                               .weights = {}};
+  return BezierSurface(view, std::move(owned));
+}
+
+absl::StatusOr<BezierSurface> BezierSurface::FromInterpolatingPatch(
+    const ControlNetView& points) {
+  if (absl::Status status = ValidateControlNet(points, "points");
+      !status.ok()) {
+    return status;
+  }
+  if (points.count_u != 4 || points.count_v != 4) {
+    return InvalidFieldError(
+        points.count_u != 4 ? "points.count_u" : "points.count_v",
+        absl::StrCat("the interpolating patch takes 4 x 4 points, got ",
+                     points.count_u, " x ", points.count_v));
+  }
+  return OwnedBicubic(
+      points.dimension,
+      InterpolatingToBezierNet(points.dimension, points.coordinates));
+}
+
+absl::StatusOr<BezierSurface> BezierSurface::FromHermitePatch(
+    const ControlNetView& positions, const ControlNetView& derivatives_u,
+    const ControlNetView& derivatives_v, const ControlNetView& twists) {
+  const int dimension = positions.dimension;
+  for (const auto& [net, field, optional] :
+       {std::tuple{&positions, "positions", false},
+        std::tuple{&derivatives_u, "derivatives_u", false},
+        std::tuple{&derivatives_v, "derivatives_v", false},
+        std::tuple{&twists, "twists", true}}) {
+    if (absl::Status status =
+            ValidateCornerNet(*net, dimension, field, optional);
+        !status.ok()) {
+      return status;
+    }
+  }
+  return OwnedBicubic(
+      dimension,
+      HermiteToBezierNet(dimension, positions.coordinates,
+                         derivatives_u.coordinates, derivatives_v.coordinates,
+                         twists.coordinates));
+}
+
+absl::Status BezierSurface::Evaluate(const SurfaceSamples& samples,
+                                     SurfaceOutput output,
+                                     const ExecutionContext& context) const {
+  return internal::EvaluateValidBezierSurface(view_, samples, output, context);
+}
+
+absl::StatusOr<BSplineSurface> BSplineSurface::Create(
+    const BSplineSurfaceView& view) {
+  if (absl::Status status = ValidateBSplineSurface(view); !status.ok()) {
+    return status;
+  }
+  return BSplineSurface(view);
+}
+
+absl::Status BSplineSurface::Evaluate(const SurfaceSamples& samples,
+                                      SurfaceOutput output,
+                                      const ExecutionContext& context) const {
+  return internal::EvaluateValidBSplineSurface(view_, samples, output, context);
+}
+
+absl::StatusOr<TriangularPatch> TriangularPatch::Create(
+    const TriangularPatchView& view) {
+  if (absl::Status status = ValidateTriangularPatch(view); !status.ok()) {
+    return status;
+  }
+  return TriangularPatch(view);
+}
+
+absl::Status TriangularPatch::Evaluate(const SurfaceSamples& samples,
+                                       SurfaceOutput output,
+                                       const ExecutionContext& context) const {
+  if (samples.grid) {
+    return InvalidFieldError(
+        "grid", "a triangular patch takes (u, v) points, not a grid");
+  }
+  return internal::EvaluateValidTriangularPatch(view_, samples.uv, output,
+                                                context);
+}
+
+int DimensionOf(const Surface& surface) {
+  return std::visit([](const auto& kind) { return kind.dimension(); }, surface);
+}
+
+SurfaceDomain DomainOf(const Surface& surface) {
+  return std::visit([](const auto& kind) { return kind.domain(); }, surface);
+}
+
+bool IsTriangular(const Surface& surface) {
+  return std::holds_alternative<TriangularPatch>(surface);
+}
+
+absl::Status EvaluateSurface(const Surface& surface,
+                             const SurfaceSamples& samples,
+                             SurfaceOutput partials, absl::Span<double> normals,
+                             const ExecutionContext& context) {
+  const auto evaluate = [&](SurfaceOutput output) {
+    return std::visit(
+        [&](const auto& kind) {
+          return kind.Evaluate(samples, output, context);
+        },
+        surface);
+  };
+  if (normals.empty()) return evaluate(partials);
+  if (DimensionOf(surface) != 3) {
+    return InvalidFieldError(
+        "normals", absl::StrCat("normals need a 3D surface, this one is ",
+                                DimensionOf(surface), "D"));
+  }
+  const size_t count = samples.size();
+  const size_t size = 3 * count;
+  // The partials to order 2: the caller's buffers, then scratch.
+  std::vector<absl::Span<double>> all(partials.begin(), partials.end());
+  std::vector<std::vector<double>> scratch;
+  scratch.reserve(PartialCount(2));
+  while (all.size() < PartialCount(2)) {
+    all.push_back(absl::MakeSpan(scratch.emplace_back(size)));
+  }
+  if (absl::Status status = evaluate(all); !status.ok()) return status;
+  if (IsTriangular(surface)) return ComputeUnitNormals(all, count, normals);
+  return ComputeUnitNormals(all, samples, DomainOf(surface), normals);
+}
+
+}  // namespace freeform

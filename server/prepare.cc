@@ -1,0 +1,379 @@
+#include "prepare.h"
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "convert.h"
+#include "freeform/core/status.h"
+
+namespace freeform::server {
+namespace {
+
+std::string Join(absl::string_view prefix, absl::string_view name) {
+  return absl::StrCat(prefix, ".", name);
+}
+
+// Puts `prefix` in front of the field path of an error.
+template <typename T>
+absl::StatusOr<T> Prefixed(absl::StatusOr<T> result, absl::string_view prefix) {
+  if (!result.ok()) return PrefixFieldPath(result.status(), prefix);
+  return result;
+}
+
+// The point limit and the degree limit for `count` points of a curve of
+// degree `degree`, both named `field`.
+absl::Status CheckCountAndDegree(uint64_t count, int64_t degree,
+                                 const ServiceLimits& limits,
+                                 absl::string_view field) {
+  if (absl::Status status = CheckPointLimit(count, limits, field);
+      !status.ok()) {
+    return status;
+  }
+  return CheckDegreeLimit(degree, limits, field);
+}
+
+// Dimension limit (`field`.dimension), then the count and degree limits on
+// the points of `message`, whose degree is their count - 1 plus `extra`.
+absl::StatusOr<PointsView> LimitedPoints(const v1::Points& message,
+                                         const ServiceLimits& limits,
+                                         absl::string_view field,
+                                         bool degree_from_count) {
+  if (absl::Status status =
+          CheckDimensionLimit(message.dimension(), limits, field);
+      !status.ok()) {
+    return status;
+  }
+  const PointsView points = ViewOf(message);
+  const uint64_t count = points.size();
+  if (absl::Status status = CheckCountAndDegree(
+          count, degree_from_count ? static_cast<int64_t>(count) - 1 : 0,
+          limits, field);
+      !status.ok()) {
+    return status;
+  }
+  return points;
+}
+
+BezierAlgorithm ToCore(v1::BezierAlgorithm algorithm) {
+  switch (algorithm) {
+    case v1::BEZIER_ALGORITHM_DE_CASTELJAU:
+      return BezierAlgorithm::kDeCasteljau;
+    case v1::BEZIER_ALGORITHM_HORNER:
+      return BezierAlgorithm::kHorner;
+    case v1::BEZIER_ALGORITHM_LADDER:
+      return BezierAlgorithm::kLadder;
+    default:
+      return BezierAlgorithm::kAuto;
+  }
+}
+
+absl::StatusOr<Curve> BezierOf(const v1::BezierCurve& message,
+                               BezierAlgorithm algorithm,
+                               const ServiceLimits& limits) {
+  absl::StatusOr<PointsView> points =
+      LimitedPoints(message.control_points(), limits, "control_points", true);
+  if (!points.ok()) return points.status();
+  return BezierCurve::Create(
+      {.control_points = *points, .weights = SpanOf(message.weights())},
+      algorithm);
+}
+
+absl::StatusOr<Curve> PowerOf(const v1::PowerCurve& message,
+                              BezierAlgorithm algorithm,
+                              const ServiceLimits& limits) {
+  absl::StatusOr<PointsView> coefficients =
+      LimitedPoints(message.coefficients(), limits, "coefficients", true);
+  if (!coefficients.ok()) return coefficients.status();
+  return BezierCurve::FromPowerForm(*coefficients, algorithm);
+}
+
+absl::StatusOr<Curve> BSplineOf(const v1::BSplineCurve& message,
+                                const ServiceLimits& limits) {
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree(), limits, "degree");
+      !status.ok()) {
+    return status;
+  }
+  absl::StatusOr<PointsView> points =
+      LimitedPoints(message.control_points(), limits, "control_points", false);
+  if (!points.ok()) return points.status();
+  return BSplineCurve::Create({.degree = static_cast<int>(message.degree()),
+                               .control_points = *points,
+                               .knots = SpanOf(message.knots()),
+                               .weights = SpanOf(message.weights())});
+}
+
+absl::StatusOr<Curve> LagrangeOf(const v1::LagrangeCurve& message,
+                                 const ServiceLimits& limits) {
+  absl::StatusOr<PointsView> points =
+      LimitedPoints(message.points(), limits, "points", true);
+  if (!points.ok()) return points.status();
+  return LagrangeCurve::Create(
+      {.points = *points, .nodes = SpanOf(message.nodes())});
+}
+
+absl::StatusOr<Curve> HermiteOf(const v1::HermiteCurve& message,
+                                const ServiceLimits& limits) {
+  absl::StatusOr<PointsView> points =
+      LimitedPoints(message.points(), limits, "points", false);
+  if (!points.ok()) return points.status();
+  return HermiteCurve::Create({.points = *points,
+                               .tangents = ViewOf(message.tangents()),
+                               .nodes = SpanOf(message.nodes())});
+}
+
+absl::StatusOr<CurveBasis> BernsteinOf(const v1::BernsteinBasis& message,
+                                       const ServiceLimits& limits) {
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree(), limits, "degree");
+      !status.ok()) {
+    return status;
+  }
+  return BernsteinFunctions::Create(static_cast<int>(message.degree()),
+                                    SpanOf(message.weights()));
+}
+
+absl::StatusOr<CurveBasis> BSplineBasisOf(const v1::BSplineBasis& message,
+                                          const ServiceLimits& limits) {
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree(), limits, "degree");
+      !status.ok()) {
+    return status;
+  }
+  const uint64_t knots = static_cast<uint64_t>(message.knots_size());
+  if (absl::Status status = CheckPointLimit(
+          knots > message.degree() ? knots - message.degree() - 1 : 0, limits,
+          "knots");
+      !status.ok()) {
+    return status;
+  }
+  return BSplineFunctions::Create(static_cast<int>(message.degree()),
+                                  SpanOf(message.knots()),
+                                  SpanOf(message.weights()));
+}
+
+absl::StatusOr<CurveBasis> LagrangeBasisOf(const v1::LagrangeBasis& message,
+                                           const ServiceLimits& limits) {
+  const uint64_t count = static_cast<uint64_t>(message.nodes_size());
+  if (absl::Status status = CheckCountAndDegree(
+          count, static_cast<int64_t>(count) - 1, limits, "nodes");
+      !status.ok()) {
+    return status;
+  }
+  return LagrangeFunctions::Create(SpanOf(message.nodes()));
+}
+
+absl::StatusOr<Surface> BezierSurfaceOf(const v1::BezierSurface& message,
+                                        const ServiceLimits& limits) {
+  absl::StatusOr<ControlNetView> net =
+      PrepareNet(message.control_net(), limits, "control_net", true);
+  if (!net.ok()) return net.status();
+  return BezierSurface::Create(
+      {.control_net = *net, .weights = SpanOf(message.weights())});
+}
+
+absl::StatusOr<Surface> BSplineSurfaceOf(const v1::BSplineSurface& message,
+                                         const ServiceLimits& limits) {
+  for (const auto& [degree, name] :
+       {std::pair{message.degree_u(), "degree_u"},
+        std::pair{message.degree_v(), "degree_v"}}) {
+    if (absl::Status status = CheckDegreeLimit(degree, limits, name);
+        !status.ok()) {
+      return status;
+    }
+  }
+  absl::StatusOr<ControlNetView> net =
+      PrepareNet(message.control_net(), limits, "control_net", false);
+  if (!net.ok()) return net.status();
+  return BSplineSurface::Create(
+      {.degree_u = static_cast<int>(message.degree_u()),
+       .degree_v = static_cast<int>(message.degree_v()),
+       .control_net = *net,
+       .knots_u = SpanOf(message.knots_u()),
+       .knots_v = SpanOf(message.knots_v()),
+       .weights = SpanOf(message.weights())});
+}
+
+absl::StatusOr<Surface> InterpolatingOf(
+    const v1::BicubicInterpolatingPatch& message, const ServiceLimits& limits) {
+  absl::StatusOr<ControlNetView> points =
+      PrepareNet(message.points(), limits, "points", true);
+  if (!points.ok()) return points.status();
+  return BezierSurface::FromInterpolatingPatch(*points);
+}
+
+absl::StatusOr<Surface> HermitePatchOf(const v1::BicubicHermitePatch& message,
+                                       const ServiceLimits& limits) {
+  ControlNetView nets[4];
+  int index = 0;
+  for (const auto& [net, name] :
+       {std::pair{&message.positions(), "positions"},
+        std::pair{&message.derivatives_u(), "derivatives_u"},
+        std::pair{&message.derivatives_v(), "derivatives_v"},
+        std::pair{&message.twists(), "twists"}}) {
+    const bool empty_twists = index == 3 && net->coordinates_size() == 0;
+    if (empty_twists) {
+      ++index;
+      continue;
+    }
+    absl::StatusOr<ControlNetView> view = PrepareNet(*net, limits, name, false);
+    if (!view.ok()) return view.status();
+    nets[index++] = *view;
+  }
+  return BezierSurface::FromHermitePatch(nets[0], nets[1], nets[2], nets[3]);
+}
+
+absl::StatusOr<Surface> TriangularOf(const v1::TriangularBezierPatch& message,
+                                     const ServiceLimits& limits) {
+  if (absl::Status status =
+          CheckDegreeLimit(message.degree(), limits, "degree");
+      !status.ok()) {
+    return status;
+  }
+  absl::StatusOr<PointsView> points =
+      LimitedPoints(message.control_points(), limits, "control_points", false);
+  if (!points.ok()) return points.status();
+  absl::StatusOr<TriangularPatch> patch = TriangularPatch::Create(
+      {.degree = static_cast<int>(message.degree()),
+       .control_points = *points,
+       .weights = SpanOf(message.weights()),
+       .domain_triangle = SpanOf(message.domain_triangle().coordinates())});
+  if (patch.ok()) return *std::move(patch);
+  // The core names the triangle's values "domain_triangle[i]"; in the
+  // request they are a Points message.
+  const std::string path = FieldPathOf(patch.status()).value_or("");
+  if (absl::StartsWith(path, "domain_triangle[")) {
+    return InvalidFieldError(
+        absl::StrCat("domain_triangle.coordinates",
+                     path.substr(std::string("domain_triangle").size())),
+        FieldRuleOf(patch.status()));
+  }
+  return patch.status();
+}
+
+}  // namespace
+
+absl::StatusOr<PointsView> PreparePoints(const v1::Points& message,
+                                         const ServiceLimits& limits,
+                                         absl::string_view field) {
+  absl::StatusOr<PointsView> points =
+      LimitedPoints(message, limits, field, false);
+  if (!points.ok()) return points.status();
+  if (absl::Status status = ValidatePoints(*points, field); !status.ok()) {
+    return status;
+  }
+  return points;
+}
+
+absl::StatusOr<ControlNetView> PrepareNet(const v1::ControlNet& message,
+                                          const ServiceLimits& limits,
+                                          absl::string_view field,
+                                          bool degrees_from_counts) {
+  if (absl::Status status =
+          CheckDimensionLimit(message.dimension(), limits, field);
+      !status.ok()) {
+    return status;
+  }
+  for (const auto& [count, name] : {std::pair{message.count_u(), "count_u"},
+                                    std::pair{message.count_v(), "count_v"}}) {
+    if (absl::Status status = CheckCountAndDegree(
+            count, degrees_from_counts ? int64_t{count} - 1 : 0, limits,
+            Join(field, name));
+        !status.ok()) {
+      return status;
+    }
+  }
+  if (absl::Status status =
+          CheckPointLimit(uint64_t{message.count_u()} * message.count_v(),
+                          limits, Join(field, "coordinates"));
+      !status.ok()) {
+    return status;
+  }
+  return ControlNetView{.dimension = static_cast<int>(message.dimension()),
+                        .count_u = static_cast<int>(message.count_u()),
+                        .count_v = static_cast<int>(message.count_v()),
+                        .coordinates = SpanOf(message.coordinates())};
+}
+
+absl::StatusOr<Curve> PrepareCurve(const v1::Curve& message,
+                                   const ServiceLimits& limits,
+                                   absl::string_view field,
+                                   v1::BezierAlgorithm algorithm) {
+  switch (message.kind_case()) {
+    case v1::Curve::kBezier:
+      return Prefixed(BezierOf(message.bezier(), ToCore(algorithm), limits),
+                      Join(field, "bezier"));
+    case v1::Curve::kBspline:
+      return Prefixed(BSplineOf(message.bspline(), limits),
+                      Join(field, "bspline"));
+    case v1::Curve::kLagrange:
+      return Prefixed(LagrangeOf(message.lagrange(), limits),
+                      Join(field, "lagrange"));
+    case v1::Curve::kHermite:
+      return Prefixed(HermiteOf(message.hermite(), limits),
+                      Join(field, "hermite"));
+    case v1::Curve::kPower:
+      return Prefixed(PowerOf(message.power(), ToCore(algorithm), limits),
+                      Join(field, "power"));
+    case v1::Curve::KIND_NOT_SET:
+      break;
+  }
+  return InvalidFieldError(
+      field, "set one curve kind: bezier, bspline, lagrange, hermite, power");
+}
+
+absl::StatusOr<CurveBasis> PrepareBasis(const v1::Basis& message,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field) {
+  switch (message.kind_case()) {
+    case v1::Basis::kBernstein:
+      return Prefixed(BernsteinOf(message.bernstein(), limits),
+                      Join(field, "bernstein"));
+    case v1::Basis::kBspline:
+      return Prefixed(BSplineBasisOf(message.bspline(), limits),
+                      Join(field, "bspline"));
+    case v1::Basis::kLagrange:
+      return Prefixed(LagrangeBasisOf(message.lagrange(), limits),
+                      Join(field, "lagrange"));
+    case v1::Basis::kHermite:
+      return CurveBasis(HermiteFunctions());
+    case v1::Basis::KIND_NOT_SET:
+      break;
+  }
+  return InvalidFieldError(
+      field, "set one basis kind: bernstein, bspline, lagrange, hermite");
+}
+
+absl::StatusOr<Surface> PrepareSurface(const v1::Surface& message,
+                                       const ServiceLimits& limits,
+                                       absl::string_view field) {
+  switch (message.kind_case()) {
+    case v1::Surface::kBezier:
+      return Prefixed(BezierSurfaceOf(message.bezier(), limits),
+                      Join(field, "bezier"));
+    case v1::Surface::kBspline:
+      return Prefixed(BSplineSurfaceOf(message.bspline(), limits),
+                      Join(field, "bspline"));
+    case v1::Surface::kBicubicInterpolating:
+      return Prefixed(InterpolatingOf(message.bicubic_interpolating(), limits),
+                      Join(field, "bicubic_interpolating"));
+    case v1::Surface::kBicubicHermite:
+      return Prefixed(HermitePatchOf(message.bicubic_hermite(), limits),
+                      Join(field, "bicubic_hermite"));
+    case v1::Surface::kTriangularBezier:
+      return Prefixed(TriangularOf(message.triangular_bezier(), limits),
+                      Join(field, "triangular_bezier"));
+    case v1::Surface::KIND_NOT_SET:
+      break;
+  }
+  return InvalidFieldError(
+      field,
+      "set one surface kind: bezier, bspline, bicubic_interpolating, "
+      "bicubic_hermite, triangular_bezier");
+}
+
+}  // namespace freeform::server
