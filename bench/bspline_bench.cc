@@ -1,4 +1,4 @@
-// B-spline benchmarks on the workloads of shared/bench/WORKLOADS.md.
+// B-spline benchmarks on the workloads of docs/benchmarks.md.
 //
 //   build/release/bench/bspline_bench --benchmark_min_time=1
 //

@@ -1,5 +1,5 @@
 // Benchmarks of the operations that build geometry, on the workloads of
-// shared/bench/WORKLOADS.md.
+// docs/benchmarks.md.
 //
 //   build/release/bench/construction_bench --benchmark_min_time=1
 //

@@ -1,4 +1,4 @@
-// Core benchmarks on the workloads of shared/bench/WORKLOADS.md.
+// Core benchmarks on the workloads of docs/benchmarks.md.
 //
 //   build/release/bench/core_bench --benchmark_min_time=1
 //

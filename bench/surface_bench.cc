@@ -1,4 +1,4 @@
-// Surface benchmarks on the workloads of shared/bench/WORKLOADS.md.
+// Surface benchmarks on the workloads of docs/benchmarks.md.
 //
 //   build/release/bench/surface_bench --benchmark_min_time=1
 //

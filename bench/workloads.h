@@ -1,4 +1,4 @@
-// The data of the benchmark workloads (shared/bench/WORKLOADS.md): the LCG,
+// The data of the benchmark workloads (docs/benchmarks.md): the LCG,
 // uniform parameters and clamped uniform knots, so every benchmark program
 // computes exactly the geometry the peers (OpenCASCADE, scipy, Eigen) do.
 #ifndef FREEFORM_BENCH_WORKLOADS_H_
