@@ -30,6 +30,7 @@ MemoryBudget::Reservation& MemoryBudget::Reservation::operator=(
 
 void MemoryBudget::Reservation::Release() {
   if (budget_ != nullptr) {
+    budget_->released_.fetch_add(bytes_, std::memory_order_relaxed);
     budget_->in_use_.fetch_sub(bytes_, std::memory_order_relaxed);
     budget_ = nullptr;
     bytes_ = 0;

@@ -51,6 +51,10 @@ class MemoryBudget {
 
   uint64_t capacity() const { return capacity_; }
   uint64_t in_use() const { return in_use_.load(std::memory_order_relaxed); }
+  // released counts the bytes of every reservation released so far.
+  uint64_t released() const {
+    return released_.load(std::memory_order_relaxed);
+  }
   // refusals counts the calls refused so far.
   uint64_t refusals() const {
     return refusals_.load(std::memory_order_relaxed);
@@ -59,6 +63,7 @@ class MemoryBudget {
  private:
   const uint64_t capacity_;
   std::atomic<uint64_t> in_use_{0};
+  std::atomic<uint64_t> released_{0};
   std::atomic<uint64_t> refusals_{0};
 };
 

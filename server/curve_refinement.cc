@@ -282,35 +282,54 @@ absl::StatusOr<UnaryWork> PlanTessellate(
                                  fit, limits.max_output_values / per_point});
   using Tessellator = absl::AnyInvocable<absl::StatusOr<Polyline>(
       size_t, const CancellationToken*) const>;
-  absl::StatusOr<Tessellator> tessellator = std::visit(
+  // The polyline's points are known to be at most `bound` before the work
+  // (SIZE_MAX when unknown: rational curves).
+  struct Tessellation {
+    Tessellator tessellator;
+    size_t bound = SIZE_MAX;
+  };
+  const double tolerance = request.tolerance();
+  if (!std::isfinite(tolerance) || !(tolerance > 0.0)) {
+    return InvalidFieldError(
+        "tolerance",
+        absl::StrCat("must be positive and finite, got ", tolerance));
+  }
+  absl::StatusOr<Tessellation> tessellation = std::visit(
       Overloaded{
-          [&](const BezierCurve& bezier) -> absl::StatusOr<Tessellator> {
-            return [view = bezier.view(), tolerance = request.tolerance()](
-                       size_t max_points, const CancellationToken* token) {
-              return TessellateBezierCurve(view, tolerance, max_points, token);
-            };
+          [&](const BezierCurve& bezier) -> absl::StatusOr<Tessellation> {
+            return Tessellation{
+                [view = bezier.view(), tolerance](
+                    size_t max_points, const CancellationToken* token) {
+                  return TessellateBezierCurve(view, tolerance, max_points,
+                                               token);
+                },
+                BezierCurvePointBound(bezier.view(), tolerance)};
           },
-          [&](const BSplineCurve& bspline) -> absl::StatusOr<Tessellator> {
-            return [view = bspline.view(), tolerance = request.tolerance()](
-                       size_t max_points, const CancellationToken* token) {
-              return TessellateBSplineCurve(view, tolerance, max_points, token);
-            };
+          [&](const BSplineCurve& bspline) -> absl::StatusOr<Tessellation> {
+            return Tessellation{
+                [view = bspline.view(), tolerance](
+                    size_t max_points, const CancellationToken* token) {
+                  return TessellateBSplineCurve(view, tolerance, max_points,
+                                                token);
+                },
+                BSplineCurvePointBound(bspline.view(), tolerance)};
           },
-          [](const LagrangeCurve&) -> absl::StatusOr<Tessellator> {
+          [](const LagrangeCurve&) -> absl::StatusOr<Tessellation> {
             return Refused("Tessellate",
                            "a Bezier, power-form or B-spline/NURBS curve");
           },
-          [](const HermiteCurve&) -> absl::StatusOr<Tessellator> {
+          [](const HermiteCurve&) -> absl::StatusOr<Tessellation> {
             return Refused("Tessellate",
                            "a Bezier, power-form or B-spline/NURBS curve");
           }},
       *curve);
-  if (!tessellator.ok()) return tessellator.status();
-  const uint64_t values = cap * per_point;
+  if (!tessellation.ok()) return tessellation.status();
+  const uint64_t values =
+      std::min<uint64_t>(cap, tessellation->bound) * per_point;
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
-      .run = [curve = *std::move(curve), tessellator = *std::move(tessellator),
-              cap,
+      .run = [curve = *std::move(curve),
+              tessellator = std::move(tessellation->tessellator), cap,
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<Polyline> polyline =
             tessellator(static_cast<size_t>(cap), execution.cancellation);

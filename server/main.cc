@@ -5,7 +5,6 @@
 // Prints "freeformd listening on HOST:PORT" on stdout once it serves (with
 // --listen=127.0.0.1:0 the kernel picks the port). SIGTERM or SIGINT: health
 // turns NOT_SERVING, in-flight RPCs get --grace_period to finish, exit 0.
-#include <malloc.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -100,9 +99,6 @@ void StopWithin(absl::Duration limit) {
 }
 
 int main(int argc, char** argv) {
-  // Large answers come from mmap and go back to the system when freed, so
-  // the resident size falls back after a burst of large calls.
-  mallopt(M_MMAP_THRESHOLD, 1 << 20);
   absl::SetProgramUsageMessage("freeform curve and surface gRPC server");
   absl::ParseCommandLine(argc, argv);
   ConfigureLogging();

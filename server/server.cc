@@ -15,6 +15,9 @@
 namespace freeform::server {
 namespace {
 
+// Memory released by calls before an idle server hands it back.
+constexpr uint64_t kTrimAfterReleasedBytes = 64ull << 20;
+
 absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> Credentials(
     const TlsOptions& tls) {
   if (tls.cert_file.empty() && tls.key_file.empty()) {
@@ -55,6 +58,8 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   server->pool_ = std::make_unique<ThreadPool>(threads);
   server->budget_ =
       std::make_unique<MemoryBudget>(options.limits.memory_budget_bytes);
+  server->trimmer_ = std::make_unique<MemoryTrimmer>(
+      server->budget_.get(), kTrimAfterReleasedBytes, std::chrono::seconds(1));
   server->frame_ = std::make_unique<RpcFrame>(
       server->pool_.get(), server->budget_.get(), options.limits);
   server->curve_service_ =

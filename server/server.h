@@ -19,6 +19,7 @@
 #include "absl/status/statusor.h"
 #include "admission.h"
 #include "freeform/core/thread_pool.h"
+#include "memory_trimmer.h"
 #include "rpc.h"
 #include "service_limits.h"
 
@@ -67,6 +68,7 @@ class FreeformServer {
 
   std::unique_ptr<ThreadPool> pool_;
   std::unique_ptr<MemoryBudget> budget_;
+  std::unique_ptr<MemoryTrimmer> trimmer_;
   std::unique_ptr<RpcFrame> frame_;
   std::unique_ptr<CurveServiceImpl> curve_service_;
   std::unique_ptr<SurfaceServiceImpl> surface_service_;

@@ -41,24 +41,6 @@ absl::Status CheckTensorElevation(
   return CheckElevation(request.by_v(), degree_v, limits, "by_v");
 }
 
-absl::Status ElevateBezierNet(const BezierSurfaceView& surface,
-                              const v1::ElevateSurfaceDegreeRequest& request,
-                              const ServiceLimits& limits,
-                              v1::ElevateSurfaceDegreeResponse& response) {
-  if (absl::Status status =
-          CheckTensorElevation(request, surface.control_net.count_u - 1,
-                               surface.control_net.count_v - 1, limits);
-      !status.ok()) {
-    return status;
-  }
-  absl::StatusOr<SurfaceData> elevated =
-      ElevateBezierSurface(surface, static_cast<int>(request.by_u()),
-                           static_cast<int>(request.by_v()));
-  if (!elevated.ok()) return elevated.status();
-  ToProto(*elevated, *response.mutable_surface());
-  return absl::OkStatus();
-}
-
 // Runs `elevate` with the answer size `values` planned.
 template <typename Elevate>
 UnaryWork ElevationWork(uint64_t values, const ServiceLimits& limits,

@@ -108,15 +108,30 @@ absl::StatusOr<UnaryWork> PlanInsert(
                    }};
 }
 
-// The Bezier patches to mesh, held by their prepared surfaces.
+// The Bezier patches to mesh, held by their prepared surfaces, and the
+// mesh's size planned before any work.
 struct MeshInput {
   std::vector<Surface> surfaces;
   std::vector<BezierSurfaceView> patches;
   size_t cap = 0;
+  MeshSize size;
+
+  // Bytes of the answer: per vertex its position, normal, (u, v) and
+  // patch; per triangle three indices.
+  uint64_t AnswerBytes() const {
+    return size.vertices * uint64_t{8 * (3 + 3 + 2) + 4} +
+           size.triangles * uint64_t{3 * 4};
+  }
+  // Bytes of the mesher's own arrays: the answer's, each vertex's source
+  // and weld entry, and each triangle's patch and corner (u, v).
+  uint64_t WorkBytes() const {
+    return AnswerBytes() + size.vertices * uint64_t{24 + 16} +
+           size.triangles * uint64_t{4 + 6 * 8};
+  }
 };
 
-// Bytes of one vertex in an answer: position, normal, (u, v), its patch,
-// and about two triangles of three indices.
+// Bytes of one vertex in an answer, with about two triangles of three
+// indices: what the vertex cap allows for.
 constexpr uint64_t kVertexBytes = 8 * (3 + 3 + 2) + 4 + 2 * 3 * 4;
 
 absl::StatusOr<MeshInput> PrepareMesh(
@@ -147,6 +162,10 @@ absl::StatusOr<MeshInput> PrepareMesh(
   input.cap = static_cast<size_t>(
       std::min({requested, uint64_t{limits.max_parameters},
                 limits.max_output_values / 16, message_limit / kVertexBytes}));
+  absl::StatusOr<MeshSize> size =
+      BezierPatchesMeshBound(input.patches, request.tolerance(), input.cap);
+  if (!size.ok()) return size.status();
+  input.size = *size;
   return input;
 }
 
@@ -208,9 +227,10 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Tessellate(
         absl::StatusOr<MeshInput> input = PrepareMesh(
             *request, limits, static_cast<uint64_t>(limits.max_message_bytes));
         if (!input.ok()) return input.status();
-        const uint64_t bytes = input->cap * kVertexBytes;
         return UnaryWork{
-            .plan = {.memory_bytes = 3 * bytes, .heavy = true},
+            .plan = {.memory_bytes =
+                         2 * input->AnswerBytes() + input->WorkBytes(),
+                     .heavy = true},
             .run = [input = *std::move(input), request, response](
                        const ExecutionContext& execution) -> absl::Status {
               absl::StatusOr<Mesh> mesh =
@@ -236,16 +256,25 @@ SurfaceServiceImpl::TessellateStream(
         absl::StatusOr<MeshInput> input =
             PrepareMesh(*request, limits, UINT64_MAX);
         if (!input.ok()) return input.status();
-        const size_t chunk = request->chunk_size() > 0
-                                 ? request->chunk_size()
-                                 : limits.default_stream_chunk;
-        const uint64_t bytes = input->cap * kVertexBytes;
+        // Vertices or triangles per message: the request's or the default,
+        // within half a message.
+        const size_t chunk = static_cast<size_t>(std::min<uint64_t>(
+            request->chunk_size() > 0 ? request->chunk_size()
+                                      : limits.default_stream_chunk,
+            std::max<uint64_t>(
+                1, static_cast<uint64_t>(limits.max_message_bytes) / 2 /
+                       kVertexBytes)));
+        const uint64_t chunk_bytes =
+            std::min<uint64_t>(chunk, input->size.vertices) *
+            (kVertexBytes + 3 * 4);
         // The mesh is made first; chunks of vertices, then of triangles,
         // are cut from it (indices always refer to vertices already sent).
         auto mesh = std::make_shared<Mesh>();
         auto shared = std::make_shared<MeshInput>(*std::move(input));
         return Work{
-            .plan = {.memory_bytes = 2 * bytes, .heavy = true},
+            .plan = {.memory_bytes = shared->WorkBytes() +
+                                     2 * kChunksInFlight * chunk_bytes,
+                     .heavy = true},
             .chunk_count = 0,
             .prepare = [mesh, shared, chunk,
                         request](const ExecutionContext& execution)

@@ -390,9 +390,11 @@ class MeshBuilder {
   MeshBuilder(absl::Span<const BezierSurfaceView> patches, double tolerance)
       : patches_(patches), tolerance_(tolerance) {}
 
-  // Plan chooses grid and edge sample counts and returns the number of
-  // vertices they generate, or RESOURCE_EXHAUSTED beyond max_vertices.
+  // Plan chooses grid and edge sample counts and bounds the vertices and
+  // triangles they generate (planned_size), or returns RESOURCE_EXHAUSTED
+  // beyond max_vertices.
   absl::Status Plan(size_t max_vertices);
+  MeshSize planned_size() const { return planned_size_; }
   // Build creates the vertices and triangles of every patch.
   absl::Status Build(const CancellationToken* cancel);
   // Evaluate computes positions and normals on each vertex's patch.
@@ -413,11 +415,13 @@ class MeshBuilder {
                const std::vector<std::pair<Sample, double>>& outer,
                const std::vector<std::pair<Sample, double>>& inner);
   void BuildPatch(uint32_t patch);
+  size_t PlannedTriangles() const;
 
   absl::Span<const BezierSurfaceView> patches_;
   double tolerance_;
   std::vector<PatchPlan> plans_;
   std::vector<Edge> edges_;
+  MeshSize planned_size_;
   std::map<Point3, uint32_t> corners_;
   std::vector<VertexSource> sources_;
   std::vector<double> positions_;
@@ -469,7 +473,28 @@ absl::Status MeshBuilder::Plan(size_t max_vertices) {
       return Exhausted("vertices", max_vertices);
     }
   }
+  planned_size_ = {.vertices = static_cast<size_t>(vertex_count),
+                   .triangles = PlannedTriangles()};
   return absl::OkStatus();
+}
+
+// The triangles BuildPatch makes at most: the zipped ring (one per sample
+// of the outer and the inner loop) and two per interior grid cell.
+size_t MeshBuilder::PlannedTriangles() const {
+  size_t triangles = 0;
+  for (const PatchPlan& plan : plans_) {
+    const size_t nu = static_cast<size_t>(plan.grid_u);
+    const size_t nv = static_cast<size_t>(plan.grid_v);
+    for (int side = 0; side < 4; ++side) {
+      const Edge& edge = edges_[plan.edge[side]];
+      const bool along_u = side == kBottom || side == kTop;
+      triangles += 1 + (edge.collapsed ? (along_u ? nu : nv)
+                                       : static_cast<size_t>(edge.segments));
+    }
+    triangles += 2 * std::max<size_t>(2, nu - 1) +
+                 2 * std::max<size_t>(2, nv - 1) + 2 * (nu - 2) * (nv - 2);
+  }
+  return triangles;
 }
 
 uint32_t MeshBuilder::NewVertex(uint32_t patch, double u, double v) {
@@ -871,9 +896,10 @@ absl::StatusOr<Polyline> TessellateBSplineCurve(
       cancel);
 }
 
-absl::StatusOr<Mesh> TessellateBezierPatches(
-    absl::Span<const BezierSurfaceView> patches, double tolerance,
-    size_t max_vertices, const CancellationToken* cancel) {
+namespace {
+
+absl::Status ValidateMeshRequest(absl::Span<const BezierSurfaceView> patches,
+                                 double tolerance, size_t max_vertices) {
   for (size_t i = 0; i < patches.size(); ++i) {
     if (absl::Status status = ValidatePatch(patches[i], i); !status.ok()) {
       return status;
@@ -883,6 +909,34 @@ absl::StatusOr<Mesh> TessellateBezierPatches(
     return status;
   }
   if (patches.size() >= UINT32_MAX) return Exhausted("vertices", max_vertices);
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<MeshSize> BezierPatchesMeshBound(
+    absl::Span<const BezierSurfaceView> patches, double tolerance,
+    size_t max_vertices) {
+  if (absl::Status status =
+          ValidateMeshRequest(patches, tolerance, max_vertices);
+      !status.ok()) {
+    return status;
+  }
+  MeshBuilder builder(patches, tolerance);
+  if (absl::Status status = builder.Plan(max_vertices); !status.ok()) {
+    return status;
+  }
+  return builder.planned_size();
+}
+
+absl::StatusOr<Mesh> TessellateBezierPatches(
+    absl::Span<const BezierSurfaceView> patches, double tolerance,
+    size_t max_vertices, const CancellationToken* cancel) {
+  if (absl::Status status =
+          ValidateMeshRequest(patches, tolerance, max_vertices);
+      !status.ok()) {
+    return status;
+  }
   MeshBuilder builder(patches, tolerance);
   absl::Status status = builder.Plan(max_vertices);
   if (status.ok()) status = builder.Build(cancel);

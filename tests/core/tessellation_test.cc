@@ -17,16 +17,12 @@
 
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
+#include "test_util.h"
 
 namespace freeform {
 namespace {
 
-std::vector<double> RandomValues(std::mt19937_64& rng, size_t count) {
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<double> values(count);
-  for (double& value : values) value = uniform(rng);
-  return values;
-}
+using testing_util::RandomValues;
 
 double Distance(const double* a, const double* b, int dimension) {
   double d2 = 0.0;
@@ -209,6 +205,93 @@ TEST(TessellationTest, BSplineCurvesWithKnots) {
       }
     }
   }
+}
+
+// The parabola (0,0), (1,2), (2,0): the middle control point of a piece at
+// depth d lies 2 4^-d from the midpoint of its chord (the bound
+// n^2 |D2| 4^-d / 8 with n = 2 and |D2| = 4, exact for a parabola). The
+// bound asks for 2 4^-d <= 0.05 at tolerance 0.1: d = 3, 9 points. The
+// flatness test measures the distance to the chord itself, which is shorter
+// once the pieces are no longer symmetric: 7 points.
+TEST(TessellationTest, PointBoundOfAParabola) {
+  const std::vector<double> points = {0, 0, 1, 2, 2, 0};
+  const BezierCurveView curve{
+      .control_points = {.dimension = 2, .coordinates = points},
+      .weights = {}};
+  const absl::StatusOr<Polyline> polyline =
+      TessellateBezierCurve(curve, 0.1, 1 << 10);
+  ASSERT_TRUE(polyline.ok()) << polyline.status();
+  EXPECT_EQ(polyline->parameters.size(), 7u);
+  EXPECT_EQ(BezierCurvePointBound(curve, 0.1), 9u);
+  // Lines and points need their two ends only.
+  const std::vector<double> line = {0, 0, 1, 1, 2, 2};
+  EXPECT_EQ(BezierCurvePointBound(
+                {.control_points = {.dimension = 2, .coordinates = line},
+                 .weights = {}},
+                1e-9),
+            2u);
+}
+
+TEST(TessellationTest, PointBoundsHoldForRandomCurves) {
+  std::mt19937_64 rng(23);
+  int splines_checked = 0;
+  for (int degree = 0; degree <= 9; ++degree) {
+    for (int dimension : {1, 2, 3, 5}) {
+      for (double tolerance : {1e-1, 1e-3, 1e-5, 1e-7}) {
+        SCOPED_TRACE(testing::Message() << "degree " << degree << " dim "
+                                        << dimension << " tol " << tolerance);
+        const std::vector<double> points =
+            RandomValues(rng, static_cast<size_t>(degree + 1) * dimension);
+        const BezierCurveView bezier{
+            .control_points = {.dimension = dimension, .coordinates = points},
+            .weights = {}};
+        const absl::StatusOr<Polyline> polyline =
+            TessellateBezierCurve(bezier, tolerance, 1 << 22);
+        ASSERT_TRUE(polyline.ok()) << polyline.status();
+        EXPECT_GE(BezierCurvePointBound(bezier, tolerance),
+                  polyline->parameters.size());
+
+        // A B-spline with random interior knots (some doubled), clamped or
+        // not, with 3 to 12 control points more than its degree needs.
+        const int count = degree + 1 + static_cast<int>(rng() % 10);
+        std::vector<double> knots =
+            RandomValues(rng, static_cast<size_t>(count + degree + 1), 0, 4);
+        std::sort(knots.begin(), knots.end());
+        if (rng() % 2 == 0 && count > degree + 2 && degree > 1) {
+          knots[degree + 2] = knots[degree + 1];
+        }
+        if (rng() % 2 == 0) {
+          std::fill(knots.begin(), knots.begin() + degree + 1, knots[0]);
+          std::fill(knots.end() - degree - 1, knots.end(), knots.back());
+        }
+        const std::vector<double> control =
+            RandomValues(rng, static_cast<size_t>(count) * dimension);
+        const BSplineCurveView bspline{
+            .degree = degree,
+            .control_points = {.dimension = dimension, .coordinates = control},
+            .knots = knots,
+            .weights = {}};
+        if (!ValidateBSplineCurve(bspline).ok()) continue;
+        const absl::StatusOr<Polyline> spline_polyline =
+            TessellateBSplineCurve(bspline, tolerance, 1 << 22);
+        ASSERT_TRUE(spline_polyline.ok()) << spline_polyline.status();
+        EXPECT_GE(BSplineCurvePointBound(bspline, tolerance),
+                  spline_polyline->parameters.size());
+        ++splines_checked;
+      }
+    }
+  }
+  EXPECT_GT(splines_checked, 100);
+}
+
+TEST(TessellationTest, RationalCurvesHaveNoPointBound) {
+  const std::vector<double> points = {1, 0, 1, 1, 0, 1};
+  const std::vector<double> weights = {1, 0.7, 1};
+  EXPECT_EQ(BezierCurvePointBound(
+                {.control_points = {.dimension = 2, .coordinates = points},
+                 .weights = weights},
+                1e-3),
+            SIZE_MAX);
 }
 
 TEST(TessellationTest, CurveErrors) {
@@ -512,6 +595,18 @@ TEST(TessellationTest, UtahTeapotIsWatertightAndWithinTolerance) {
   const size_t coarse =
       TessellateBezierPatches(views, 1e-2, 1 << 22)->vertices.size();
   EXPECT_LT(coarse, mesh->vertices.size());
+  // The planned size bounds the mesh, and not loosely: welding only merges
+  // the vertices of the few patch sides that meet without sharing control
+  // points.
+  const absl::StatusOr<MeshSize> bound =
+      BezierPatchesMeshBound(views, kTolerance, 1 << 22);
+  ASSERT_TRUE(bound.ok()) << bound.status();
+  EXPECT_GE(bound->vertices, mesh->vertices.size() / 3);
+  EXPECT_LE(bound->vertices, 2 * mesh->vertices.size() / 3);
+  EXPECT_GE(bound->triangles, mesh->triangles.size() / 3);
+  EXPECT_LE(bound->triangles, 2 * mesh->triangles.size() / 3);
+  EXPECT_EQ(BezierPatchesMeshBound(views, kTolerance, 100).status().code(),
+            absl::StatusCode::kResourceExhausted);
 }
 
 // Two patches of different degrees sharing a side in opposite directions:

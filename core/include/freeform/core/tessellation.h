@@ -90,6 +90,31 @@ absl::StatusOr<Polyline> TessellateBSplineCurve(
     const BSplineCurveView& curve, double tolerance, size_t max_points,
     const CancellationToken* cancel = nullptr);
 
+// Bounds on the size of a polyline before it is made, so a server knows
+// the size of an answer before the work starts. For a polynomial Bezier
+// piece of degree n whose second differences are at most D long, every
+// control point of a piece halved d times lies within n^2 D 4^-d / 8 of its
+// chord (the control polygon minus the chord's even spacing has second
+// differences at most 4^-d D and vanishes at both ends, and a discrete
+// Green's function bounds it by i (n - i) / 2 times that). The flatness
+// test therefore passes at the first depth where this is at most half the
+// tolerance (half, so rounding cannot push one level deeper), and the
+// polyline has at most 2^depth segments per piece. A B-spline span of width
+// w is bounded through the control points Q of the curve's second
+// derivative (The NURBS Book, eq. 3.8): its Bezier form has second
+// differences at most w^2 max |Q_i| / (p (p - 1)) over the p - 1 points
+// active on the span. Rational curves have no such bound: these return
+// SIZE_MAX, as they do when the bound does not fit a size_t.
+
+// BezierCurvePointBound returns at least the number of points
+// TessellateBezierCurve(curve, tolerance, ...) returns. `curve` must be
+// valid and `tolerance` positive.
+size_t BezierCurvePointBound(const BezierCurveView& curve, double tolerance);
+
+// BSplineCurvePointBound is BezierCurvePointBound for
+// TessellateBSplineCurve.
+size_t BSplineCurvePointBound(const BSplineCurveView& curve, double tolerance);
+
 // A triangle mesh of Bezier patches.
 struct Mesh {
   // Vertex r at vertices[3 r .. 3 r + 2], its unit normal at normals[3 r..].
@@ -123,6 +148,21 @@ struct Mesh {
 absl::StatusOr<Mesh> TessellateBezierPatches(
     absl::Span<const BezierSurfaceView> patches, double tolerance,
     size_t max_vertices, const CancellationToken* cancel = nullptr);
+
+// The size of a mesh, known before it is made.
+struct MeshSize {
+  size_t vertices = 0;
+  size_t triangles = 0;
+};
+
+// BezierPatchesMeshBound returns at least the number of vertices and of
+// triangles TessellateBezierPatches(patches, tolerance, max_vertices)
+// makes: the mesh is planned before any vertex is made. Fails as
+// TessellateBezierPatches does for invalid patches or tolerance, or a mesh
+// over max_vertices. Costs one pass over the control nets.
+absl::StatusOr<MeshSize> BezierPatchesMeshBound(
+    absl::Span<const BezierSurfaceView> patches, double tolerance,
+    size_t max_vertices);
 
 }  // namespace freeform
 
