@@ -108,10 +108,17 @@ absl::Span<const double> ParameterSet::Values(
     size_t begin, size_t end, std::vector<double>& storage) const {
   if (!is_range_) return list_.subspan(begin, end - begin);
   storage.resize(end - begin);
-  const double last = count_ > 1 ? static_cast<double>(count_ - 1) : 1.0;
+  // numpy.linspace's values: start + k step, the last one exactly `end`
+  // (kept inside the range against rounding).
+  const double step =
+      count_ > 1 ? (end_ - start_) / static_cast<double>(count_ - 1) : 0.0;
+  const double lo = std::min(start_, end_);
+  const double hi = std::max(start_, end_);
   for (size_t k = begin; k < end; ++k) {
-    storage[k - begin] = std::lerp(start_, end_, static_cast<double>(k) / last);
+    storage[k - begin] =
+        std::clamp(start_ + static_cast<double>(k) * step, lo, hi);
   }
+  if (count_ > 1 && end == count_) storage.back() = end_;
   return storage;
 }
 

@@ -9,6 +9,7 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "visit.h"
 
 namespace freeform::server {
 namespace {
@@ -24,82 +25,97 @@ absl::Status CheckBy(uint32_t by, int degree, const ServiceLimits& limits) {
   return absl::OkStatus();
 }
 
+absl::StatusOr<UnaryWork> PlanBezierElevate(
+    const BezierCurve& bezier, const v1::ElevateCurveDegreeRequest& request,
+    const ServiceLimits& limits, v1::ElevateCurveDegreeResponse& response) {
+  if (absl::Status status = CheckBy(request.by(), bezier.degree(), limits);
+      !status.ok()) {
+    return status;
+  }
+  const int by = static_cast<int>(request.by());
+  const BezierCurveView view = bezier.view();
+  const uint64_t values = (view.control_points.size() + by) *
+                          (static_cast<uint64_t>(bezier.dimension()) + 1);
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [view, by, &response](const ExecutionContext&) -> absl::Status {
+        absl::StatusOr<BezierCurveData> elevated = ElevateBezierCurve(view, by);
+        if (!elevated.ok()) return elevated.status();
+        ToProto(*elevated, *response.mutable_curve());
+        return absl::OkStatus();
+      }};
+}
+
+absl::StatusOr<UnaryWork> PlanBSplineElevate(
+    const BSplineCurve& bspline, const v1::ElevateCurveDegreeRequest& request,
+    const ServiceLimits& limits, v1::ElevateCurveDegreeResponse& response) {
+  if (absl::Status status = CheckBy(request.by(), bspline.degree(), limits);
+      !status.ok()) {
+    return status;
+  }
+  const int by = static_cast<int>(request.by());
+  const BSplineCurveView view = bspline.view();
+  // Every distinct knot gains `by` copies: at most (n + 2) by more points.
+  const uint64_t count =
+      view.control_points.size() + (view.control_points.size() + 1) * by;
+  if (absl::Status status = CheckPointLimit(count, limits, "by");
+      !status.ok()) {
+    return status;
+  }
+  const uint64_t values =
+      count * (static_cast<uint64_t>(bspline.dimension()) + 2) +
+      view.knots.size();
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "by");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [view, by, &response](const ExecutionContext&) -> absl::Status {
+        absl::StatusOr<BSplineCurveData> elevated =
+            ElevateBSplineCurve(view, by);
+        if (!elevated.ok()) return elevated.status();
+        ToProto(*elevated, *response.mutable_curve());
+        return absl::OkStatus();
+      }};
+}
+
 absl::StatusOr<UnaryWork> PlanElevate(
     const v1::ElevateCurveDegreeRequest& request, const ServiceLimits& limits,
     v1::ElevateCurveDegreeResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  const int by = static_cast<int>(std::min<uint32_t>(request.by(), 1 << 20));
-  if (const auto* bezier = std::get_if<BezierCurve>(&*curve)) {
-    if (absl::Status status = CheckBy(request.by(), bezier->degree(), limits);
-        !status.ok()) {
-      return status;
-    }
-    const BezierCurveView view = bezier->view();
-    const uint64_t values = (view.control_points.size() + by) *
-                            (static_cast<uint64_t>(bezier->dimension()) + 1);
-    return UnaryWork{
-        .plan = AnswerPlan(values, 8 * values, limits),
-        .run = [view, by, &response](const ExecutionContext&) -> absl::Status {
-          absl::StatusOr<BezierCurveData> elevated =
-              ElevateBezierCurve(view, by);
-          if (!elevated.ok()) return elevated.status();
-          ToProto(*elevated, *response.mutable_curve());
-          return absl::OkStatus();
-        }};
-  }
-  if (const auto* bspline = std::get_if<BSplineCurve>(&*curve)) {
-    if (absl::Status status = CheckBy(request.by(), bspline->degree(), limits);
-        !status.ok()) {
-      return status;
-    }
-    const BSplineCurveView view = bspline->view();
-    // Every distinct knot gains `by` copies: at most (n + 2) by more points.
-    const uint64_t count =
-        view.control_points.size() + (view.control_points.size() + 1) * by;
-    if (absl::Status status = CheckPointLimit(count, limits, "by");
-        !status.ok()) {
-      return status;
-    }
-    const uint64_t values =
-        count * (static_cast<uint64_t>(bspline->dimension()) + 2) +
-        view.knots.size();
-    if (absl::Status status = UnaryAnswerCheck(values, limits, "by");
-        !status.ok()) {
-      return status;
-    }
-    return UnaryWork{
-        .plan = AnswerPlan(values, 8 * values, limits),
-        .run = [view, by, &response](const ExecutionContext&) -> absl::Status {
-          absl::StatusOr<BSplineCurveData> elevated =
-              ElevateBSplineCurve(view, by);
-          if (!elevated.ok()) return elevated.status();
-          ToProto(*elevated, *response.mutable_curve());
-          return absl::OkStatus();
-        }};
-  }
-  return InvalidFieldError(
-      "curve",
-      "degree elevation takes a Bezier, power-form or B-spline/NURBS curve");
+  return std::visit<absl::StatusOr<UnaryWork>>(
+      Overloaded{
+          [&](const BezierCurve& bezier) {
+            return PlanBezierElevate(bezier, request, limits, response);
+          },
+          [&](const BSplineCurve& bspline) {
+            return PlanBSplineElevate(bspline, request, limits, response);
+          },
+          Refuse<LagrangeCurve, HermiteCurve>{
+              "curve",
+              "degree elevation takes a Bezier, power-form or B-spline/NURBS "
+              "curve"}},
+      *curve);
 }
 
-absl::StatusOr<UnaryWork> PlanReduce(
-    const v1::ReduceCurveDegreeRequest& request, const ServiceLimits& limits,
-    v1::ReduceCurveDegreeResponse& response) {
-  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
-  if (!curve.ok()) return curve.status();
-  const auto* bezier = std::get_if<BezierCurve>(&*curve);
-  if (bezier == nullptr || bezier->view().rational()) {
-    return InvalidFieldError(
-        "curve", "degree reduction takes a polynomial Bezier curve");
+constexpr char kReductionTakes[] =
+    "degree reduction takes a polynomial Bezier curve";
+
+absl::StatusOr<UnaryWork> PlanBezierReduce(
+    const BezierCurve& bezier, const v1::ReduceCurveDegreeRequest& request,
+    const ServiceLimits& limits, v1::ReduceCurveDegreeResponse& response) {
+  if (bezier.view().rational()) {
+    return InvalidFieldError("curve.bezier.weights", kReductionTakes);
   }
   if (request.by() < 1 ||
-      static_cast<int64_t>(request.by()) > bezier->degree()) {
+      static_cast<int64_t>(request.by()) > bezier.degree()) {
     return InvalidFieldError(
-        "by", absl::StrCat("must be between 1 and the degree ",
-                           bezier->degree(), ", got ", request.by()));
+        "by", absl::StrCat("must be between 1 and the degree ", bezier.degree(),
+                           ", got ", request.by()));
   }
-  const BezierCurveView view = bezier->view();
+  const BezierCurveView view = bezier.view();
   const uint64_t values = view.control_points.coordinates.size() + 1;
   return UnaryWork{.plan = AnswerPlan(values, 64 * values, limits),
                    .run = [view, by = static_cast<int>(request.by()),
@@ -113,6 +129,20 @@ absl::StatusOr<UnaryWork> PlanReduce(
                      response.set_error_bound(reduced->error_bound);
                      return absl::OkStatus();
                    }};
+}
+
+absl::StatusOr<UnaryWork> PlanReduce(
+    const v1::ReduceCurveDegreeRequest& request, const ServiceLimits& limits,
+    v1::ReduceCurveDegreeResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  return std::visit<absl::StatusOr<UnaryWork>>(
+      Overloaded{[&](const BezierCurve& bezier) {
+                   return PlanBezierReduce(bezier, request, limits, response);
+                 },
+                 Refuse<BSplineCurve, LagrangeCurve, HermiteCurve>{
+                     "curve", kReductionTakes}},
+      *curve);
 }
 
 Parameterization ToCore(v1::Parameterization parameterization) {

@@ -13,17 +13,10 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "visit.h"
 
 namespace freeform::server {
 namespace {
-
-// Overloaded lambdas for std::visit.
-template <typename... Kinds>
-struct Overloaded : Kinds... {
-  using Kinds::operator()...;
-};
-template <typename... Kinds>
-Overloaded(Kinds...) -> Overloaded<Kinds...>;
 
 // Values of `count` control points of a (rational) curve of `dimension`.
 uint64_t CurveValues(uint64_t count, int dimension, bool rational) {
@@ -31,21 +24,10 @@ uint64_t CurveValues(uint64_t count, int dimension, bool rational) {
       count, static_cast<uint64_t>(dimension) + (rational ? 1 : 0));
 }
 
-absl::Status Refused(absl::string_view rpc, absl::string_view takes) {
-  return InvalidFieldError("curve", absl::StrCat(rpc, " takes ", takes));
-}
-
-absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitCurveRequest& request,
-                                    const ServiceLimits& limits,
-                                    v1::SplitCurveResponse& response) {
-  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
-  if (!curve.ok()) return curve.status();
-  const auto* bezier = std::get_if<BezierCurve>(&*curve);
-  if (bezier == nullptr) {
-    return Refused("Split",
-                   "a Bezier or power-form curve; use InsertKnots or "
-                   "Decompose for B-splines");
-  }
+absl::StatusOr<UnaryWork> PlanBezierSplit(const BezierCurve& bezier,
+                                          const v1::SplitCurveRequest& request,
+                                          const ServiceLimits& limits,
+                                          v1::SplitCurveResponse& response) {
   const uint64_t cuts = static_cast<uint64_t>(request.parameters_size());
   if (cuts == 0) {
     return InvalidFieldError("parameters", "needs at least one parameter");
@@ -54,9 +36,9 @@ absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitCurveRequest& request,
       !status.ok()) {
     return status;
   }
-  const BezierCurveView view = bezier->view();
+  const BezierCurveView view = bezier.view();
   const uint64_t values = SaturatingProduct(
-      cuts + 1, CurveValues(view.control_points.size(), bezier->dimension(),
+      cuts + 1, CurveValues(view.control_points.size(), bezier.dimension(),
                             view.rational()));
   if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
       !status.ok()) {
@@ -80,16 +62,26 @@ absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitCurveRequest& request,
       }};
 }
 
-absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
-                                     const ServiceLimits& limits,
-                                     v1::InsertKnotsResponse& response) {
+absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitCurveRequest& request,
+                                    const ServiceLimits& limits,
+                                    v1::SplitCurveResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  const auto* bspline = std::get_if<BSplineCurve>(&*curve);
-  if (bspline == nullptr) {
-    return Refused("InsertKnots", "a B-spline or NURBS curve");
-  }
-  const BSplineCurveView view = bspline->view();
+  return std::visit<absl::StatusOr<UnaryWork>>(
+      Overloaded{[&](const BezierCurve& bezier) {
+                   return PlanBezierSplit(bezier, request, limits, response);
+                 },
+                 Refuse<BSplineCurve, LagrangeCurve, HermiteCurve>{
+                     "curve",
+                     "Split takes a Bezier or power-form curve; use "
+                     "InsertKnots or Decompose for B-splines"}},
+      *curve);
+}
+
+absl::StatusOr<UnaryWork> PlanBSplineInsert(
+    const BSplineCurve& bspline, const v1::InsertKnotsRequest& request,
+    const ServiceLimits& limits, v1::InsertKnotsResponse& response) {
+  const BSplineCurveView view = bspline.view();
   const uint64_t count =
       view.control_points.size() + static_cast<uint64_t>(request.knots_size());
   if (absl::Status status = CheckPointLimit(count, limits, "knots");
@@ -97,7 +89,7 @@ absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
     return status;
   }
   const uint64_t values =
-      CurveValues(count, bspline->dimension(), view.rational()) + count +
+      CurveValues(count, bspline.dimension(), view.rational()) + count +
       static_cast<uint64_t>(view.degree) + 1;
   if (absl::Status status = UnaryAnswerCheck(values, limits, "knots");
       !status.ok()) {
@@ -114,6 +106,20 @@ absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
                    }};
 }
 
+absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
+                                     const ServiceLimits& limits,
+                                     v1::InsertKnotsResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  return std::visit<absl::StatusOr<UnaryWork>>(
+      Overloaded{[&](const BSplineCurve& bspline) {
+                   return PlanBSplineInsert(bspline, request, limits, response);
+                 },
+                 Refuse<BezierCurve, LagrangeCurve, HermiteCurve>{
+                     "curve", "InsertKnots takes a B-spline or NURBS curve"}},
+      *curve);
+}
+
 // The Bezier pieces of a curve and the size of that answer.
 struct DecompositionPlan {
   uint64_t values = 0;
@@ -121,7 +127,7 @@ struct DecompositionPlan {
 };
 
 absl::StatusOr<DecompositionPlan> PlanPieces(const Curve& curve) {
-  return std::visit(
+  return std::visit<absl::StatusOr<DecompositionPlan>>(
       Overloaded{
           [](const BezierCurve& bezier) -> absl::StatusOr<DecompositionPlan> {
             const BezierCurveView view = bezier.view();
@@ -165,10 +171,10 @@ absl::StatusOr<DecompositionPlan> PlanPieces(const Curve& curve) {
                   return DecomposeHermiteCurve(view);
                 }};
           },
-          [](const LagrangeCurve&) -> absl::StatusOr<DecompositionPlan> {
-            return Refused("Decompose",
-                           "a Bezier, power-form, B-spline or Hermite curve");
-          }},
+          Refuse<LagrangeCurve>{
+              "curve",
+              "Decompose takes a Bezier, power-form, B-spline or Hermite "
+              "curve"}},
       curve);
 }
 
@@ -294,7 +300,7 @@ absl::StatusOr<UnaryWork> PlanTessellate(
         "tolerance",
         absl::StrCat("must be positive and finite, got ", tolerance));
   }
-  absl::StatusOr<Tessellation> tessellation = std::visit(
+  absl::StatusOr<Tessellation> tessellation = std::visit<absl::StatusOr<Tessellation>>(
       Overloaded{
           [&](const BezierCurve& bezier) -> absl::StatusOr<Tessellation> {
             return Tessellation{
@@ -314,14 +320,10 @@ absl::StatusOr<UnaryWork> PlanTessellate(
                 },
                 BSplineCurvePointBound(bspline.view(), tolerance)};
           },
-          [](const LagrangeCurve&) -> absl::StatusOr<Tessellation> {
-            return Refused("Tessellate",
-                           "a Bezier, power-form or B-spline/NURBS curve");
-          },
-          [](const HermiteCurve&) -> absl::StatusOr<Tessellation> {
-            return Refused("Tessellate",
-                           "a Bezier, power-form or B-spline/NURBS curve");
-          }},
+          Refuse<LagrangeCurve, HermiteCurve>{
+              "curve",
+              "Tessellate takes a Bezier, power-form or B-spline/NURBS "
+              "curve"}},
       *curve);
   if (!tessellation.ok()) return tessellation.status();
   const uint64_t values =

@@ -10,6 +10,7 @@
 #include "plan.h"
 #include "prepare.h"
 #include "surface_service.h"
+#include "visit.h"
 
 namespace freeform::server {
 namespace {
@@ -56,57 +57,71 @@ UnaryWork ElevationWork(uint64_t values, const ServiceLimits& limits,
                    }};
 }
 
-absl::StatusOr<UnaryWork> PlanElevate(
+// by_u and by_v within what CheckTensorElevation allows.
+int ByU(const v1::ElevateSurfaceDegreeRequest& request) {
+  return static_cast<int>(std::min<uint32_t>(request.by_u(), 1 << 20));
+}
+int ByV(const v1::ElevateSurfaceDegreeRequest& request) {
+  return static_cast<int>(std::min<uint32_t>(request.by_v(), 1 << 20));
+}
+
+absl::StatusOr<UnaryWork> PlanBezierElevate(
+    const BezierSurface& bezier, const v1::ElevateSurfaceDegreeRequest& request,
+    const ServiceLimits& limits, v1::ElevateSurfaceDegreeResponse& response) {
+  const BezierSurfaceView view = bezier.view();
+  if (absl::Status status =
+          CheckTensorElevation(request, view.control_net.count_u - 1,
+                               view.control_net.count_v - 1, limits);
+      !status.ok()) {
+    return status;
+  }
+  const int by_u = ByU(request);
+  const int by_v = ByV(request);
+  const uint64_t values = uint64_t(view.control_net.count_u + by_u) *
+                          (view.control_net.count_v + by_v) *
+                          (view.control_net.dimension + 1);
+  return ElevationWork(values, limits, response, [view, by_u, by_v] {
+    return ElevateBezierSurface(view, by_u, by_v);
+  });
+}
+
+absl::StatusOr<UnaryWork> PlanBSplineElevate(
+    const BSplineSurface& bspline,
     const v1::ElevateSurfaceDegreeRequest& request, const ServiceLimits& limits,
     v1::ElevateSurfaceDegreeResponse& response) {
-  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
-  if (!surface.ok()) return surface.status();
-  const int by_u =
-      static_cast<int>(std::min<uint32_t>(request.by_u(), 1 << 20));
-  const int by_v =
-      static_cast<int>(std::min<uint32_t>(request.by_v(), 1 << 20));
-  if (const auto* bezier = std::get_if<BezierSurface>(&*surface)) {
-    const BezierSurfaceView view = bezier->view();
-    if (absl::Status status =
-            CheckTensorElevation(request, view.control_net.count_u - 1,
-                                 view.control_net.count_v - 1, limits);
-        !status.ok()) {
-      return status;
-    }
-    const uint64_t values = uint64_t(view.control_net.count_u + by_u) *
-                            (view.control_net.count_v + by_v) *
-                            (view.control_net.dimension + 1);
-    return ElevationWork(values, limits, response, [view, by_u, by_v] {
-      return ElevateBezierSurface(view, by_u, by_v);
-    });
+  const BSplineSurfaceView view = bspline.view();
+  if (absl::Status status =
+          CheckTensorElevation(request, view.degree_u, view.degree_v, limits);
+      !status.ok()) {
+    return status;
   }
-  if (const auto* bspline = std::get_if<BSplineSurface>(&*surface)) {
-    const BSplineSurfaceView view = bspline->view();
-    if (absl::Status status =
-            CheckTensorElevation(request, view.degree_u, view.degree_v, limits);
-        !status.ok()) {
-      return status;
-    }
-    const uint64_t count_u = view.control_net.count_u +
-                             uint64_t(view.control_net.count_u + 1) * by_u;
-    const uint64_t count_v = view.control_net.count_v +
-                             uint64_t(view.control_net.count_v + 1) * by_v;
-    if (absl::Status status = CheckPointLimit(
-            SaturatingProduct(count_u, count_v), limits, "by_u");
-        !status.ok()) {
-      return status;
-    }
-    const uint64_t values = SaturatingProduct(
-        count_u * count_v, uint64_t(view.control_net.dimension) + 1);
-    if (absl::Status status = UnaryAnswerCheck(values, limits, "by_u");
-        !status.ok()) {
-      return status;
-    }
-    return ElevationWork(values, limits, response, [view, by_u, by_v] {
-      return ElevateBSplineSurface(view, by_u, by_v);
-    });
+  const int by_u = ByU(request);
+  const int by_v = ByV(request);
+  const uint64_t count_u =
+      view.control_net.count_u + uint64_t(view.control_net.count_u + 1) * by_u;
+  const uint64_t count_v =
+      view.control_net.count_v + uint64_t(view.control_net.count_v + 1) * by_v;
+  if (absl::Status status =
+          CheckPointLimit(SaturatingProduct(count_u, count_v), limits, "by_u");
+      !status.ok()) {
+    return status;
   }
-  const TriangularPatchView view = std::get<TriangularPatch>(*surface).view();
+  const uint64_t values = SaturatingProduct(
+      count_u * count_v, uint64_t(view.control_net.dimension) + 1);
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "by_u");
+      !status.ok()) {
+    return status;
+  }
+  return ElevationWork(values, limits, response, [view, by_u, by_v] {
+    return ElevateBSplineSurface(view, by_u, by_v);
+  });
+}
+
+absl::StatusOr<UnaryWork> PlanTriangularElevate(
+    const TriangularPatch& patch,
+    const v1::ElevateSurfaceDegreeRequest& request, const ServiceLimits& limits,
+    v1::ElevateSurfaceDegreeResponse& response) {
+  const TriangularPatchView view = patch.view();
   if (request.by() < 1) return InvalidFieldError("by", "must be at least 1");
   if (absl::Status status =
           CheckElevation(request.by(), view.degree, limits, "by");
@@ -118,6 +133,25 @@ absl::StatusOr<UnaryWork> PlanElevate(
                           (uint64_t(view.control_points.dimension) + 1);
   return ElevationWork(values, limits, response,
                        [view, by] { return ElevateTriangularPatch(view, by); });
+}
+
+absl::StatusOr<UnaryWork> PlanElevate(
+    const v1::ElevateSurfaceDegreeRequest& request, const ServiceLimits& limits,
+    v1::ElevateSurfaceDegreeResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  return std::visit(
+      Overloaded{
+          [&](const BezierSurface& bezier) {
+            return PlanBezierElevate(bezier, request, limits, response);
+          },
+          [&](const BSplineSurface& bspline) {
+            return PlanBSplineElevate(bspline, request, limits, response);
+          },
+          [&](const TriangularPatch& patch) {
+            return PlanTriangularElevate(patch, request, limits, response);
+          }},
+      *surface);
 }
 
 absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,

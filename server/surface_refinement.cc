@@ -13,42 +13,52 @@
 #include "plan.h"
 #include "prepare.h"
 #include "surface_service.h"
+#include "visit.h"
 
 namespace freeform::server {
 namespace {
 
-absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitSurfaceRequest& request,
-                                    const ServiceLimits& limits,
-                                    v1::SplitSurfaceResponse& response) {
-  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
-  if (!surface.ok()) return surface.status();
-  if (const auto* patch = std::get_if<TriangularPatch>(&*surface)) {
-    const TriangularPatchView view = patch->view();
-    const uint64_t values =
-        3 * view.control_points.coordinates.size() + 3 * view.weights.size();
-    return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
-                     .run = [view, &request, &response](
-                                const ExecutionContext&) -> absl::Status {
-                       absl::StatusOr<std::vector<TriangularPatchData>> pieces =
-                           SplitTriangularPatch(view, request.u(), request.v());
-                       if (!pieces.ok()) return pieces.status();
-                       for (const TriangularPatchData& piece : *pieces) {
-                         ToProto(piece, *response.add_pieces());
-                       }
-                       return absl::OkStatus();
-                     }};
+absl::Status CheckDirection(v1::SurfaceDirection direction) {
+  if (direction != v1::SURFACE_DIRECTION_U &&
+      direction != v1::SURFACE_DIRECTION_V) {
+    return InvalidFieldError("direction",
+                             absl::StrCat("choose U or V, got ", direction));
   }
-  const auto* bezier = std::get_if<BezierSurface>(&*surface);
-  if (bezier == nullptr || !request.surface().has_bezier()) {
+  return absl::OkStatus();
+}
+
+absl::StatusOr<UnaryWork> PlanTriangularSplit(
+    const TriangularPatch& patch, const v1::SplitSurfaceRequest& request,
+    const ServiceLimits& limits, v1::SplitSurfaceResponse& response) {
+  const TriangularPatchView view = patch.view();
+  const uint64_t values =
+      3 * view.control_points.coordinates.size() + 3 * view.weights.size();
+  return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
+                   .run = [view, &request,
+                           &response](const ExecutionContext&) -> absl::Status {
+                     absl::StatusOr<std::vector<TriangularPatchData>> pieces =
+                         SplitTriangularPatch(view, request.u(), request.v());
+                     if (!pieces.ok()) return pieces.status();
+                     for (const TriangularPatchData& piece : *pieces) {
+                       ToProto(piece, *response.add_pieces());
+                     }
+                     return absl::OkStatus();
+                   }};
+}
+
+absl::StatusOr<UnaryWork> PlanBezierSplit(
+    const BezierSurface& bezier, const v1::SplitSurfaceRequest& request,
+    const ServiceLimits& limits, v1::SplitSurfaceResponse& response) {
+  if (!request.surface().has_bezier()) {
+    // A bicubic interpolating or Hermite patch, held in Bezier form: its
+    // halves are no longer patches of its own kind.
     return InvalidFieldError(
         "surface", "Split takes a tensor Bezier or a triangular patch");
   }
-  if (request.direction() != v1::SURFACE_DIRECTION_U &&
-      request.direction() != v1::SURFACE_DIRECTION_V) {
-    return InvalidFieldError(
-        "direction", absl::StrCat("choose U or V, got ", request.direction()));
+  if (absl::Status status = CheckDirection(request.direction()); !status.ok()) {
+    return status;
   }
-  const BezierSurfaceView view = bezier->view();
+  const BezierSurfaceView view = bezier.view();
   const uint64_t values =
       2 * (view.control_net.coordinates.size() + view.weights.size());
   return UnaryWork{
@@ -66,22 +76,31 @@ absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitSurfaceRequest& request,
       }};
 }
 
-absl::StatusOr<UnaryWork> PlanInsert(
-    const v1::InsertSurfaceKnotsRequest& request, const ServiceLimits& limits,
-    v1::InsertSurfaceKnotsResponse& response) {
+absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitSurfaceRequest& request,
+                                    const ServiceLimits& limits,
+                                    v1::SplitSurfaceResponse& response) {
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
-  const auto* bspline = std::get_if<BSplineSurface>(&*surface);
-  if (bspline == nullptr) {
-    return InvalidFieldError("surface",
-                             "InsertKnots takes a B-spline or NURBS surface");
+  return std::visit<absl::StatusOr<UnaryWork>>(
+      Overloaded{
+          [&](const TriangularPatch& patch) {
+            return PlanTriangularSplit(patch, request, limits, response);
+          },
+          [&](const BezierSurface& bezier) {
+            return PlanBezierSplit(bezier, request, limits, response);
+          },
+          Refuse<BSplineSurface>{
+              "surface", "Split takes a tensor Bezier or a triangular patch"}},
+      *surface);
+}
+
+absl::StatusOr<UnaryWork> PlanBSplineInsert(
+    const BSplineSurface& bspline, const v1::InsertSurfaceKnotsRequest& request,
+    const ServiceLimits& limits, v1::InsertSurfaceKnotsResponse& response) {
+  if (absl::Status status = CheckDirection(request.direction()); !status.ok()) {
+    return status;
   }
-  if (request.direction() != v1::SURFACE_DIRECTION_U &&
-      request.direction() != v1::SURFACE_DIRECTION_V) {
-    return InvalidFieldError(
-        "direction", absl::StrCat("choose U or V, got ", request.direction()));
-  }
-  const BSplineSurfaceView view = bspline->view();
+  const BSplineSurfaceView view = bspline.view();
   const bool in_u = request.direction() == v1::SURFACE_DIRECTION_U;
   const uint64_t knots = static_cast<uint64_t>(request.knots_size());
   const uint64_t points =
@@ -106,6 +125,21 @@ absl::StatusOr<UnaryWork> PlanInsert(
                      ToProto(*refined, *response.mutable_surface());
                      return absl::OkStatus();
                    }};
+}
+
+absl::StatusOr<UnaryWork> PlanInsert(
+    const v1::InsertSurfaceKnotsRequest& request, const ServiceLimits& limits,
+    v1::InsertSurfaceKnotsResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  return std::visit<absl::StatusOr<UnaryWork>>(
+      Overloaded{
+          [&](const BSplineSurface& bspline) {
+            return PlanBSplineInsert(bspline, request, limits, response);
+          },
+          Refuse<BezierSurface, TriangularPatch>{
+              "surface", "InsertKnots takes a B-spline or NURBS surface"}},
+      *surface);
 }
 
 // The Bezier patches to mesh, held by their prepared surfaces, and the
@@ -147,14 +181,17 @@ absl::StatusOr<MeshInput> PrepareMesh(
     absl::StatusOr<Surface> surface =
         PrepareSurface(request.surfaces(i), limits, field);
     if (!surface.ok()) return surface.status();
-    const auto* bezier = std::get_if<BezierSurface>(&*surface);
-    if (bezier == nullptr) {
-      return InvalidFieldError(
-          field,
-          "Tessellate takes tensor Bezier, bicubic interpolating and bicubic "
-          "Hermite patches");
-    }
-    input.patches.push_back(bezier->view());
+    absl::StatusOr<BezierSurfaceView> patch =
+        std::visit<absl::StatusOr<BezierSurfaceView>>(
+            Overloaded{
+                [](const BezierSurface& bezier) { return bezier.view(); },
+                Refuse<BSplineSurface, TriangularPatch>{
+                    field,
+                    "Tessellate takes tensor Bezier, bicubic "
+                    "interpolating and bicubic Hermite patches"}},
+            *surface);
+    if (!patch.ok()) return patch.status();
+    input.patches.push_back(*patch);
     input.surfaces.push_back(*std::move(surface));
   }
   const uint64_t requested = request.max_vertices() > 0 ? request.max_vertices()

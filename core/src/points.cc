@@ -45,6 +45,13 @@ absl::Status ValidateFinite(absl::Span<const double> values,
 
 absl::Status ValidateInRange(absl::Span<const double> values, double lo,
                              double hi, absl::string_view field) {
+  // Branch-free first: NaN fails both comparisons, and the domain is
+  // finite, so this also rejects every value that is not finite.
+  bool all_in_range = true;
+  for (const double value : values) {
+    all_in_range &= (value >= lo) & (value <= hi);
+  }
+  if (all_in_range) return absl::OkStatus();
   for (size_t i = 0; i < values.size(); ++i) {
     const double value = values[i];
     if (!std::isfinite(value)) {
