@@ -55,6 +55,10 @@ ABSL_FLAG(int, warmup, -1, "Warm-up calls (-1: 1000 for latency, else 2)");
 ABSL_FLAG(double, seconds, 0,
           "Measured time (0: 5 s for throughput, 60 s for mixed)");
 ABSL_FLAG(int, outstanding, 16, "throughput: calls in flight");
+ABSL_FLAG(std::string, workload, "s1",
+          "throughput: s1 (one point per call) or s2 (--points per unary "
+          "call: with many outstanding, a burst of maximal calls that "
+          "exercises admission; RESOURCE_EXHAUSTED counts as refused)");
 ABSL_FLAG(int, callers, 64, "mixed: concurrent callers");
 ABSL_FLAG(int, cqs, 2, "mixed: completion queues, one thread each (1-4)");
 ABSL_FLAG(bool, decode, true, "Parse S2 answers into one xyz array");
@@ -290,7 +294,9 @@ Workload FreeformS2(uint32_t points, uint32_t chunk_points) {
 }
 
 Workload SelectWorkload(bool echo_kind, const std::string& mode) {
-  if (mode == "latency" || mode == "throughput") {
+  const bool bulk_throughput =
+      mode == "throughput" && absl::GetFlag(FLAGS_workload) == "s2";
+  if (mode == "latency" || (mode == "throughput" && !bulk_throughput)) {
     return echo_kind ? EchoS1() : FreeformS1();
   }
   const auto points = static_cast<uint32_t>(
@@ -490,7 +496,7 @@ int RunThroughput(const std::shared_ptr<grpc::Channel>& channel,
   const Clock::time_point window_end = ClockIn(1.0 + seconds);
   std::vector<AsyncSlot> slots(static_cast<size_t>(outstanding));
   for (AsyncSlot& slot : slots) Launch(stub, cq, workload, &slot);
-  long live = outstanding, done = 0, failures = 0;
+  long live = outstanding, done = 0, failures = 0, refused = 0;
   std::vector<double> micros;
   // Bounded: no call starts after window_end and each has a 10 s deadline.
   while (live > 0) {
@@ -504,7 +510,11 @@ int RunThroughput(const std::shared_ptr<grpc::Channel>& channel,
       slot->status = MissingPoints();
     }
     const bool good = slot->status.ok();
-    if (!good) ReportError(slot->status, ++failures);
+    if (slot->status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+      ++refused;
+    } else if (!good) {
+      ReportError(slot->status, ++failures);
+    }
     if (good && now >= window_start && now < window_end) {
       ++done;
       micros.push_back(MicrosSince(slot->start));
@@ -517,9 +527,9 @@ int RunThroughput(const std::shared_ptr<grpc::Channel>& channel,
   Drain(&cq);
   std::printf(
       "throughput outstanding=%d seconds=%.1f calls_per_s=%.0f p50_us=%.1f "
-      "p99_us=%.1f failures=%ld\n",
+      "p99_us=%.1f refused=%ld failures=%ld\n",
       outstanding, seconds, static_cast<double>(done) / seconds,
-      Percentile(micros, 0.5), Percentile(micros, 0.99), failures);
+      Percentile(micros, 0.5), Percentile(micros, 0.99), refused, failures);
   return failures || done == 0 ? 1 : 0;
 }
 
