@@ -300,31 +300,32 @@ absl::StatusOr<UnaryWork> PlanTessellate(
         "tolerance",
         absl::StrCat("must be positive and finite, got ", tolerance));
   }
-  absl::StatusOr<Tessellation> tessellation = std::visit<absl::StatusOr<Tessellation>>(
-      Overloaded{
-          [&](const BezierCurve& bezier) -> absl::StatusOr<Tessellation> {
-            return Tessellation{
-                [view = bezier.view(), tolerance](
-                    size_t max_points, const CancellationToken* token) {
-                  return TessellateBezierCurve(view, tolerance, max_points,
-                                               token);
-                },
-                BezierCurvePointBound(bezier.view(), tolerance)};
-          },
-          [&](const BSplineCurve& bspline) -> absl::StatusOr<Tessellation> {
-            return Tessellation{
-                [view = bspline.view(), tolerance](
-                    size_t max_points, const CancellationToken* token) {
-                  return TessellateBSplineCurve(view, tolerance, max_points,
-                                                token);
-                },
-                BSplineCurvePointBound(bspline.view(), tolerance)};
-          },
-          Refuse<LagrangeCurve, HermiteCurve>{
-              "curve",
-              "Tessellate takes a Bezier, power-form or B-spline/NURBS "
-              "curve"}},
-      *curve);
+  absl::StatusOr<Tessellation> tessellation =
+      std::visit<absl::StatusOr<Tessellation>>(
+          Overloaded{
+              [&](const BezierCurve& bezier) -> absl::StatusOr<Tessellation> {
+                return Tessellation{
+                    [view = bezier.view(), tolerance](
+                        size_t max_points, const CancellationToken* token) {
+                      return TessellateBezierCurve(view, tolerance, max_points,
+                                                   token);
+                    },
+                    BezierCurvePointBound(bezier.view(), tolerance)};
+              },
+              [&](const BSplineCurve& bspline) -> absl::StatusOr<Tessellation> {
+                return Tessellation{
+                    [view = bspline.view(), tolerance](
+                        size_t max_points, const CancellationToken* token) {
+                      return TessellateBSplineCurve(view, tolerance, max_points,
+                                                    token);
+                    },
+                    BSplineCurvePointBound(bspline.view(), tolerance)};
+              },
+              Refuse<LagrangeCurve, HermiteCurve>{
+                  "curve",
+                  "Tessellate takes a Bezier, power-form or B-spline/NURBS "
+                  "curve"}},
+          *curve);
   if (!tessellation.ok()) return tessellation.status();
   const uint64_t values =
       std::min<uint64_t>(cap, tessellation->bound) * per_point;

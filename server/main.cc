@@ -7,6 +7,7 @@
 // turns NOT_SERVING, in-flight RPCs get --grace_period to finish, exit 0.
 #include <unistd.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -98,6 +99,27 @@ void StopWithin(absl::Duration limit) {
   }).detach();
 }
 
+// ExitWhenDrained waits while gRPC drains. gRPC's shutdown also waits, up
+// to the whole grace period, for idle client connections to go away; once
+// the listener is closed and no call is in flight there is nothing left to
+// wait for, so the process exits 0 at once. Returns when the shutdown
+// ended by itself first.
+void ExitWhenDrained(const freeform::server::FreeformServer& server,
+                     const std::atomic<bool>& stopped) {
+  // Two quiet checks 20 ms apart: the first also lets Shutdown close the
+  // listener, after which no new call can start.
+  int quiet_checks = 0;
+  while (!stopped) {
+    absl::SleepFor(absl::Milliseconds(20));
+    quiet_checks = server.calls_in_flight() == 0 ? quiet_checks + 1 : 0;
+    if (quiet_checks == 2 && !stopped) {
+      spdlog::info("drained: no call in flight; exiting");
+      spdlog::shutdown();
+      _exit(0);
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   absl::SetProgramUsageMessage("freeform curve and surface gRPC server");
   absl::ParseCommandLine(argc, argv);
@@ -128,8 +150,14 @@ int main(int argc, char** argv) {
   spdlog::info("signal {}: draining for up to {}", signal_number,
                absl::FormatDuration(grace));
   StopWithin(grace + absl::Milliseconds(900));
-  (*server)->Shutdown(absl::ToChronoMilliseconds(grace));
-  (*server)->Wait();
+  std::atomic<bool> stopped{false};
+  std::thread drain([&] {
+    (*server)->Shutdown(absl::ToChronoMilliseconds(grace));
+    (*server)->Wait();
+    stopped = true;
+  });
+  ExitWhenDrained(**server, stopped);
+  drain.join();
   spdlog::info("stopped");
   return 0;
 }

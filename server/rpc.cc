@@ -3,6 +3,7 @@
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/reflection.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -138,10 +139,21 @@ CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
     token_.SetDeadline(*deadline);
   }
   token_.SetPoll([context] { return context->IsCancelled(); });
+  frame_->calls_in_flight_.fetch_add(1, std::memory_order_acq_rel);
+}
+
+CallRecord::~CallRecord() {
+  frame_->calls_in_flight_.fetch_sub(1, std::memory_order_acq_rel);
 }
 
 ExecutionContext CallRecord::execution() const {
   return {.pool = frame_->pool(),
+          .cancellation = &token_,
+          .grain = frame_->limits().grain};
+}
+
+ExecutionContext CallRecord::chunk_execution() const {
+  return {.pool = nullptr,
           .cancellation = &token_,
           .grain = frame_->limits().grain};
 }
@@ -177,6 +189,11 @@ void CallRecord::Done(const absl::Status& status, size_t response_bytes) {
               failed ? " error=\"" : "",
               failed ? std::string(status.message()) : std::string(),
               failed ? "\"" : "");
+}
+
+size_t RpcFrame::chunks_in_flight() const {
+  return std::clamp<size_t>(static_cast<size_t>(pool_->size()) + 1,
+                            kMinChunksInFlight, kMaxChunksInFlight);
 }
 
 grpc::ServerUnaryReactor* RpcFrame::Unary(

@@ -8,9 +8,9 @@
 //      (RESOURCE_EXHAUSTED at once when it does not fit);
 //   3. runs light work inline and heavy work on the thread pool, under a
 //      CancellationToken that carries the deadline and client cancellation;
-//   4. streams chunk after chunk with compute and transfer overlapped: up to
-//      kChunksInFlight chunks are computed on the pool while the earlier
-//      ones are written;
+//   4. streams chunk after chunk with compute and transfer overlapped: one
+//      chunk per pool thread is computed while an earlier one is written
+//      (chunks_in_flight);
 //   5. answers with the status (field paths as google.rpc.BadRequest), and
 //      writes one access-log line: method, peer, sizes, status, microseconds.
 // In debug and sanitizer builds it also checks that every OK answer is
@@ -22,7 +22,7 @@
 #include <grpcpp/server_context.h>
 #include <grpcpp/support/server_callback.h>
 
-#include <array>
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -76,8 +76,10 @@ template <typename Response>
 using StreamPlanner =
     absl::AnyInvocable<absl::StatusOr<StreamWork<Response>>() &&>;
 
-// Chunks of one stream computed or written at once.
-inline constexpr size_t kChunksInFlight = 3;
+// Chunks of one stream computed or written at once: one per pool thread
+// and one being written, within these bounds.
+inline constexpr size_t kMinChunksInFlight = 2;
+inline constexpr size_t kMaxChunksInFlight = 17;
 
 class RpcFrame;
 
@@ -87,10 +89,16 @@ class CallRecord {
   CallRecord(RpcFrame* frame, absl::string_view method,
              grpc::CallbackServerContext* context,
              const google::protobuf::Message* request);
+  ~CallRecord();
+  CallRecord(const CallRecord&) = delete;
+  CallRecord& operator=(const CallRecord&) = delete;
 
   RpcFrame& frame() { return *frame_; }
   const CancellationToken& token() const { return token_; }
   ExecutionContext execution() const;
+  // The context of one stream chunk: computed on its own pool thread,
+  // since the chunks in flight already keep the pool busy.
+  ExecutionContext chunk_execution() const;
   size_t request_bytes() const { return request_bytes_; }
   // Reserve takes the plan's memory from the budget.
   absl::Status Reserve(const CallPlan& plan);
@@ -118,6 +126,13 @@ class RpcFrame {
 
   const ServiceLimits& limits() const { return limits_; }
   ThreadPool* pool() const { return pool_; }
+  // chunks_in_flight is how many chunks of one stream exist at once; a
+  // stream's plan counts that many chunk messages.
+  size_t chunks_in_flight() const;
+  // calls_in_flight counts the calls started and not yet done.
+  int64_t calls_in_flight() const {
+    return calls_in_flight_.load(std::memory_order_acquire);
+  }
   MemoryBudget& budget() const { return *budget_; }
 
   // Unary serves a unary call whose handler is `planner`.
@@ -135,9 +150,12 @@ class RpcFrame {
       StreamPlanner<Response> planner);
 
  private:
+  friend class CallRecord;
+
   ThreadPool* const pool_;
   MemoryBudget* const budget_;
   const ServiceLimits limits_;
+  std::atomic<int64_t> calls_in_flight_{0};
 };
 
 // Requests larger than this are planned on the pool, not the gRPC thread.
@@ -167,7 +185,8 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
              const google::protobuf::Message* request,
              StreamPlanner<Response> planner)
       : record_(frame, method, context, request),
-        planner_(std::move(planner)) {}
+        planner_(std::move(planner)),
+        slots_(frame->chunks_in_flight()) {}
 
   void Start() {
     if (record_.request_bytes() > kInlinePlanningBytes) {
@@ -183,7 +202,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       writing_ = false;
-      slots_[next_write_ % kChunksInFlight].state = SlotState::kFree;
+      slots_[next_write_ % slots_.size()].state = SlotState::kFree;
       ++next_write_;
       if (!ok && error_.ok()) {
         error_ = absl::CancelledError("the client stopped reading");
@@ -261,14 +280,14 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
       error_ = record_.token().status();
     }
     while (error_.ok() && next_compute_ < work_.chunk_count &&
-           next_compute_ < next_write_ + kChunksInFlight) {
-      const size_t slot = next_compute_ % kChunksInFlight;
+           next_compute_ < next_write_ + slots_.size()) {
+      const size_t slot = next_compute_ % slots_.size();
       slots_[slot].state = SlotState::kComputing;
       slots_[slot].chunk = next_compute_++;
       ++computing_;
       actions.push_back({Action::kCompute, slot});
     }
-    const size_t slot = next_write_ % kChunksInFlight;
+    const size_t slot = next_write_ % slots_.size();
     if (error_.ok() && !writing_ && next_write_ < work_.chunk_count &&
         slots_[slot].state == SlotState::kReady &&
         slots_[slot].chunk == next_write_) {
@@ -308,7 +327,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
     Response& message = slots_[slot].message;
     message.Clear();
     absl::Status status =
-        work_.fill(slots_[slot].chunk, message, record_.execution());
+        work_.fill(slots_[slot].chunk, message, record_.chunk_execution());
     if (status.ok() && kCheckAnswers) status = CheckAnswerFinite(message);
     Computed(slot, status);
   }
@@ -332,7 +351,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
   StreamPlanner<Response> planner_;
   StreamWork<Response> work_;
   std::mutex mutex_;
-  std::array<Slot, kChunksInFlight> slots_;
+  std::vector<Slot> slots_;
   size_t next_compute_ = 0;
   size_t next_write_ = 0;
   size_t computing_ = 0;

@@ -54,6 +54,8 @@ class FreeformServer {
   int port() const { return port_; }
   // budget returns the server's memory budget (admission.h).
   const MemoryBudget& budget() const { return *budget_; }
+  // calls_in_flight counts the freeform calls started and not yet done.
+  int64_t calls_in_flight() const { return frame_->calls_in_flight(); }
   // pool_size returns the number of math threads.
   int pool_size() const { return pool_->size(); }
   // InProcessChannel returns a channel that skips the network.

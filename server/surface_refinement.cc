@@ -309,8 +309,9 @@ SurfaceServiceImpl::TessellateStream(
         auto mesh = std::make_shared<Mesh>();
         auto shared = std::make_shared<MeshInput>(*std::move(input));
         return Work{
-            .plan = {.memory_bytes = shared->WorkBytes() +
-                                     2 * kChunksInFlight * chunk_bytes,
+            .plan = {.memory_bytes =
+                         shared->WorkBytes() +
+                         2 * frame_->chunks_in_flight() * chunk_bytes,
                      .heavy = true},
             .chunk_count = 0,
             .prepare = [mesh, shared, chunk,

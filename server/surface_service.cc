@@ -57,20 +57,42 @@ struct SurfacePlan {
   }
 };
 
-absl::StatusOr<std::vector<double>> ResolveAxis(const v1::Parameters& axis,
-                                                double start, double end,
-                                                const ServiceLimits& limits,
-                                                absl::string_view field) {
+absl::StatusOr<ParameterSet> ResolveAxis(const v1::Parameters& axis,
+                                         double start, double end,
+                                         const ServiceLimits& limits,
+                                         absl::string_view field) {
   absl::StatusOr<ParameterSet> set =
       ParameterSet::Resolve(axis, start, end, limits.max_parameters);
   if (!set.ok()) return PrefixFieldPath(set.status(), field);
+  return set;
+}
+
+std::vector<double> AllValues(const ParameterSet& set) {
   std::vector<double> storage;
-  const absl::Span<const double> values = set->Values(0, set->size(), storage);
+  const absl::Span<const double> values = set.Values(0, set.size(), storage);
   return std::vector<double>(values.begin(), values.end());
 }
 
+// CheckSampleCount checks `count` samples of `values_per_point` numbers
+// each against the parameter and output limits, naming `field`.
+absl::Status CheckSampleCount(uint64_t count, uint64_t values_per_point,
+                              const ServiceLimits& limits,
+                              absl::string_view field) {
+  if (count > limits.max_parameters) {
+    return ExhaustedFieldError(
+        field, absl::StrCat(count, " points exceed the server's limit of ",
+                            limits.max_parameters, " (--max_parameters)"));
+  }
+  return CheckOutputLimit(SaturatingProduct(count, values_per_point), limits,
+                          field);
+}
+
+// ResolveSamples resolves the (u, v) points or the grid into `plan`, after
+// checking their number, with `values_per_point` numbers each, against the
+// limits: nothing as large as the answer is made before that.
 absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
-                            const ServiceLimits& limits, SurfacePlan& plan) {
+                            const ServiceLimits& limits,
+                            uint64_t values_per_point, SurfacePlan& plan) {
   switch (parameters.kind_case()) {
     case v1::SurfaceParameters::kPoints: {
       const auto& uv = parameters.points().uv();
@@ -79,11 +101,11 @@ absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
         return InvalidFieldError("parameters.points.uv",
                                  "needs at least one (u, v) pair");
       }
-      if (plan.uv.size() / 2 > limits.max_parameters) {
-        return absl::ResourceExhaustedError(
-            absl::StrCat("parameters.points.uv: ", plan.uv.size() / 2,
-                         " points exceed the server's limit of ",
-                         limits.max_parameters, " (--max_parameters)"));
+      if (absl::Status status =
+              CheckSampleCount(plan.uv.size() / 2, values_per_point, limits,
+                               "parameters.points.uv");
+          !status.ok()) {
+        return status;
       }
       if (plan.triangular) return absl::OkStatus();  // checked by the core
       return PrefixFieldPath(
@@ -98,23 +120,23 @@ absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
             "parameters.grid",
             "a triangular patch takes (u, v) points, not a grid");
       }
-      absl::StatusOr<std::vector<double>> u =
+      absl::StatusOr<ParameterSet> u =
           ResolveAxis(parameters.grid().u(), plan.domain.u_start,
                       plan.domain.u_end, limits, "parameters.grid.u");
       if (!u.ok()) return u.status();
-      absl::StatusOr<std::vector<double>> v =
+      absl::StatusOr<ParameterSet> v =
           ResolveAxis(parameters.grid().v(), plan.domain.v_start,
                       plan.domain.v_end, limits, "parameters.grid.v");
       if (!v.ok()) return v.status();
-      plan.grid = true;
-      plan.u = *std::move(u);
-      plan.v = *std::move(v);
-      if (plan.size() > limits.max_parameters) {
-        return absl::ResourceExhaustedError(
-            absl::StrCat("parameters.grid: ", plan.size(),
-                         " points exceed the server's limit of ",
-                         limits.max_parameters, " (--max_parameters)"));
+      if (absl::Status status =
+              CheckSampleCount(SaturatingProduct(u->size(), v->size()),
+                               values_per_point, limits, "parameters.grid");
+          !status.ok()) {
+        return status;
       }
+      plan.grid = true;
+      plan.u = AllValues(*u);
+      plan.v = AllValues(*v);
       return absl::OkStatus();
     }
     case v1::SurfaceParameters::KIND_NOT_SET:
@@ -146,12 +168,8 @@ absl::StatusOr<SurfacePlan> PlanSurfaceEvaluation(
   }
   plan.order = static_cast<int>(request.derivative_order());
   plan.normals = request.normals();
-  if (absl::Status status = ResolveSamples(request.parameters(), limits, plan);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckOutputLimit(plan.size() * plan.ValuesPerPoint(), limits);
+  if (absl::Status status = ResolveSamples(request.parameters(), limits,
+                                           plan.ValuesPerPoint(), plan);
       !status.ok()) {
     return status;
   }
@@ -215,12 +233,13 @@ absl::StatusOr<UnaryWork> PlanTensorBasis(
                  .u_end = du.end,
                  .v_start = dv.start,
                  .v_end = dv.end};
-  if (absl::Status status = ResolveSamples(request.parameters(), limits, plan);
+  const uint64_t functions = static_cast<uint64_t>(FunctionCountOf(*u)) *
+                             static_cast<uint64_t>(FunctionCountOf(*v));
+  if (absl::Status status =
+          ResolveSamples(request.parameters(), limits, functions, plan);
       !status.ok()) {
     return status;
   }
-  const uint64_t functions = static_cast<uint64_t>(FunctionCountOf(*u)) *
-                             static_cast<uint64_t>(FunctionCountOf(*v));
   const uint64_t values = SaturatingProduct(plan.size(), functions);
   if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
       !status.ok()) {
@@ -330,7 +349,7 @@ SurfaceServiceImpl::EvaluateStream(grpc::CallbackServerContext* context,
         }
         const size_t count = plan->size();
         CallPlan memory = EvaluationMemory(*plan, chunk, limits);
-        memory.memory_bytes *= kChunksInFlight;
+        memory.memory_bytes *= frame_->chunks_in_flight();
         memory.heavy = true;
         auto shared = std::make_shared<const SurfacePlan>(*std::move(plan));
         return Work{.plan = memory,

@@ -348,7 +348,7 @@ int RunSurface(const CommonFlags& flags, const std::string& file, bool stream,
   return 0;
 }
 
-// Reads a set of Bezier patches in the layout of shared/data/teapot.json:
+// Reads a set of Bezier patches in the layout of examples/teapot.json:
 // {"degree_u": m, "degree_v": n, "patches": [{"control_points":
 // [[x, y, z], ...]}, ...]} with (m+1)(n+1) row-major points per patch.
 absl::StatusOr<std::vector<freeform::v1::Surface>> ReadBezierPatches(

@@ -477,8 +477,9 @@ absl::Status ValidateKnotOrder(absl::Span<const double> knots) {
 
 // A value strictly inside the domain may appear at most p times (the curve
 // stays continuous), any other value at most p + 1 times (every basis
-// function is nonzero somewhere: the knot vector is (p + 1)-regular, course
-// notes Definition 9). Names the first knot beyond the allowed multiplicity.
+// function is nonzero somewhere: the knot vector is (p + 1)-regular,
+// docs/references.md, 'Cox-de Boor recurrence'). Names the first knot beyond
+// the allowed multiplicity.
 absl::Status ValidateMultiplicities(int p, int n,
                                     absl::Span<const double> knots) {
   const double start = knots[p];

@@ -424,8 +424,9 @@ SurfaceData ElevateSurface(const ControlNetView& view,
   return result;
 }
 
-// ElevateTriangleOnce raises the triangular net of degree n by one (seed
-// 002): Q_ijk = (i P_{i-1,j,k} + j P_{i,j-1,k} + k P_{i,j,k-1}) / (n + 1).
+// ElevateTriangleOnce raises the triangular net of degree n by one (Farin
+// 1986; docs/references.md, 'Degree elevation by the product formula'):
+// Q_ijk = (i P_{i-1,j,k} + j P_{i,j-1,k} + k P_{i,j,k-1}) / (n + 1).
 Points ElevateTriangleOnce(const Points& points, int n) {
   const int dim = points.dim;
   Points result{dim, std::vector<double>(TriangularPointCount(n + 1) * dim)};

@@ -28,7 +28,7 @@ absl::Status SingularError() {
 // A square band matrix with kl sub- and ku super-diagonals, factored in
 // place as LU without pivoting (safe for the totally nonnegative collocation
 // matrices of increasing parameters and for symmetric positive definite
-// normal equations; DESIGN.md §2).
+// normal equations; docs/references.md, 'Global B-spline interpolation').
 class BandedMatrix {
  public:
   BandedMatrix(int n, int kl, int ku)
@@ -1175,8 +1175,9 @@ absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
       KnotsFor(result.parameters_u, degree_u, parameterization, knot_rule);
   surface.knots_v =
       KnotsFor(result.parameters_v, degree_v, parameterization, knot_rule);
-  // Two factorizations (notes §6.1): u once for all columns, v once for all
-  // rows of the intermediate net.
+  // Two factorizations (docs/references.md, 'Global B-spline
+  // interpolation'): u once for all columns, v once for all rows of the
+  // intermediate net.
   absl::StatusOr<BandedMatrix> along_u = FactorOpenSystem(
       degree_u,
       BuildOpenRows(degree_u, surface.knots_u, result.parameters_u, {}, {}));

@@ -200,11 +200,12 @@ void BarycentricEvaluate(const PointsView& points,
   for (double& coordinate : point) coordinate /= denominator;
 }
 
-// Warren's ladder (course notes, section 2.1, Figure 5) in truncated Taylor
-// series arithmetic: with a_j = (t - t_j) / c and s = t + c u,
-// L_i(s) = w_i A_i(u) B_i(u), where the left rail A_i = prod_{j<i} (a_j + u)
-// and the right rail B_i = prod_{j>i} (a_j + u) are series in u truncated
-// after u^top, and L_i^(k)(t) = k! / c^k [u^k] A_i B_i.
+// Warren's ladder (docs/references.md, 'Warren's ladder for Lagrange
+// curves') in truncated Taylor series arithmetic: with a_j = (t - t_j) / c
+// and s = t + c u, L_i(s) = w_i A_i(u) B_i(u), where the left rail
+// A_i = prod_{j<i} (a_j + u) and the right rail B_i = prod_{j>i} (a_j + u)
+// are series in u truncated after u^top, and
+// L_i^(k)(t) = k! / c^k [u^k] A_i B_i.
 //
 // Why this and not the alternatives for derivatives: it never divides by
 // t - t_i, so unlike the differentiated barycentric formulas (Schneider &

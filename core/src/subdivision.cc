@@ -95,7 +95,8 @@ std::vector<double> Transpose(const std::vector<double>& values, int rows,
 }
 
 // ---------------------------------------------------------------------------
-// de Casteljau subdivision (seed 004).
+// de Casteljau subdivision (docs/references.md,
+// 'de Casteljau evaluation and subdivision').
 
 // SplitAt writes the left ([0, t]) and right ([t, 1]) halves of the Bezier
 // polygon `points`; either output may be null.
@@ -254,7 +255,8 @@ Spline LiftCurve(const BSplineCurveView& curve) {
 }
 
 // ---------------------------------------------------------------------------
-// Polygon subdivision (Lane-Riesenfeld; seed 002, subdivision matrix).
+// Polygon subdivision (Lane-Riesenfeld 1980; docs/references.md,
+// 'Uniform B-spline subdivision (Chaikin, Lane-Riesenfeld)').
 
 // Mask returns s_k = binom(d + 1, k) / 2^d for k = 0..d+1.
 std::vector<double> Mask(int d) {

@@ -22,6 +22,9 @@ namespace {
 // Curve subdivision stops after this many halvings (the parameter interval
 // is then near the resolution of a double).
 constexpr int kMaxDepth = 50;
+// The smallest tolerance, relative to the control points' largest
+// coordinate, that subdivision can meet in double precision.
+constexpr double kResolution = 0x1p-48;
 // The cancellation token is polled after this many subdivision steps.
 constexpr size_t kCancelStride = 256;
 // Grid cells per patch direction beyond this are refused (they would not
@@ -35,9 +38,28 @@ absl::Status ValidateTolerance(double tolerance) {
   return absl::OkStatus();
 }
 
+// CheckResolvable refuses a tolerance below what double precision resolves
+// on geometry of the size of `coordinates`: no subdivision could meet it,
+// and trying would only end at the size limit. Lines (degree < 2) are flat
+// at any tolerance.
+absl::Status CheckResolvable(double tolerance,
+                             absl::Span<const double> coordinates, int degree) {
+  if (degree < 2) return absl::OkStatus();
+  double size = 0.0;
+  for (const double c : coordinates) size = std::max(size, std::abs(c));
+  if (tolerance >= kResolution * size) return absl::OkStatus();
+  return InvalidFieldError(
+      "tolerance", absl::StrCat(tolerance,
+                                " is below what double precision resolves on "
+                                "geometry of size ",
+                                size, " (about ", kResolution * size, ")"));
+}
+
+// The tolerance is what makes a tessellation large, so the error names it.
 absl::Status Exhausted(absl::string_view what, size_t limit) {
-  return absl::ResourceExhaustedError(
-      absl::StrCat("tessellation needs more than ", limit, " ", what));
+  return ExhaustedFieldError(
+      "tolerance", absl::StrCat("the tessellation needs more than ", limit, " ",
+                                what, " at this tolerance"));
 }
 
 absl::Status CheckCancel(const CancellationToken* cancel) {
@@ -79,9 +101,10 @@ double DistanceToSegment(const double* p, const double* a, const double* b,
 }
 
 // IsFlat reports whether every control point lies within `tolerance` of
-// the chord (the flatness test of seed 003). Rational pieces are projected
-// first and are never flat while a weight is not positive (the convex hull
-// property needs positive weights). `projected` is scratch.
+// the chord (docs/references.md, 'Flatness test for curve tessellation').
+// Rational pieces are projected first and are never flat while a weight is
+// not positive (the convex hull property needs positive weights).
+// `projected` is scratch.
 bool IsFlat(const double* control, const PieceShape& shape, double tolerance,
             std::vector<double>& projected) {
   const int d = shape.dimension;
@@ -835,6 +858,11 @@ absl::StatusOr<Polyline> TessellateBezierCurve(
       !status.ok()) {
     return status;
   }
+  if (absl::Status status = CheckResolvable(
+          tolerance, curve.control_points.coordinates, curve.degree());
+      !status.ok()) {
+    return status;
+  }
   const PieceShape shape{.degree = curve.degree(),
                          .dimension = curve.control_points.dimension,
                          .rational = curve.rational()};
@@ -863,6 +891,11 @@ absl::StatusOr<Polyline> TessellateBSplineCurve(
     return status;
   }
   if (absl::Status status = ValidateCurveRequest(tolerance, max_points);
+      !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = CheckResolvable(
+          tolerance, curve.control_points.coordinates, curve.degree);
       !status.ok()) {
     return status;
   }
@@ -907,6 +940,14 @@ absl::Status ValidateMeshRequest(absl::Span<const BezierSurfaceView> patches,
   }
   if (absl::Status status = ValidateTolerance(tolerance); !status.ok()) {
     return status;
+  }
+  for (const BezierSurfaceView& patch : patches) {
+    const ControlNetView& net = patch.control_net;
+    if (absl::Status status = CheckResolvable(
+            tolerance, net.coordinates, std::max(net.count_u, net.count_v) - 1);
+        !status.ok()) {
+      return status;
+    }
   }
   if (patches.size() >= UINT32_MAX) return Exhausted("vertices", max_vertices);
   return absl::OkStatus();

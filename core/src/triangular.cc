@@ -271,8 +271,9 @@ class PatchEvaluator {
 };
 
 // TriangularBernstein writes the degree-n basis at (u, v, w) into `values`
-// by B(i,j,k) = u B(i-1,j,k) + v B(i,j-1,k) + w B(i,j,k-1) (the notes'
-// recurrence); `scratch` holds 2 (n+1)(n+2)/2 doubles.
+// by B(i,j,k) = u B(i-1,j,k) + v B(i,j-1,k) + w B(i,j,k-1)
+// (docs/references.md, 'Triangular Bezier patches'); `scratch` holds
+// 2 (n+1)(n+2)/2 doubles.
 void TriangularBernstein(int n, double u, double v, double w, double* scratch,
                          double* values) {
   double* previous = scratch;

@@ -86,8 +86,9 @@ std::vector<long double> ReferenceDerivative(const std::vector<double>& points,
   return result;
 }
 
-// The worked example of the issue and the de Casteljau slides: the cubic
-// with control points (0,0), (1,2), (3,2), (4,0).
+// The cubic with control points (0,0), (1,2), (3,2), (4,0); see
+// 'Worked example: the cubic Bezier curve (0,0), (1,2), (3,2), (4,0)' in
+// docs/references.md.
 TEST(BezierTest, CubicWorkedExample) {
   const std::vector<double> points = {0, 0, 1, 2, 3, 2, 4, 0};
   const auto result = Evaluate(View(points, 2), {0.0, 0.5, 1.0}, 3);
@@ -373,8 +374,9 @@ TEST(BezierTest, InvalidInputNamesTheField) {
 }
 
 // A zero interior weight is a point at infinity whose coordinates give its
-// direction: the course notes' half circle, homogeneous points (1,0,1),
-// (0,1,0), (-1,0,1), is the upper half of the unit circle.
+// direction: the half circle with homogeneous points (1,0,1), (0,1,0),
+// (-1,0,1) is the upper half of the unit circle (docs/references.md,
+// 'Worked example: the half circle with a point at infinity').
 TEST(BezierTest, ZeroInteriorWeightIsAPointAtInfinity) {
   const std::vector<double> points = {1, 0, 0, 1, -1, 0};
   const std::vector<double> weights = {1, 0, 1};
@@ -507,8 +509,9 @@ TEST(BezierAccuracyTest, AlgorithmsMatchLongDoubleReference) {
 namespace freeform {
 namespace {
 
-// The Bezier geometry matrix of the slides turns control points into power
-// coefficients; PowerToBezier undoes it.
+// The cubic Bezier geometry matrix (docs/references.md, 'The Bezier geometry
+// matrix') turns control points into power coefficients; PowerToBezier
+// undoes it.
 TEST(PowerFormTest, CubicGeometryMatrixOfTheSlides) {
   const double geometry[4][4] = {
       {1, 0, 0, 0}, {-3, 3, 0, 0}, {3, -6, 3, 0}, {-1, 3, -3, 1}};

@@ -156,8 +156,9 @@ long double Ratio(long double numerator, long double denominator) {
 }
 
 // N^(k)_{i,p}(u) for k = 0..max_order and every i, straight from the
-// Cox-de Boor definition (course notes, Definition 7, 0/0 read as 0) in long
-// double, derivatives by N'_{i,q} = q N_{i,q-1} / (u_{i+q} - u_i) -
+// Cox-de Boor definition (docs/references.md, 'Cox-de Boor recurrence'; 0/0
+// read as 0) in long double, derivatives by
+// N'_{i,q} = q N_{i,q-1} / (u_{i+q} - u_i) -
 // q N_{i+1,q-1} / (u_{i+q+1} - u_{i+1}) applied k times. Degree 0 functions
 // are the indicators of [u_i, u_{i+1}), except at the end u_{n+1} of the
 // domain, where the last non-empty interval is closed on the right instead
@@ -266,9 +267,10 @@ void ExpectOnUnitCircle(const Buffers& result, double tangent_tolerance) {
   }
 }
 
-// Course notes, Exercise 1: on the knots 0,0,0,1,1,1 the B-splines of
-// degree 2 are (1-u)^2, 2u(1-u), u^2, and on its sub-vectors 0,0,1,1 and
-// 0,1 those of degree 1 and 0 are 1-u, u and 1.
+// On the knots 0,0,0,1,1,1 the B-splines of degree 2 are (1-u)^2, 2u(1-u),
+// u^2, and on its sub-vectors 0,0,1,1 and 0,1 those of degree 1 and 0 are
+// 1-u, u and 1 (docs/references.md,
+// 'Worked example: the B-splines on the knots 0, 0, 0, 1, 1, 1').
 TEST(BSplineTest, ExerciseOneBasisOnBezierKnots) {
   const std::vector<double> params = Uniform(16);
   const auto quadratic = EvaluateBasis(2, {0, 0, 0, 1, 1, 1}, {}, params, 3);
@@ -307,8 +309,9 @@ TEST(BSplineTest, RationalQuarterCircle) {
   EXPECT_GE(*std::min_element(result[0].begin(), result[0].end()), 0.0);
 }
 
-// Course notes, Exercise 3: the circle as a NURBS with 9 points. It stays
-// on the unit circle, and C' is continuous at the double knots with
+// The circle as a NURBS with 9 points (docs/references.md,
+// 'Worked example: the 9-point NURBS circle'). It stays on the unit circle,
+// and C' is continuous at the double knots with
 // C'(1/4) = 8 w1 (P2 - P1) = 4 sqrt(2) (-1, 0) from both sides.
 TEST(BSplineTest, NinePointCircle) {
   const double h = kSqrt2 / 2;
@@ -333,10 +336,11 @@ TEST(BSplineTest, NinePointCircle) {
 }
 
 // A zero interior weight is a point at infinity: the half circle (1,0,1),
-// (0,1,0), (-1,0,1) of the course notes. Inserting the knot 1/2 gives the
-// control points (1,0), (1,1), (-1,1), (-1,0) with weights 1, 1/2, 1/2, 1
-// (the notes print the first weight as 0; Q_0^w = P_0^w has weight 1), the
-// same curve with the same parametrization.
+// (0,1,0), (-1,0,1). Inserting the knot 1/2 gives the control points
+// (1,0), (1,1), (-1,1), (-1,0) with weights 1, 1/2, 1/2, 1 (Q_0^w = P_0^w
+// keeps the weight 1), the same curve with the same parametrization
+// (docs/references.md,
+// 'Worked example: the half circle with a point at infinity').
 TEST(BSplineTest, ZeroInteriorWeightHalfCircleAndKnotInsertion) {
   const std::vector<double> points = {1, 0, 0, 1, -1, 0};
   const std::vector<double> knots = {0, 0, 0, 1, 1, 1};
@@ -644,7 +648,8 @@ TEST(BSplineTest, RightHandLimitsAtKnotsLeftHandAtTheEnd) {
 
 // On the unclamped uniform knots 0..6 a quadratic lives on [u_2, u_4] =
 // [2, 4] and passes through the midpoints of its control polygon at the
-// knots (course notes, Exercise 2).
+// knots (docs/references.md,
+// 'Quadratic B-spline curves touch their control polygon').
 TEST(BSplineTest, UnclampedDomain) {
   const std::vector<double> points = {0, 0, 2, 4, 6, 2, 8, 8};
   const std::vector<double> knots = {0, 1, 2, 3, 4, 5, 6};

@@ -88,8 +88,9 @@ BezierCurveView BezierView(const std::vector<double>& coordinates,
 }
 
 TEST(ElevateBezierCurve, SeedQuadraticToCubicExample) {
-  // Seed 001, 6.3.4: Q1 is 2/3 of the way from P0 to P1, Q2 1/3 of the way
-  // from P1 to P2.
+  // Q1 is 2/3 of the way from P0 to P1, Q2 1/3 of the way from P1 to P2; see
+  // 'Worked example: a quadratic Bezier curve elevated to a cubic' in
+  // docs/references.md.
   const std::vector<double> points = {0, 0, 3, 6, 9, -3};
   const absl::StatusOr<BezierCurveData> cubic =
       ElevateBezierCurve(BezierView(points, 2), 1);

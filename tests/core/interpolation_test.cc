@@ -95,7 +95,9 @@ std::vector<double> SmoothPoints(std::mt19937_64& rng, int count, int dimension,
   return points;
 }
 
-// ------------------------------------------------------- Exercise 5 --
+// ----------------------------------------------- five planar points --
+// docs/references.md,
+// 'Worked example: a cubic B-spline through five planar points'.
 
 const std::vector<double> kExercise5 = {0, 0, 3, 4, -1, 4, -4, 0, -4, -3};
 
@@ -121,7 +123,7 @@ TEST(InterpolateCurveTest, Exercise5UniversalUsesBasisMaxima) {
   const std::vector<double>& t = result->parameters;
   ASSERT_EQ(t.size(), 5u);
   EXPECT_EQ(t[0], 0.0);
-  EXPECT_NEAR(t[1], 0.226541, 1e-6);  // not the notes' misprinted 1/3
+  EXPECT_NEAR(t[1], 0.226541, 1e-6);  // (3 - sqrt(2)) / 7, not 1/3
   EXPECT_NEAR(t[2], 0.5, 1e-15);
   EXPECT_NEAR(t[3], 0.773459, 1e-6);
   EXPECT_NEAR(t[1] + t[3], 1.0, 1e-15);  // symmetric knots
@@ -223,8 +225,9 @@ TEST(InterpolateCurveTest, RandomDataAllDegreesParameterizationsKnotRules) {
             EXPECT_EQ(result->curve.coordinates.size(),
                       points.size() + (derivatives ? 2u * dimension : 0u));
             // Uniform knots on non-uniform parameters can be badly
-            // conditioned (the notes' warning; control points up to 1e7 here):
-            // a backward-stable solve then misses by eps |A| |P|, so measure
+            // conditioned (docs/references.md, 'Global B-spline
+            // interpolation'; control points up to 1e7 here): a
+            // backward-stable solve then misses by eps |A| |P|, so measure
             // relative to the control points too.
             const double scale =
                 rule == KnotRule::kAveraging

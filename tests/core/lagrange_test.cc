@@ -81,9 +81,10 @@ std::vector<double> TestParameters(std::mt19937_64& rng,
 }
 
 // The k-th derivatives of all L_i at t in long double, by Leibniz's rule on
-// the notes' eq. 2.1: d^k/dt^k prod_{j != i} (t - t_j) is k! times the sum,
-// over the ways to drop k factors, of the product of the others, i.e. k! times
-// the coefficient of h^k in prod_{j != i} (t - t_j + h); divided by
+// the product formula for L_i (docs/references.md, 'Lagrange basis and
+// Neville's algorithm'): d^k/dt^k prod_{j != i} (t - t_j) is k! times the
+// sum, over the ways to drop k factors, of the product of the others, i.e.
+// k! times the coefficient of h^k in prod_{j != i} (t - t_j + h); divided by
 // prod_{j != i} (t_i - t_j). `bound` is sum_i of the same with every
 // t - t_j replaced by |t - t_j|: the size of the terms a product-sum
 // evaluation rounds (for k = 0 the Lebesgue function sum_i |L_i(t)|), which
@@ -182,9 +183,11 @@ double ProductDerivative(const std::vector<double>& roots, int k, double t) {
   return std::tgamma(k + 1.0) * sum;
 }
 
-// The notes' Example 1: the cubic Lagrange basis with nodes 0, 1, 2, 3 is
+// The cubic Lagrange basis with nodes 0, 1, 2, 3 is
 // L_0 = -(t-1)(t-2)(t-3)/6, L_1 = t(t-2)(t-3)/2, L_2 = -t(t-1)(t-3)/2,
-// L_3 = t(t-1)(t-2)/6; their derivatives by the product rule.
+// L_3 = t(t-1)(t-2)/6 (docs/references.md,
+// 'Worked example: the cubic Lagrange basis on the nodes 0, 1, 2, 3'); their
+// derivatives by the product rule.
 TEST(LagrangeBasisTest, CubicBasisIsTheNotesExample1) {
   const std::vector<double> nodes = {0, 1, 2, 3};
   const std::vector<std::vector<double>> roots = {

@@ -80,7 +80,9 @@ BSplineCurveData RandomBSpline(std::mt19937_64& rng, int p, int points,
   return curve;
 }
 
-// The seed's half circle (1,0,1), (0,1,0), (-1,0,1) on 0,0,0,1,1,1.
+// The half circle (1,0,1), (0,1,0), (-1,0,1) on 0,0,0,1,1,1; see
+// 'Worked example: the half circle with a point at infinity' in
+// docs/references.md.
 BSplineCurveData HalfCircle() {
   return {.degree = 2,
           .dimension = 2,
@@ -179,9 +181,10 @@ TEST(SplitBezierCurve, RejectsParametersOutsideOrNotIncreasing) {
 // InsertKnots
 
 TEST(KnotInsertion, HalfCircleSeedExample) {
-  // Seed 002: (1,0,1), (0,1,0), (-1,0,1) on 0,0,0,1,1,1 with 1/2 inserted
-  // gives (1,0), (1,1), (-1,1), (-1,0) with weights 1, 1/2, 1/2, 1 (the
-  // notes print a first weight of 0, a slip: Q_0^w = P_0^w).
+  // (1,0,1), (0,1,0), (-1,0,1) on 0,0,0,1,1,1 with 1/2 inserted gives
+  // (1,0), (1,1), (-1,1), (-1,0) with weights 1, 1/2, 1/2, 1: Q_0^w = P_0^w
+  // keeps the weight 1 (docs/references.md,
+  // 'Worked example: the half circle with a point at infinity').
   const BSplineCurveData half = HalfCircle();
   const BSplineCurveView curve = half.view();
   auto refined = InsertKnots(curve, std::vector<double>{0.5});

@@ -78,9 +78,10 @@ std::vector<double> RandomKnots(std::mt19937_64& rng, int count, int degree) {
 using CurveReference = std::function<std::vector<std::vector<double>>(
     int direction, const std::vector<double>& points, double t, int orders)>;
 
-// Partials (k, l), k + l <= d, of the tensor surface computed the
-// course-notes way (Figure 9 / Figure 10): curves along one direction for
-// each row (column) of the net, then one curve through their derivatives.
+// Partials (k, l), k + l <= d, of the tensor surface computed as curves of
+// curves (docs/references.md, 'Tensor-product surfaces'): curves along one
+// direction for each row (column) of the net, then one curve through their
+// derivatives.
 std::vector<std::vector<double>> CurveOfCurves(
     bool rows_first, const std::vector<double>& net, int count_u, int count_v,
     int dim, double u, double v, int d, const CurveReference& curve) {
@@ -156,7 +157,8 @@ void ExpectMatchesCurvesOfCurves(const Partials& surface,
 }
 
 TEST(TensorSurfaceTest, SeedBiquadraticExample) {
-  // Course notes, Exercise 4: S(1/2, 1/2) = (2, 2, 1).
+  // S(1/2, 1/2) = (2, 2, 1) (docs/references.md,
+  // 'Worked example: the bi-quadratic patch at (1/2, 1/2)').
   const std::vector<double> net = {0, 0, 0, 2, 0, 0, 4, 0, 0,  //
                                    0, 2, 0, 2, 2, 0, 4, 2, 2,  //
                                    0, 4, 0, 2, 4, 4, 4, 4, 4};

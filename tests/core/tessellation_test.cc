@@ -216,8 +216,7 @@ TEST(TessellationTest, BSplineCurvesWithKnots) {
 TEST(TessellationTest, PointBoundOfAParabola) {
   const std::vector<double> points = {0, 0, 1, 2, 2, 0};
   const BezierCurveView curve{
-      .control_points = {.dimension = 2, .coordinates = points},
-      .weights = {}};
+      .control_points = {.dimension = 2, .coordinates = points}, .weights = {}};
   const absl::StatusOr<Polyline> polyline =
       TessellateBezierCurve(curve, 0.1, 1 << 10);
   ASSERT_TRUE(polyline.ok()) << polyline.status();
@@ -282,6 +281,35 @@ TEST(TessellationTest, PointBoundsHoldForRandomCurves) {
     }
   }
   EXPECT_GT(splines_checked, 100);
+}
+
+// A tolerance double precision cannot resolve is refused before any work;
+// a line is flat at any tolerance.
+TEST(TessellationTest, UnresolvableToleranceIsRefusedAtOnce) {
+  const std::vector<double> cubic = {0, 0, 1, 2, 3, 2, 4, 0};
+  const BezierCurveView curve{
+      .control_points = {.dimension = 2, .coordinates = cubic}, .weights = {}};
+  for (double tolerance : {1e-300, 1e-15}) {
+    const absl::StatusOr<Polyline> polyline =
+        TessellateBezierCurve(curve, tolerance, 1 << 24);
+    EXPECT_EQ(polyline.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_EQ(FieldPathOf(polyline.status()), "tolerance");
+  }
+  EXPECT_TRUE(TessellateBezierCurve(curve, 1e-8, 1 << 24).ok());
+  const std::vector<double> knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  const BSplineCurveView bspline{
+      .degree = 3,
+      .control_points = {.dimension = 2, .coordinates = cubic},
+      .knots = knots,
+      .weights = {}};
+  EXPECT_EQ(TessellateBSplineCurve(bspline, 1e-300, 1 << 24).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  const std::vector<double> line = {0, 0, 4, 2};
+  const absl::StatusOr<Polyline> segment = TessellateBezierCurve(
+      {.control_points = {.dimension = 2, .coordinates = line}, .weights = {}},
+      1e-300, 16);
+  ASSERT_TRUE(segment.ok()) << segment.status();
+  EXPECT_EQ(segment->parameters.size(), 2u);
 }
 
 TEST(TessellationTest, RationalCurvesHaveNoPointBound) {

@@ -155,9 +155,10 @@ TEST(TriangularIndexTest, FollowsTheDocumentedOrder) {
   }
 }
 
-// The course notes' worked example (section 7.1): S(1/3, 1/3, 1/3) of the
-// quadratic patch below. The notes print (2, 2, 7/3) because two level-1 de
-// Casteljau points carry arithmetic slips: P^1_010 = (P020 + P110 + P011) / 3
+// S(1/3, 1/3, 1/3) of the quadratic patch below (docs/references.md,
+// 'Worked example: the quadratic triangular patch at the centroid'). It is
+// (2, 2, 3), not the (2, 2, 7/3) that two slipped level-1 de Casteljau
+// points give: P^1_010 = (P020 + P110 + P011) / 3
 // = (0+3+0, 6+3+3, 0+6+3) / 3 = (1, 4, 3), not (1, 4, 2), and P^1_001 =
 // (P002 + P101 + P011) / 3 = (0+3+0, 0+0+3, 0+0+3) / 3 = (1, 1, 1), not
 // (1, 1, 0). With P^1_100 = (4, 1, 5) the point is (6, 6, 9) / 3 = (2, 2, 3).
@@ -177,7 +178,7 @@ TEST(TriangularPatchTest, SeedWorkedExample) {
   EXPECT_NEAR(static_cast<double>(reference[2]), 3.0, 1e-15);
   // The first partials expose the level-1 points: D_(1,0,-1) S =
   // 2 (P^1_100 - P^1_001) = (6, 0, 8), D_(0,1,-1) S = 2 (P^1_010 - P^1_001)
-  // = (0, 6, 4); the notes' slipped points would give (6, 0, 10), (0, 6, 4).
+  // = (0, 6, 4); the slipped points would give (6, 0, 10), (0, 6, 4).
   const std::vector<double> du = {6, 0, 8}, dv = {0, 6, 4};
   for (int x = 0; x < 3; ++x) {
     EXPECT_NEAR(result[PartialIndex(1, 0)][x], du[x], 1e-14);

@@ -14,84 +14,18 @@
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
+#include "server_process.h"
 
 namespace freeform {
 namespace {
 
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-
-// A freeformd child process listening on 127.0.0.1 with a kernel-chosen port.
-class ServerProcess {
- public:
-  explicit ServerProcess(std::vector<std::string> extra_flags = {}) {
-    std::vector<std::string> arguments = {FREEFORMD_PATH,
-                                          "--listen=127.0.0.1:0", "--threads=2",
-                                          "--grace_period=5s"};
-    arguments.insert(arguments.end(), extra_flags.begin(), extra_flags.end());
-    int out[2];
-    EXPECT_EQ(pipe(out), 0);
-    pid_ = fork();
-    if (pid_ == 0) {
-      dup2(out[1], STDOUT_FILENO);
-      close(out[0]);
-      close(out[1]);
-      std::vector<char*> argv;
-      for (std::string& argument : arguments) argv.push_back(argument.data());
-      argv.push_back(nullptr);
-      execv(FREEFORMD_PATH, argv.data());
-      _exit(127);
-    }
-    close(out[1]);
-    stdout_ = fdopen(out[0], "r");
-    std::array<char, 256> line{};
-    if (fgets(line.data(), line.size(), stdout_) != nullptr) {
-      const std::string text(line.data());
-      const size_t colon = text.rfind(':');
-      if (text.find("listening on") != std::string::npos &&
-          colon != std::string::npos) {
-        port_ = std::stoi(text.substr(colon + 1));
-      }
-    }
-  }
-  ~ServerProcess() {
-    if (pid_ > 0 && !exited_) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-    if (stdout_ != nullptr) fclose(stdout_);
-  }
-
-  int port() const { return port_; }
-  std::string address() const { return absl::StrCat("127.0.0.1:", port_); }
-
-  // Sends `signal` and returns the exit status (or -1 after `timeout`).
-  int StopWith(int signal, std::chrono::seconds timeout) {
-    kill(pid_, signal);
-    const auto give_up = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < give_up) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        exited_ = true;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-  FILE* stdout_ = nullptr;
-  int port_ = 0;
-  bool exited_ = false;
-};
 
 struct CommandResult {
   int exit_code = -1;

@@ -46,8 +46,10 @@ class ConstructionTest : public InProcessServerTest {
   }
 };
 
-// The seed's example: a quadratic elevated to a cubic has Q1 two thirds of
-// the way from P0 to P1 and Q2 one third of the way from P1 to P2.
+// A quadratic elevated to a cubic has Q1 two thirds of the way from P0 to P1
+// and Q2 one third of the way from P1 to P2; see
+// 'Worked example: a quadratic Bezier curve elevated to a cubic' in
+// docs/references.md.
 TEST_F(ConstructionTest, ElevatesTheSeedsQuadratic) {
   v1::ElevateCurveDegreeRequest request;
   v1::Points* points =
@@ -177,9 +179,11 @@ TEST_F(ConstructionTest, ElevatedSurfacesAreTheSameSurfaces) {
   ExpectInvalid(client_->ElevateSurfaceDegree(request).status(), "by_u", true);
 }
 
-// The course notes' Exercise 5: chord-length parameters 0, 5/17, 9/17,
-// 14/17, 1 with the interior knot 28/51; the universal method puts the knot
-// at 1/2 and the parameters at the maxima of the B-splines.
+// The cubic through five planar points (docs/references.md,
+// 'Worked example: a cubic B-spline through five planar points'):
+// chord-length parameters 0, 5/17, 9/17, 14/17, 1 with the interior knot
+// 28/51; the universal method puts the knot at 1/2 and the parameters at the
+// maxima of the B-splines.
 TEST_F(ConstructionTest, InterpolatesExerciseFive) {
   v1::InterpolateCurveRequest request;
   request.mutable_points()->set_dimension(2);

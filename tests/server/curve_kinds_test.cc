@@ -54,8 +54,9 @@ v1::Curve FullCircle() {
   return curve;
 }
 
-// The course notes' Exercise 3: the 9-point NURBS circle stays on the unit
-// circle, and C'(1/4) = 4 sqrt(2) (-1, 0) from both sides.
+// The 9-point NURBS circle stays on the unit circle, and C'(1/4) =
+// 4 sqrt(2) (-1, 0) from both sides (docs/references.md,
+// 'Worked example: the 9-point NURBS circle').
 TEST_F(CurveKindsTest, NurbsCircleStaysOnTheCircle) {
   v1::EvaluateCurveRequest request;
   *request.mutable_curve() = FullCircle();
@@ -181,8 +182,9 @@ TEST_F(CurveKindsTest, BasisFunctionsOfEveryKind) {
                 Pointwise(DoubleNear(1e-14), quadratic->derivatives[k]));
   }
 
-  // The cubic Lagrange basis on the nodes 0, 1, 2, 3 (blending-functions
-  // lecture, Example 1): L_0(t) = -(t-1)(t-2)(t-3)/6, L_1 = t(t-2)(t-3)/2,
+  // The cubic Lagrange basis on the nodes 0, 1, 2, 3 (docs/references.md,
+  // 'Worked example: the cubic Lagrange basis on the nodes 0, 1, 2, 3'):
+  // L_0(t) = -(t-1)(t-2)(t-3)/6, L_1 = t(t-2)(t-3)/2,
   // L_2 = -t(t-1)(t-3)/2, L_3 = t(t-1)(t-2)/6.
   v1::LagrangeBasis* lagrange = request.mutable_basis()->mutable_lagrange();
   Append(lagrange->mutable_nodes(), {0, 1, 2, 3});

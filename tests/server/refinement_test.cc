@@ -4,15 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include "in_process_server.h"
+#include "teapot.h"
 
 namespace freeform::server {
 namespace {
@@ -184,29 +183,7 @@ TEST_F(RefinementTest, SplitsPatches) {
 // The teapot meshed by the server: stream and unary agree, and the welded
 // mesh has no edge used by more than two triangles.
 TEST_F(RefinementTest, TessellatesTheTeapot) {
-  std::ifstream file(FREEFORM_SOURCE_DIR "/examples/teapot.json");
-  std::stringstream text;
-  text << file.rdbuf();
-  // Minimal reader of the patches' numbers: 16 points of 3 per patch after
-  // each "control_points".
-  v1::TessellateSurfaceRequest request;
-  const std::string json = text.str();
-  size_t at = 0;
-  while ((at = json.find("\"control_points\"", at)) != std::string::npos) {
-    v1::ControlNet* net =
-        request.add_surfaces()->mutable_bezier()->mutable_control_net();
-    net->set_dimension(3);
-    net->set_count_u(4);
-    net->set_count_v(4);
-    size_t cursor = json.find('[', at);
-    for (int value = 0; value < 48; ++value) {
-      cursor = json.find_first_of("-0123456789", cursor);
-      size_t used = 0;
-      net->add_coordinates(std::stod(json.substr(cursor, 32), &used));
-      cursor += used;
-    }
-    at = cursor;
-  }
+  v1::TessellateSurfaceRequest request = TeapotRequest();
   ASSERT_EQ(request.surfaces_size(), 32);
   request.set_tolerance(1e-3);
   request.set_normals(true);

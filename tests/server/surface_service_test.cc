@@ -1,6 +1,6 @@
 // SurfaceService through a real in-process gRPC server and the client
-// library: the seeds' worked examples, grid against pairs, streams, normals,
-// bases, and the field paths of errors.
+// library: the worked examples of docs/references.md, grid against pairs,
+// streams, normals, bases, and the field paths of errors.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -48,7 +48,8 @@ class SurfaceServiceTest : public InProcessServerTest {
   }
 };
 
-// Exercise 4 of the course notes: the bi-quadratic patch at (1/2, 1/2).
+// The bi-quadratic patch at (1/2, 1/2) (docs/references.md,
+// 'Worked example: the bi-quadratic patch at (1/2, 1/2)').
 v1::Surface BiQuadratic() {
   v1::Surface surface;
   SetNet(surface.mutable_bezier()->mutable_control_net(), 3, 3, 3,
@@ -65,8 +66,9 @@ TEST_F(SurfaceServiceTest, BiQuadraticWorkedExample) {
               Pointwise(DoubleNear(1e-15), std::vector<double>{2, 2, 1}));
 }
 
-// The quadratic triangular patch of the notes: S(1/3, 1/3, 1/3) = (2, 2, 3)
-// (the notes print (2, 2, 7/3) after two arithmetic slips).
+// The quadratic triangular patch: S(1/3, 1/3, 1/3) = (2, 2, 3), not the
+// (2, 2, 7/3) that two arithmetic slips give (docs/references.md,
+// 'Worked example: the quadratic triangular patch at the centroid').
 TEST_F(SurfaceServiceTest, TriangularWorkedExample) {
   v1::Surface surface;
   v1::TriangularBezierPatch* patch = surface.mutable_triangular_bezier();

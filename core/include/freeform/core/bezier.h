@@ -7,8 +7,9 @@
 // evaluated in homogeneous form (w_i P_i, w_i) and projected, with
 // derivatives by the quotient rule (The NURBS Book, eq. 4.8). A control
 // point with weight 0 is a point at infinity: its coordinates are read as the
-// direction P (homogeneous (P, 0)), as in the course notes' half circle
-// (1,0,1), (0,1,0), (-1,0,1).
+// direction P (homogeneous (P, 0)), as in the half circle (1,0,1), (0,1,0),
+// (-1,0,1) (docs/references.md,
+// 'Worked example: the half circle with a point at infinity').
 //
 // Batch outputs are one buffer per derivative order (see curve_output.h).
 //
@@ -59,7 +60,8 @@ enum class BezierAlgorithm {
   // Horner's rule in t/(1-t) (or (1-t)/t past t = 1/2) on binom(n,i) P_i,
   // O(n) per point and order; derivatives from the hodographs.
   kHorner,
-  // Warren's ladder (the blending-functions lecture, Figure 8), O(n).
+  // Warren's ladder (docs/references.md, 'Warren's ladder for Bezier
+  // curves'), O(n).
   kLadder,
 };
 
@@ -140,8 +142,8 @@ std::vector<double> PowerToBezier(const PointsView& coefficients);
 
 // BezierToPower returns the power-form coefficients A = M_B P with the
 // Bezier geometry matrix M_B[j][i] = (-1)^(j-i) binom(n,j) binom(j,i)
-// (for n = 3 the matrix of the slides: rows 1 0 0 0 / -3 3 0 0 /
-// 3 -6 3 0 / -1 3 -3 1).
+// (for n = 3 the rows are 1 0 0 0 / -3 3 0 0 / 3 -6 3 0 / -1 3 -3 1;
+// docs/references.md, 'The Bezier geometry matrix').
 std::vector<double> BezierToPower(const PointsView& control_points);
 
 // EvaluateBernsteinBasis writes the Bernstein polynomials B(n,i,t) of degree

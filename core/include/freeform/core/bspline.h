@@ -4,10 +4,10 @@
 // A B-spline curve of degree p has n + 1 control points P_i of any dimension
 // and a non-decreasing knot vector u_0 <= ... <= u_{n+p+1} (n + p + 2 knots):
 // C(u) = sum_i N_{i,p}(u) P_i with the basis functions of the Cox-de Boor
-// recurrence (course notes, Definition 7). The curve lives on the domain
-// [u_p, u_{n+1}], where the basis functions sum to one, so clamped
-// ([a..a, ..., b..b]) and unclamped knot vectors are both accepted. With
-// weights w_i it is a NURBS curve, C(u) = sum_i w_i N_{i,p} P_i /
+// recurrence (docs/references.md, 'Cox-de Boor recurrence'). The curve lives
+// on the domain [u_p, u_{n+1}], where the basis functions sum to one, so
+// clamped ([a..a, ..., b..b]) and unclamped knot vectors are both accepted.
+// With weights w_i it is a NURBS curve, C(u) = sum_i w_i N_{i,p} P_i /
 // sum_i w_i N_{i,p}, evaluated in homogeneous form (w_i P_i, w_i) and
 // projected. As for rational Bezier curves (bezier.h), a control point with
 // weight 0 is a point at infinity whose coordinates are its direction

@@ -36,12 +36,12 @@
 namespace freeform {
 
 // ElevateBezierCurve returns `curve` raised from degree n to n + by in one
-// step by the product formula (seed 000, appendix item 19; The NURBS Book,
-// eq. 5.36):
+// step by the product formula (The NURBS Book, eq. 5.36; docs/references.md,
+// 'Degree elevation by the product formula'):
 //   Q_i = sum_{j=max(0,i-by)}^{min(n,i)} C(n,j) C(by,i-j) / C(n+by,i) P_j,
-// which for by = 1 is Q_i = i/(n+1) P_{i-1} + (1 - i/(n+1)) P_i (seed 001,
-// 6.3.4). The result is rational (weights not empty) exactly when `curve` is.
-// Fails with INVALID_ARGUMENT "by" when by < 1.
+// which for by = 1 is Q_i = i/(n+1) P_{i-1} + (1 - i/(n+1)) P_i. The result is
+// rational (weights not empty) exactly when `curve` is. Fails with
+// INVALID_ARGUMENT "by" when by < 1.
 absl::StatusOr<BezierCurveData> ElevateBezierCurve(const BezierCurveView& curve,
                                                    int by);
 
@@ -124,8 +124,9 @@ struct TriangularPatchData {
 };
 
 // ElevateTriangularPatch returns `patch` raised from degree n to n + by by
-// repeating Farin's elevation step (seed 002, triangular patches; Farin,
-// CAGD 3 (1986)), for i + j + k = n + 1:
+// repeating Farin's elevation step (Farin, CAGD 3 (1986);
+// docs/references.md, 'Degree elevation by the product formula'), for
+// i + j + k = n + 1:
 //   Q_ijk = (i P_{i-1,j,k} + j P_{i,j-1,k} + k P_{i,j,k-1}) / (n + 1),
 // in homogeneous form when rational. The domain triangle is kept. Fails with
 // INVALID_ARGUMENT "by" when by < 1.

@@ -1,19 +1,21 @@
 // Interpolation and approximation of data by B-spline curves and surfaces.
 //
-// Global interpolation (The NURBS Book A9.1, eqs. 9.3-9.9; course notes
-// "6 Interpolation with B-splines") finds the B-spline curve of degree p with
-// one control point per data point (plus one per given end derivative) that
-// passes through every point Q_k at its parameter t_k. The parameters come
-// from a Parameterization, the knots from a KnotRule; the collocation matrix
-// N_{i,p}(t_k) is banded and, for increasing parameters, totally nonnegative,
-// so it is solved in O(n) by a banded LU without pivoting (DESIGN.md §2).
-// Closed curves give a periodic B-spline (cyclic banded system). Cubic splines
-// with the classic end conditions (de Boor, "A Practical Guide to Splines",
-// ch. IV), least-squares approximation (A9.7) and surface interpolation
-// through a grid (A9.4) come back as ordinary B-spline data, so every other
-// operation works on the results.
+// Global interpolation (The NURBS Book A9.1, eqs. 9.3-9.9;
+// docs/references.md, 'Global B-spline interpolation') finds the B-spline curve
+// of degree p with one control point per data point (plus one per given end
+// derivative) that passes through every point Q_k at its parameter t_k. The
+// parameters come from a Parameterization, the knots from a KnotRule; the
+// collocation matrix N_{i,p}(t_k) is banded and, for increasing parameters,
+// totally nonnegative, so it is solved in O(n) by a banded LU without pivoting
+// (de Boor and Pinkus, Numer. Math. 27, 1977). Closed curves give a periodic
+// B-spline (cyclic banded system). Cubic splines with the classic end
+// conditions (de Boor, "A Practical Guide to Splines", ch. IV), least-squares
+// approximation (A9.7) and surface interpolation through a grid (A9.4) come
+// back as ordinary B-spline data, so every other operation works on the
+// results.
 //
-// Example, a cubic through five planar points (the notes' Exercise 5):
+// Example, a cubic through five planar points (docs/references.md,
+// 'Worked example: a cubic B-spline through five planar points'):
 //   const std::vector<double> xy = {0, 0, 3, 4, -1, 4, -4, 0, -4, -3};
 //   absl::StatusOr<CurveInterpolation> result = InterpolateCurve(
 //       {.dimension = 2, .coordinates = xy}, CurveInterpolationOptions{});
@@ -44,9 +46,10 @@ enum class Parameterization {
   kChordLength,
   // Proportional to sqrt(|Q_k - Q_{k-1}|) (eq. 9.6).
   kCentripetal,
-  // The notes' "universal" method: uniform clamped knots, and the
-  // parameters are the maxima of the basis functions on them. Fixes the
-  // knots too (the KnotRule is ignored) and is affine invariant.
+  // The "universal" method (Lim 1999; docs/references.md, 'Universal
+  // parameterization'): uniform clamped knots, and the parameters are the
+  // maxima of the basis functions on them. Fixes the knots too (the
+  // KnotRule is ignored) and is affine invariant.
   kUniversal,
 };
 
@@ -120,7 +123,8 @@ struct CurveInterpolation {
 absl::StatusOr<CurveInterpolation> InterpolateCurve(
     const PointsView& points, const CurveInterpolationOptions& options);
 
-// End conditions of a cubic spline (de Boor; course notes "3 Splines").
+// End conditions of a cubic spline (de Boor, "A Practical Guide to Splines",
+// ch. IV; docs/references.md, 'Cubic spline end conditions').
 enum class SplineEnd {
   // s''(x_0) = s''(x_n) = 0.
   kNatural,
@@ -185,12 +189,13 @@ struct SurfaceInterpolation {
 
 // InterpolateSurface returns the B-spline surface of degrees (degree_u,
 // degree_v) with S(u_k, v_l) = Q[k][l] for the count_u x count_v grid
-// `points` (The NURBS Book A9.4; notes §6.1): u parameters are averaged over
-// the columns Q[.][l] (for chord length and centripetal, columns of zero
-// length are skipped as in A9.3), v parameters over the rows, knots by the
-// KnotRule (universal: uniform), then curves are interpolated through the
-// columns and through the rows of the result with one banded factorization
-// per direction reused for every right-hand side. Fails with
+// `points` (The NURBS Book A9.4; docs/references.md, 'Global B-spline
+// interpolation'): u parameters are averaged over the columns Q[.][l] (for
+// chord length and centripetal, columns of zero length are skipped as in
+// A9.3), v parameters over the rows, knots by the KnotRule (universal:
+// uniform), then curves are interpolated through the columns and through the
+// rows of the result with one banded factorization per direction reused for
+// every right-hand side. Fails with
 // INVALID_ARGUMENT on "points..." (ValidateControlNet with at least degree + 1
 // points each way), "degree_u" / "degree_v" (< 1), and "points" when the
 // averaged parameters are not strictly increasing (a whole grid row or column

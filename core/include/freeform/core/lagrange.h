@@ -2,14 +2,15 @@
 //
 // Given points P_0..P_n of any dimension and nodes t_0 < ... < t_n, the
 // Lagrange curve is C(t) = sum_i L_i(t) P_i with the Lagrange basis
-// L_i(t) = prod_{j != i} (t - t_j) / (t_i - t_j) (course notes, Lecture 24
-// "Blending Functions", section 2.1, eq. 2.1), so C(t_i) = P_i. Its domain
+// L_i(t) = prod_{j != i} (t - t_j) / (t_i - t_j) (docs/references.md,
+// 'Lagrange basis and Neville's algorithm'), so C(t_i) = P_i. Its domain
 // is [t_0, t_n].
 //
 // Three single-point evaluators are offered:
 //   - NevilleEvaluate: Neville's triangle, O(n^2) per point;
-//   - LadderEvaluate: Warren's O(n) ladder (the notes' Figure 5), which is
-//     the first barycentric ("modified Lagrange") form;
+//   - LadderEvaluate: Warren's O(n) ladder (docs/references.md, 'Warren's
+//     ladder for Lagrange curves'), which is the first barycentric
+//     ("modified Lagrange") form;
 //   - BarycentricEvaluate: the second ("true") barycentric form, O(n),
 //     exact at the nodes.
 // The last two need the barycentric weights, O(n^2) once per set of nodes.
@@ -85,19 +86,19 @@ std::vector<double> BarycentricWeights(absl::Span<const double> nodes);
 
 // NevilleEvaluate writes C(t) into `point` (points.dimension doubles) by
 // Neville's algorithm P_{i..j}(t) = ((t - t_i) P_{i+1..j}(t) -
-// (t - t_j) P_{i..j-1}(t)) / (t_j - t_i) (course notes, section 2.1,
-// Figure 4). `nodes` holds one node per point; `scratch` at least
-// points.coordinates.size() doubles. O(n^2) per coordinate.
+// (t - t_j) P_{i..j-1}(t)) / (t_j - t_i) (docs/references.md, 'Lagrange
+// basis and Neville's algorithm'). `nodes` holds one node per point; `scratch`
+// at least points.coordinates.size() doubles. O(n^2) per coordinate.
 void NevilleEvaluate(const PointsView& points, absl::Span<const double> nodes,
                      double t, absl::Span<double> scratch,
                      absl::Span<double> point);
 
 // LadderEvaluate writes C(t) into `point` (points.dimension doubles) by
-// Warren's ladder (course notes, section 2.1, Figure 5): a left rail of
-// products prod_{j<k} ((t - t_j) / c), rungs w_k P_k and a right rail
-// multiplied by (t - t_k) / c. `weights` must be BarycentricWeights(nodes)
-// (which fixes c). 3n + 1 multiplications per coordinate; at a node exact
-// only to rounding.
+// Warren's ladder (docs/references.md, 'Warren's ladder for Lagrange
+// curves'): a left rail of products prod_{j<k} ((t - t_j) / c), rungs
+// w_k P_k and a right rail multiplied by (t - t_k) / c. `weights` must be
+// BarycentricWeights(nodes) (which fixes c). 3n + 1 multiplications per
+// coordinate; at a node exact only to rounding.
 void LadderEvaluate(const PointsView& points, absl::Span<const double> nodes,
                     absl::Span<const double> weights, double t,
                     absl::Span<double> point);
@@ -120,7 +121,8 @@ void BarycentricEvaluate(const PointsView& points,
 // doubles and `scratch` at least max_order + 1. O(n max_order^2).
 //
 // Example: nodes {0, 1, 2, 3} at t = 0.5 give values[0..3] =
-// {0.3125, 0.9375, -0.3125, 0.0625} (the notes' Example 1).
+// {0.3125, 0.9375, -0.3125, 0.0625} (docs/references.md,
+// 'Worked example: the cubic Lagrange basis on the nodes 0, 1, 2, 3').
 void LagrangeBasis(absl::Span<const double> nodes,
                    absl::Span<const double> weights, double t, int max_order,
                    absl::Span<double> scratch, absl::Span<double> values);

@@ -1,7 +1,8 @@
 // Bicubic patches given by data rather than by a Bezier net: the bicubic
-// interpolating patch of the slides and the bicubic Hermite (Ferguson)
-// patch, both turned into the 4 x 4 Bezier net of the same surface so that
-// every Bezier surface operation applies to them.
+// interpolating patch (docs/references.md, 'The bicubic interpolating
+// patch') and the bicubic Hermite (Ferguson) patch, both turned into the 4 x 4
+// Bezier net of the same surface so that every Bezier surface operation applies
+// to them.
 //
 // Nets are row-major, u with the row i: point (i, j) at (4 i + j) * dimension.
 // Thread-safe.

@@ -4,7 +4,8 @@
 // w_i is the projection of the polynomial one with homogeneous points
 // (w_i P_i, w_i). A zero weight makes the point a direction: its coordinates
 // D are kept and the homogeneous point is (D, 0), a point at infinity, as in
-// the course notes' half circle (1,0,1), (0,1,0), (-1,0,1). Derivatives of
+// the half circle (1,0,1), (0,1,0), (-1,0,1) (docs/references.md,
+// 'Worked example: the half circle with a point at infinity'). Derivatives of
 // the projection follow from the homogeneous ones by the quotient rule (The
 // NURBS Book, eq. 4.8). Thread-safe.
 #ifndef FREEFORM_CORE_RATIONAL_H_

@@ -44,8 +44,9 @@ namespace freeform {
 // Each piece comes from two de Casteljau subdivisions of the original
 // polygon (at t_k, then at t_{k-1} / t_k of the left part), so errors do
 // not accumulate from piece to piece; for one t the left piece is
-// P_0^0..P_0^n and the right P_0^n..P_n^0 (seed 004). Rational curves are
-// split in homogeneous form. Fails with INVALID_ARGUMENT "parameters[i]"
+// P_0^0..P_0^n and the right P_0^n..P_n^0 (docs/references.md,
+// 'de Casteljau evaluation and subdivision'). Rational curves are split in
+// homogeneous form. Fails with INVALID_ARGUMENT "parameters[i]"
 // for a value not finite, not in (0, 1) or not above its predecessor.
 absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
     const BezierCurveView& curve, absl::Span<const double> parameters);
@@ -91,8 +92,10 @@ enum class SubdivisionScheme {
   // kUniformBSpline of degree 2.
   kChaikin,
   // Lane-Riesenfeld uniform B-spline subdivision of degree d >= 1 with the
-  // mask s_k = binom(d + 1, k) / 2^d, k = 0..d+1 (seed 002, Lemma 6 and the
-  // subdivision matrix, whose "p" is d + 1): Q_j = sum_i s_{j-2i} P_i.
+  // mask s_k = binom(d + 1, k) / 2^d, k = 0..d+1, from the refinement
+  // equation of the uniform B-spline of degree d (docs/references.md,
+  // 'Uniform B-spline subdivision (Chaikin, Lane-Riesenfeld)'):
+  // Q_j = sum_i s_{j-2i} P_i.
   // Degree 1 inserts edge midpoints, 2 is Chaikin, 3 uses (1,4,6,4,1)/8.
   kUniformBSpline,
 };

@@ -2,15 +2,15 @@
 // evaluation of positions and partial derivatives.
 //
 // A tensor-product surface is S(u, v) = sum_i sum_j f_i(u) g_j(v) P[i][j]
-// over a rectangular control net (course notes, "Bezier Surfaces"): the
-// Bernstein polynomials of degrees count_u - 1 and count_v - 1 on [0, 1]^2
-// for a Bezier surface, the B-spline bases N_{i,p}(u) and N_{j,q}(v) on
-// [u_p, u_{n+1}] x [v_q, v_{m+1}] for a B-spline surface. With weights
-// w[i][j] it is rational, S = sum w_ij f_i g_j P_ij / sum w_ij f_i g_j,
-// evaluated in homogeneous form (w_ij P_ij, w_ij) and projected by the
-// surface quotient rule (The NURBS Book, eq. 4.20, A4.4). As for curves
-// (rational.h), a point with weight 0 is a point at infinity whose
-// coordinates are its direction.
+// over a rectangular control net (docs/references.md, 'Tensor-product
+// surfaces'): the Bernstein polynomials of degrees count_u - 1 and
+// count_v - 1 on [0, 1]^2 for a Bezier surface, the B-spline bases
+// N_{i,p}(u) and N_{j,q}(v) on [u_p, u_{n+1}] x [v_q, v_{m+1}] for a
+// B-spline surface. With weights w[i][j] it is rational,
+// S = sum w_ij f_i g_j P_ij / sum w_ij f_i g_j, evaluated in homogeneous form
+// (w_ij P_ij, w_ij) and projected by the surface quotient rule (The NURBS
+// Book, eq. 4.20, A4.4). As for curves (rational.h), a point with weight 0
+// is a point at infinity whose coordinates are its direction.
 //
 // The net is count_u rows of count_v points, P[i][j] at (i * count_v + j);
 // u goes with i, v with j. Evaluation at (u, v) pairs costs one u basis and

@@ -1,8 +1,9 @@
 // Tessellation: polylines for curves and triangle meshes for Bezier patches,
 // within a given distance of the exact geometry.
 //
-// Curves are refined by recursive subdivision with a flatness test (the
-// rendering lecture, seed 003: "subdivide until flat, then draw the chord"):
+// Curves are refined by recursive subdivision with a flatness test
+// ("subdivide until flat, then draw the chord"; docs/references.md,
+// 'Flatness test for curve tessellation'):
 // a Bezier piece is split at its parameter midpoint by de Casteljau until
 // every control point lies within `tolerance` of the chord from the first to
 // the last one. By the convex hull property the piece then lies within
@@ -71,11 +72,13 @@ struct Polyline {
 // `tolerance` of `curve` (see the file comment), with points evaluated on
 // the curve at dyadic parameters, starting at 0 and ending at 1. Fails with
 // INVALID_ARGUMENT for an invalid curve (ValidateBezierCurve) or a tolerance
-// that is not positive and finite ("tolerance"), RESOURCE_EXHAUSTED when
-// more than `max_points` points would be needed, and with the token's
+// that is not positive and finite ("tolerance"), RESOURCE_EXHAUSTED naming
+// "tolerance" when more than `max_points` points would be needed, and with
+// the token's
 // CANCELLED / DEADLINE_EXCEEDED (checked every few hundred pieces).
-// Tolerances below about 1e-14 of the curve's scale cannot be met in double
-// precision; subdivision then stops at 50 halvings.
+// A tolerance below 2^-48 (3.6e-15) of the largest control-point
+// coordinate cannot be met in double precision: for curves of degree 2 or
+// more it is refused at once (INVALID_ARGUMENT naming "tolerance").
 absl::StatusOr<Polyline> TessellateBezierCurve(
     const BezierCurveView& curve, double tolerance, size_t max_points,
     const CancellationToken* cancel = nullptr);
@@ -141,7 +144,8 @@ struct Mesh {
 // "surfaces[i].bezier.<field>" for an invalid patch, a dimension other than
 // 3 ("surfaces[i].bezier.control_net.dimension") or weights (rational
 // patches are not supported: "surfaces[i].bezier.weights"), "tolerance" as
-// for curves, RESOURCE_EXHAUSTED when more than `max_vertices` vertices
+// for curves (also below the resolution of a patch's coordinates),
+// RESOURCE_EXHAUSTED naming "tolerance" when more than `max_vertices` vertices
 // would be generated (counted before welding, which only merges vertices
 // that coincide without sharing control points), and with the token's
 // CANCELLED / DEADLINE_EXCEEDED (checked between patches).

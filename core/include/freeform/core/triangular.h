@@ -4,9 +4,10 @@
 // A triangular Bezier patch of degree n over barycentric coordinates
 // (u, v, w), u + v + w = 1, is
 //   S(u,v,w) = sum_{i+j+k=n} n!/(i!j!k!) u^i v^j w^k P(i,j,k)
-// (Farin, "Triangular Bernstein-Bezier patches", CAGD 3 (1986); the course
-// notes' section 7). It interpolates P(n,0,0), P(0,n,0), P(0,0,n) at the
-// corners, and each edge is the Bezier curve of the control points on it.
+// (Farin, "Triangular Bernstein-Bezier patches", CAGD 3 (1986);
+// docs/references.md, 'Triangular Bezier patches'). It interpolates
+// P(n,0,0), P(0,n,0), P(0,0,n) at the corners, and each edge is the Bezier
+// curve of the control points on it.
 // The (n+1)(n+2)/2 control points are stored with i descending from n to 0,
 // then j descending from n-i to 0 (k implied): for n = 2 the order is
 // P200, P110, P101, P020, P011, P002 (TriangularIndex gives the position).

@@ -1,0 +1,104 @@
+// ServerProcess: a freeformd child process listening on 127.0.0.1 with a
+// kernel-chosen port, for the integration tests. The constructor starts it
+// and reads the port it prints; the destructor kills it if it still runs.
+#ifndef FREEFORM_TESTS_INTEGRATION_SERVER_PROCESS_H_
+#define FREEFORM_TESTS_INTEGRATION_SERVER_PROCESS_H_
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+
+namespace freeform {
+
+class ServerProcess {
+ public:
+  // Runs freeformd with --threads=2 and --grace_period=5s; `extra_flags`
+  // come after those, so they may override them.
+  explicit ServerProcess(std::vector<std::string> extra_flags = {}) {
+    std::vector<std::string> arguments = {FREEFORMD_PATH,
+                                          "--listen=127.0.0.1:0", "--threads=2",
+                                          "--grace_period=5s"};
+    arguments.insert(arguments.end(), extra_flags.begin(), extra_flags.end());
+    int out[2];
+    EXPECT_EQ(pipe(out), 0);
+    pid_ = fork();
+    if (pid_ == 0) {
+      dup2(out[1], STDOUT_FILENO);
+      close(out[0]);
+      close(out[1]);
+      std::vector<char*> argv;
+      for (std::string& argument : arguments) argv.push_back(argument.data());
+      argv.push_back(nullptr);
+      execv(FREEFORMD_PATH, argv.data());
+      _exit(127);
+    }
+    close(out[1]);
+    stdout_ = fdopen(out[0], "r");
+    std::array<char, 256> line{};
+    if (fgets(line.data(), line.size(), stdout_) != nullptr) {
+      const std::string text(line.data());
+      const size_t colon = text.rfind(':');
+      if (text.find("listening on") != std::string::npos &&
+          colon != std::string::npos) {
+        port_ = std::stoi(text.substr(colon + 1));
+      }
+    }
+  }
+  ~ServerProcess() {
+    if (pid_ > 0 && !exited_) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+    if (stdout_ != nullptr) fclose(stdout_);
+  }
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+
+  int port() const { return port_; }
+  std::string address() const { return absl::StrCat("127.0.0.1:", port_); }
+
+  // Signal sends `signal` to the process.
+  void Signal(int signal) { kill(pid_, signal); }
+
+  // WaitForExit returns the exit status (128 + the signal when killed by
+  // one), or nullopt when the process still runs after `timeout`.
+  std::optional<int> WaitForExit(std::chrono::milliseconds timeout) {
+    const auto give_up = std::chrono::steady_clock::now() + timeout;
+    while (true) {
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        exited_ = true;
+        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      }
+      if (std::chrono::steady_clock::now() >= give_up) return std::nullopt;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+
+  // Sends `signal` and returns the exit status (or -1 after `timeout`).
+  int StopWith(int signal, std::chrono::seconds timeout) {
+    Signal(signal);
+    return WaitForExit(timeout).value_or(-1);
+  }
+
+ private:
+  pid_t pid_ = -1;
+  FILE* stdout_ = nullptr;
+  int port_ = 0;
+  bool exited_ = false;
+};
+
+}  // namespace freeform
+
+#endif  // FREEFORM_TESTS_INTEGRATION_SERVER_PROCESS_H_
