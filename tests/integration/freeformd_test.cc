@@ -146,8 +146,9 @@ TEST_F(FreeformdTest, CliBasisPrintsBlendingFunctions) {
   unlink(file.c_str());
 }
 
-// Exercise 5 of the course notes from a CSV file: chord-length parameters
-// 0, 5/17, 9/17, 14/17, 1.
+// The cubic through five planar points from a CSV file (docs/references.md,
+// 'Worked example: a cubic B-spline through five planar points'):
+// chord-length parameters 0, 5/17, 9/17, 14/17, 1.
 TEST_F(FreeformdTest, CliInterpolatesPointsFromCsv) {
   const std::string file = WriteTempFile("x,y\n0,0\n3,4\n-1,4\n-4,0\n-4,-3\n");
   CommandResult result =

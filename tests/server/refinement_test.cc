@@ -26,8 +26,8 @@ std::vector<double> Values(const google::protobuf::RepeatedField<double>& f) {
 
 class RefinementTest : public InProcessServerTest {};
 
-// The de Casteljau slides: splitting at t gives P_0^0..P_0^n on the left
-// and P_0^n..P_n^0 on the right.
+// Splitting at t gives P_0^0..P_0^n on the left and P_0^n..P_n^0 on the
+// right (docs/references.md, 'de Casteljau evaluation and subdivision').
 TEST_F(RefinementTest, SplitsTheWorkedCubic) {
   v1::SplitCurveRequest request;
   v1::Points* points =
@@ -48,9 +48,10 @@ TEST_F(RefinementTest, SplitsTheWorkedCubic) {
   ExpectInvalid(client_->SplitCurve(request).status(), "parameters[0]", true);
 }
 
-// The course notes' half circle with knot 1/2 inserted: points (1,0),
-// (1,1), (-1,1), (-1,0) with weights 1, 1/2, 1/2, 1 (the notes print a
-// first weight of 0: a slip).
+// The half circle with knot 1/2 inserted: points (1,0), (1,1), (-1,1),
+// (-1,0) with weights 1, 1/2, 1/2, 1 (Q_0^w = P_0^w keeps the weight 1;
+// docs/references.md, 'Worked example: the half circle with a point at
+// infinity').
 TEST_F(RefinementTest, InsertsAKnotIntoTheHalfCircle) {
   v1::InsertKnotsRequest request;
   v1::BSplineCurve* bspline = request.mutable_curve()->mutable_bspline();
@@ -167,7 +168,9 @@ TEST_F(RefinementTest, SplitsPatches) {
       client_->SplitSurface(request);
   ASSERT_TRUE(pieces.ok()) << pieces.status();
   ASSERT_EQ(pieces->pieces_size(), 2);
-  // The seed's S(1/2, 1/2) = (2, 2, 1) is the first piece's S(1, 1/2).
+  // The bi-quadratic patch's S(1/2, 1/2) = (2, 2, 1) (docs/references.md,
+  // 'Worked example: the bi-quadratic patch at (1/2, 1/2)') is the first
+  // piece's S(1, 1/2).
   v1::EvaluateSurfaceRequest evaluate;
   *evaluate.mutable_surface() = pieces->pieces(0);
   Append(evaluate.mutable_parameters()->mutable_points()->mutable_uv(),
