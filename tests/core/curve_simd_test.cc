@@ -17,6 +17,8 @@
 #include "curve_reference.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/bspline.h"
+#include "freeform/core/points.h"
+#include "freeform/core/status.h"
 #include "hwy/targets.h"
 #include "test_util.h"
 
@@ -258,6 +260,31 @@ TEST(CurveSimdTest, BezierMatchesScalarBitForBit) {
     for (const size_t count : {1u, 3u, 7u, 4097u}) {
       ExpectBezierMatchesScalar(cubic, RandomValues(rng, count, 0.0, 1.0), 2,
                                 "count " + std::to_string(count));
+    }
+  });
+}
+
+// The range check of every batch (vectorized) names the first value that is
+// NaN, infinite or outside the bounds, wherever it stands in a batch of any
+// length, and accepts the bounds themselves.
+TEST(CurveSimdTest, RangeCheckNamesTheFirstOffender) {
+  OnEveryTarget([] {
+    const double bad[] = {std::nan(""), HUGE_VAL, -HUGE_VAL, -0.5, 1.5};
+    for (size_t count = 1; count <= 19; ++count) {
+      std::vector<double> values = EvenlySpaced(0.0, 1.0, count + 1);
+      values.pop_back();
+      values.back() = 1.0;
+      EXPECT_TRUE(ValidateInRange(values, 0.0, 1.0, "t").ok()) << count;
+      for (size_t i = 0; i < count; ++i) {
+        for (const double value : bad) {
+          std::vector<double> with_bad = values;
+          with_bad[i] = value;
+          if (i + 1 < count) with_bad[count - 1] = value;
+          const absl::Status status = ValidateInRange(with_bad, 0.0, 1.0, "t");
+          EXPECT_EQ(FieldPathOf(status), "t[" + std::to_string(i) + "]")
+              << count << " " << value;
+        }
+      }
     }
   });
 }

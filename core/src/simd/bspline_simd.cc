@@ -291,12 +291,19 @@ HWY_NOINLINE int EvaluateMixedGroup(LaneTag d, const BSplineLanesBatch& batch,
   return span;
 }
 
-template <int kDegree, int kDimension>
+// Template argument of EvaluateChunk for a highest derivative order known
+// only at run time.
+constexpr int kAnyOrder = -1;
+
+// Evaluates parameters [begin, end) of `batch`, whose highest order is
+// kMaxOrder unless that is kAnyOrder.
+template <int kDegree, int kDimension, int kMaxOrder>
 void EvaluateChunk(const BSplineLanesBatch& batch, size_t begin, size_t end) {
   const LaneTag d;
   const size_t lanes = hn::Lanes(d);
   const int p = DegreeOf<kDegree>(batch.p);
-  const int top = std::min(batch.max_order, p);
+  const int max_order = kMaxOrder == kAnyOrder ? batch.max_order : kMaxOrder;
+  const int top = std::min(max_order, p);
   const absl::Span<const double> knots(batch.knots,
                                        static_cast<size_t>(batch.n + p) + 2);
   const int last = FindSpan(batch.n, p, knots[batch.n + 1], knots);
@@ -313,8 +320,7 @@ void EvaluateChunk(const BSplineLanesBatch& batch, size_t begin, size_t end) {
     const LaneVec u = LoadParameters(d, batch.parameters, r, count);
     if (AllOnSpan(d, batch.knots, span, last, u)) {
       EvaluateOnSpan<kDegree, kDimension>(d, batch, top, span, u, work);
-      WriteGroup<kDimension>(d, results, batch.max_order, batch.output, r,
-                             count);
+      WriteGroup<kDimension>(d, results, max_order, batch.output, r, count);
     } else {
       span = EvaluateMixedGroup<kDegree, kDimension>(d, batch, top, span, r,
                                                      count, u, mixed.work());
@@ -326,9 +332,19 @@ void EvaluateChunk(const BSplineLanesBatch& batch, size_t begin, size_t end) {
 
 void EvaluateBSplineChunkLanes(const BSplineLanesBatch& batch, size_t begin,
                                size_t end) {
+  // Compiled-in degrees also get kernels for positions alone and for
+  // positions with first derivatives.
   WithDegreeAndDimension(
       batch.p, batch.dimension, [&]<int kDegree, int kDimension>() {
-        EvaluateChunk<kDegree, kDimension>(batch, begin, end);
+        if constexpr (kDegree != internal::kAnyDegree) {
+          if (batch.max_order == 0) {
+            return EvaluateChunk<kDegree, kDimension, 0>(batch, begin, end);
+          }
+          if (batch.max_order == 1) {
+            return EvaluateChunk<kDegree, kDimension, 1>(batch, begin, end);
+          }
+        }
+        EvaluateChunk<kDegree, kDimension, kAnyOrder>(batch, begin, end);
       });
 }
 
