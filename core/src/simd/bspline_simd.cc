@@ -246,6 +246,7 @@ HWY_INLINE void EvaluateOnSpan(LaneTag d, const BSplineLanesBatch& batch,
   }
   const double* points =
       batch.control + static_cast<ptrdiff_t>(span - p) * dimension;
+#pragma GCC unroll 2
   for (int k = 0; k <= top; ++k) {
     CombineLanes<kDegree, kDimension>(
         d, work.basis + static_cast<size_t>(k * (p + 1)) * lanes, points, p,

@@ -128,6 +128,7 @@ HWY_INLINE void WriteLanes(LaneTag d, const LaneResults& results, int max_order,
   const size_t lanes = hn::Lanes(d);
   const int dimension = SizeOf<kDimension>(results.dimension);
   const size_t offset = r * static_cast<size_t>(dimension);
+#pragma GCC unroll 2
   for (int k = 0; k <= max_order; ++k) {
     double* out = output[k] + offset;
     if (k <= results.top) {
