@@ -6,15 +6,19 @@
 #include <algorithm>
 #include <cstddef>
 
-#include "simd/curve_simd.h"
-
-#undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "simd/bezier_simd.cc"
 #include "bspline_spans.h"
 #include "hwy/aligned_allocator.h"
+#include "simd/curve_simd.h"
+
+// foreach_target.h compiles this file once per target: it must follow the
+// definition of HWY_TARGET_INCLUDE, and highway.h and the -inl.h headers it.
+// clang-format off
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/bezier_simd.cc"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 #include "simd/curve_lanes-inl.h"
+// clang-format on
 
 HWY_BEFORE_NAMESPACE();
 namespace freeform::simd::HWY_NAMESPACE {

@@ -10,17 +10,21 @@
 #include <limits>
 #include <type_traits>
 
-#include "simd/curve_simd.h"
-
-#undef HWY_TARGET_INCLUDE
-#define HWY_TARGET_INCLUDE "simd/bspline_simd.cc"
 #include "absl/types/span.h"
 #include "bspline_spans.h"
 #include "freeform/core/bspline.h"
 #include "hwy/aligned_allocator.h"
+#include "simd/curve_simd.h"
+
+// foreach_target.h compiles this file once per target: it must follow the
+// definition of HWY_TARGET_INCLUDE, and highway.h and the -inl.h headers it.
+// clang-format off
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "simd/bspline_simd.cc"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 #include "simd/curve_lanes-inl.h"
+// clang-format on
 
 HWY_BEFORE_NAMESPACE();
 namespace freeform::simd::HWY_NAMESPACE {

@@ -3,10 +3,14 @@
 
 #include <cstddef>
 
+// foreach_target.h compiles this file once per target: it must follow the
+// definition of HWY_TARGET_INCLUDE, and highway.h and the -inl.h headers it.
+// clang-format off
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "simd/range_simd.cc"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
+// clang-format on
 
 HWY_BEFORE_NAMESPACE();
 namespace freeform::simd::HWY_NAMESPACE {
