@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   cmake ninja-build g++ pkg-config
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
-  libabsl-dev libspdlog-dev libcli11-dev nlohmann-json3-dev
+  libabsl-dev libhwy-dev libspdlog-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # google/rpc/status.proto and error_details.proto (google.rpc.BadRequest).
   golang-github-gogo-googleapis-dev

@@ -5,8 +5,10 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "curve_reference.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "simd/curve_simd.h"
 #include "validated.h"
 
 namespace freeform {
@@ -288,22 +290,48 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
                                             algorithm);
 }
 
-namespace internal {
+namespace {
 
-absl::Status EvaluateValidBezierCurve(const BezierCurveView& curve,
-                                      absl::Span<const double> parameters,
-                                      CurveOutput output,
-                                      const ExecutionContext& context,
-                                      BezierAlgorithm algorithm) {
-  const int dimension = curve.control_points.dimension;
-  if (absl::Status status =
-          ValidateBatch(parameters, 0.0, 1.0, output, dimension);
-      !status.ok()) {
-    return status;
+// Evaluates a polynomial curve by Horner's rule with the kernel across
+// parameters (simd/curve_simd.h).
+absl::Status EvaluateHornerLanes(const BezierCurveView& curve,
+                                 absl::Span<const double> parameters,
+                                 CurveOutput output,
+                                 const ExecutionContext& context) {
+  const int n = curve.degree();
+  const int max_order = static_cast<int>(output.size()) - 1;
+  const std::vector<std::vector<double>> hodographs =
+      ScaledHodographs(curve.control_points.coordinates.data(), n,
+                       curve.control_points.dimension, std::min(max_order, n));
+  std::vector<const double*> hodograph_data;
+  for (const std::vector<double>& hodograph : hodographs) {
+    hodograph_data.push_back(hodograph.data());
   }
+  std::vector<double*> buffers;
+  for (const absl::Span<double> buffer : output) {
+    buffers.push_back(buffer.data());
+  }
+  const simd::BezierLanesBatch batch{
+      .n = n,
+      .dimension = curve.control_points.dimension,
+      .max_order = max_order,
+      .hodographs = hodograph_data.data(),
+      .parameters = parameters.data(),
+      .output = buffers.data()};
+  return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
+    simd::EvaluateBezierHornerChunk(batch, begin, end);
+  });
+}
+
+// Evaluates `curve` point by point with a BezierPointEvaluator.
+absl::Status EvaluatePointByPoint(const BezierCurveView& curve,
+                                  absl::Span<const double> parameters,
+                                  CurveOutput output,
+                                  const ExecutionContext& context,
+                                  BezierAlgorithm algorithm) {
   const BezierPointEvaluator evaluator(
       curve, static_cast<int>(output.size()) - 1, algorithm);
-  const size_t dim = static_cast<size_t>(dimension);
+  const size_t dim = static_cast<size_t>(curve.control_points.dimension);
   const size_t orders = output.size();
   return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
     std::vector<double> scratch(evaluator.scratch_size() + orders * dim);
@@ -321,6 +349,42 @@ absl::Status EvaluateValidBezierCurve(const BezierCurveView& curve,
       }
     }
   });
+}
+
+}  // namespace
+
+namespace internal {
+
+absl::Status EvaluateValidBezierCurve(const BezierCurveView& curve,
+                                      absl::Span<const double> parameters,
+                                      CurveOutput output,
+                                      const ExecutionContext& context,
+                                      BezierAlgorithm algorithm) {
+  if (absl::Status status = ValidateBatch(parameters, 0.0, 1.0, output,
+                                          curve.control_points.dimension);
+      !status.ok()) {
+    return status;
+  }
+  if (!curve.rational() && ResolveBezierAlgorithm(algorithm, curve.degree()) ==
+                               BezierAlgorithm::kHorner) {
+    return EvaluateHornerLanes(curve, parameters, output, context);
+  }
+  return EvaluatePointByPoint(curve, parameters, output, context, algorithm);
+}
+
+absl::Status EvaluateBezierCurveScalar(const BezierCurveView& curve,
+                                       absl::Span<const double> parameters,
+                                       CurveOutput output,
+                                       BezierAlgorithm algorithm) {
+  if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = ValidateBatch(parameters, 0.0, 1.0, output,
+                                          curve.control_points.dimension);
+      !status.ok()) {
+    return status;
+  }
+  return EvaluatePointByPoint(curve, parameters, output, {}, algorithm);
 }
 
 }  // namespace internal

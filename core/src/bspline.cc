@@ -8,64 +8,24 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
+#include "bspline_spans.h"
+#include "curve_reference.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "simd/curve_simd.h"
 #include "validated.h"
 
 namespace freeform {
 namespace {
 
-// Template argument of the kernels below for a degree known only at run
-// time.
-constexpr int kAnyDegree = -1;
-
-// Degrees 0..kMaxInlineDegree get kernels compiled for their degree: the
-// basis lives in fixed-size stack arrays and the loops over it unroll.
-constexpr int kMaxInlineDegree = 5;
+using internal::DegreeOf;
+using internal::InverseKnotDifferences;
+using internal::kAnyDegree;
+using internal::WithDegree;
 
 // How many spans FindSpanFrom walks from its hint before it searches.
 constexpr int kSpanWalk = 4;
-
-template <int kDegree>
-constexpr int DegreeOf(int runtime_degree) {
-  if constexpr (kDegree == kAnyDegree) {
-    return runtime_degree;
-  } else {
-    return kDegree;
-  }
-}
-
-// Calls f.template operator()<p>() when p <= kMaxInlineDegree, else
-// f.template operator()<kAnyDegree>().
-template <int kDegree = 0, typename F>
-void WithDegree(int p, F&& f) {
-  if constexpr (kDegree > kMaxInlineDegree) {
-    f.template operator()<kAnyDegree>();
-  } else if (p == kDegree) {
-    f.template operator()<kDegree>();
-  } else {
-    WithDegree<kDegree + 1>(p, f);
-  }
-}
-
-// Reciprocals of the knot differences that A2.2 and A2.3 divide by on span
-// `span`: inverse[j (j - 1) / 2 + r] = 1 / (u_{span+r+1} - u_{span+1-j+r}),
-// the textbooks' 1 / (right[r+1] + left[j-r]), for j = 1..p and r < j. They
-// depend on the span only, so a batch computes them once per span and the
-// work per point has no division. On a non-empty span every difference is
-// at least u_{span+1} - u_span > 0.
-template <int kDegree>
-void InverseKnotDifferences(const double* knots, int span, int runtime_p,
-                            double* inverse) {
-  const int p = DegreeOf<kDegree>(runtime_p);
-  for (int j = 1; j <= p; ++j) {
-    for (int r = 0; r < j; ++r) {
-      inverse[j * (j - 1) / 2 + r] =
-          1.0 / (knots[span + r + 1] - knots[span + 1 - j + r]);
-    }
-  }
-}
 
 // The intermediate values of A2.2 and A2.3, carved out of one scratch array
 // in this order: left, right and inverse (BasisScratchSize(p) doubles in
@@ -667,12 +627,19 @@ absl::Status EvaluateBSplineCurve(const BSplineCurveView& curve,
                                              context);
 }
 
-namespace internal {
+namespace {
 
-absl::Status EvaluateValidBSplineCurve(const BSplineCurveView& curve,
-                                       absl::Span<const double> parameters,
-                                       CurveOutput output,
-                                       const ExecutionContext& context) {
+// Which code evaluates the chunks of a batch.
+enum class CurveKernel {
+  kLanes,   // simd/curve_simd.h where it applies (non-rational curves)
+  kScalar,  // EvaluateCurveChunk, point by point
+};
+
+absl::Status EvaluateBSplineBatch(const BSplineCurveView& curve,
+                                  absl::Span<const double> parameters,
+                                  CurveOutput output,
+                                  const ExecutionContext& context,
+                                  CurveKernel kernel) {
   const ParameterDomain domain = BSplineDomain(curve);
   const int dimension = curve.control_points.dimension;
   if (absl::Status status = ValidateBatch(parameters, domain.start, domain.end,
@@ -694,11 +661,47 @@ absl::Status EvaluateValidBSplineCurve(const BSplineCurveView& curve,
       .knots = curve.knots.data(),
       .parameters = parameters.data(),
       .output = OutputBuffers(output)};
+  if (kernel == CurveKernel::kLanes && !curve.rational()) {
+    const simd::BSplineLanesBatch lanes{.p = batch.p,
+                                        .n = batch.n,
+                                        .dimension = dimension,
+                                        .max_order = batch.max_order,
+                                        .control = batch.control,
+                                        .knots = batch.knots,
+                                        .parameters = batch.parameters,
+                                        .output = batch.output.data()};
+    return ParallelFor(parameters.size(), context,
+                       [&](size_t begin, size_t end) {
+                         simd::EvaluateBSplineChunk(lanes, begin, end);
+                       });
+  }
   return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
     WithDegree(batch.p, [&]<int kDegree>() {
       EvaluateCurveChunk<kDegree>(batch, begin, end);
     });
   });
+}
+
+}  // namespace
+
+namespace internal {
+
+absl::Status EvaluateValidBSplineCurve(const BSplineCurveView& curve,
+                                       absl::Span<const double> parameters,
+                                       CurveOutput output,
+                                       const ExecutionContext& context) {
+  return EvaluateBSplineBatch(curve, parameters, output, context,
+                              CurveKernel::kLanes);
+}
+
+absl::Status EvaluateBSplineCurveScalar(const BSplineCurveView& curve,
+                                        absl::Span<const double> parameters,
+                                        CurveOutput output) {
+  if (absl::Status status = ValidateBSplineCurve(curve); !status.ok()) {
+    return status;
+  }
+  return EvaluateBSplineBatch(curve, parameters, output, {},
+                              CurveKernel::kScalar);
 }
 
 }  // namespace internal

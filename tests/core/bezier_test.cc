@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "freeform/core/status.h"
+#include "test_util.h"
 
 namespace freeform {
 namespace {
@@ -410,20 +411,6 @@ TEST(BezierTest, WronglySizedOutputIsRejected) {
 namespace freeform {
 namespace {
 
-// Long-double de Casteljau: the reference for accuracy.
-std::vector<long double> LongDoublePoint(const std::vector<double>& points,
-                                         int dimension, long double t) {
-  std::vector<long double> levels(points.begin(), points.end());
-  const int n = static_cast<int>(points.size()) / dimension - 1;
-  for (int m = n; m > 0; --m) {
-    for (int x = 0; x < m * dimension; ++x) {
-      levels[x] = (1.0L - t) * levels[x] + t * levels[x + dimension];
-    }
-  }
-  levels.resize(static_cast<size_t>(dimension));
-  return levels;
-}
-
 // The basis sum sum_i B(n,i,t) P_i, the third independent way.
 std::vector<double> BasisSum(const std::vector<double>& points, int dimension,
                              const std::vector<double>& params) {
@@ -458,7 +445,8 @@ double MaxRelativeError(const std::vector<double>& points, int dimension,
   for (double value : points) scale = std::max(scale, std::abs(value));
   double worst = 0;
   for (size_t r = 0; r < params.size(); ++r) {
-    const auto exact = LongDoublePoint(points, dimension, params[r]);
+    const auto exact =
+        testing_util::LongDoubleDeCasteljau(points, dimension, params[r]);
     for (int j = 0; j < dimension; ++j) {
       worst = std::max(
           worst,

@@ -13,10 +13,12 @@
 
 #include "freeform/core/bezier.h"
 #include "freeform/core/status.h"
+#include "test_util.h"
 
 namespace freeform {
 namespace {
 
+using ::freeform::testing_util::RandomKnots;
 using ::testing::DoubleNear;
 using ::testing::HasSubstr;
 using ::testing::Pointwise;
@@ -90,51 +92,6 @@ std::vector<double> RandomWeights(std::mt19937_64& rng, size_t count) {
   std::vector<double> weights(count);
   for (double& weight : weights) weight = uniform(rng);
   return weights;
-}
-
-// Lengths of runs of equal knots adding up to `count`: mostly simple
-// knots, some repeated up to p times.
-std::vector<int> RandomRuns(std::mt19937_64& rng, int p, int count) {
-  std::vector<int> runs;
-  std::bernoulli_distribution repeat(0.3);
-  for (int left = count; left > 0;) {
-    int run = 1;
-    if (p > 1 && repeat(rng)) {
-      run = std::uniform_int_distribution<int>(2, p)(rng);
-    }
-    run = std::min(run, left);
-    runs.push_back(run);
-    left -= run;
-  }
-  return runs;
-}
-
-// n + p + 2 knots with spans of comparable length and interior knots
-// repeated up to p times. Clamped: p + 1 zeros and p + 1 ones at the ends.
-// Unclamped: every knot drawn, the domain [u_p, u_{n+1}] somewhere inside.
-std::vector<double> RandomKnots(std::mt19937_64& rng, int p, int n,
-                                bool clamped) {
-  const int m = n + p + 2;
-  std::uniform_real_distribution<double> gap(0.2, 1.0);
-  while (true) {
-    const std::vector<int> runs = RandomRuns(rng, p, clamped ? n - p : m);
-    std::vector<double> values;
-    double position = clamped ? 0.0 : -gap(rng);
-    for (size_t r = 0; r <= runs.size(); ++r) {
-      position += gap(rng);
-      values.push_back(position);
-    }
-    std::vector<double> knots;
-    if (clamped) knots.assign(static_cast<size_t>(p) + 1, 0.0);
-    for (size_t r = 0; r < runs.size(); ++r) {
-      const double value = clamped ? values[r] / values.back() : values[r];
-      knots.insert(knots.end(), static_cast<size_t>(runs[r]), value);
-    }
-    if (clamped) knots.insert(knots.end(), static_cast<size_t>(p) + 1, 1.0);
-    if (knots[static_cast<size_t>(p)] < knots[static_cast<size_t>(n + 1)]) {
-      return knots;
-    }
-  }
 }
 
 // The ends of the domain, every knot inside it and random values.

@@ -1,8 +1,9 @@
-// Small helpers shared by the core tests: random data and evenly spaced
-// parameters.
+// Small helpers shared by the core tests: random data, random knot vectors,
+// evenly spaced parameters and a long-double Bezier reference.
 #ifndef FREEFORM_TESTS_CORE_TEST_UTIL_H_
 #define FREEFORM_TESTS_CORE_TEST_UTIL_H_
 
+#include <algorithm>
 #include <cstddef>
 #include <random>
 #include <vector>
@@ -29,6 +30,67 @@ inline std::vector<double> EvenlySpaced(double start, double end,
   }
   values.back() = end;
   return values;
+}
+
+// Lengths of runs of equal knots adding up to `count`: mostly simple
+// knots, some repeated up to p times.
+inline std::vector<int> RandomRuns(std::mt19937_64& rng, int p, int count) {
+  std::vector<int> runs;
+  std::bernoulli_distribution repeat(0.3);
+  for (int left = count; left > 0;) {
+    int run = 1;
+    if (p > 1 && repeat(rng)) {
+      run = std::uniform_int_distribution<int>(2, p)(rng);
+    }
+    run = std::min(run, left);
+    runs.push_back(run);
+    left -= run;
+  }
+  return runs;
+}
+
+// n + p + 2 knots with spans of comparable length and interior knots
+// repeated up to p times. Clamped: p + 1 zeros and p + 1 ones at the ends.
+// Unclamped: every knot drawn, the domain [u_p, u_{n+1}] somewhere inside.
+inline std::vector<double> RandomKnots(std::mt19937_64& rng, int p, int n,
+                                       bool clamped) {
+  const int m = n + p + 2;
+  std::uniform_real_distribution<double> gap(0.2, 1.0);
+  while (true) {
+    const std::vector<int> runs = RandomRuns(rng, p, clamped ? n - p : m);
+    std::vector<double> values;
+    double position = clamped ? 0.0 : -gap(rng);
+    for (size_t r = 0; r <= runs.size(); ++r) {
+      position += gap(rng);
+      values.push_back(position);
+    }
+    std::vector<double> knots;
+    if (clamped) knots.assign(static_cast<size_t>(p) + 1, 0.0);
+    for (size_t r = 0; r < runs.size(); ++r) {
+      const double value = clamped ? values[r] / values.back() : values[r];
+      knots.insert(knots.end(), static_cast<size_t>(runs[r]), value);
+    }
+    if (clamped) knots.insert(knots.end(), static_cast<size_t>(p) + 1, 1.0);
+    if (knots[static_cast<size_t>(p)] < knots[static_cast<size_t>(n + 1)]) {
+      return knots;
+    }
+  }
+}
+
+// LongDoubleDeCasteljau returns the point at t of the Bezier curve with
+// control points `points`, by de Casteljau in long double: the reference for
+// accuracy.
+inline std::vector<long double> LongDoubleDeCasteljau(
+    const std::vector<double>& points, int dimension, long double t) {
+  std::vector<long double> levels(points.begin(), points.end());
+  const int n = static_cast<int>(points.size()) / dimension - 1;
+  for (int m = n; m > 0; --m) {
+    for (int x = 0; x < m * dimension; ++x) {
+      levels[x] = (1.0L - t) * levels[x] + t * levels[x + dimension];
+    }
+  }
+  levels.resize(static_cast<size_t>(dimension));
+  return levels;
 }
 
 }  // namespace freeform::testing_util
