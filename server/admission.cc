@@ -46,7 +46,8 @@ absl::StatusOr<MemoryBudget::Reservation> MemoryBudget::Reserve(
       return absl::ResourceExhaustedError(absl::StrCat(
           what, " needs about ", Megabytes(bytes), " and only ",
           Megabytes(used < capacity_ ? capacity_ - used : 0), " of the ",
-          Megabytes(capacity_),
+          Megabytes(capacity_), " that calls may use of the ",
+          Megabytes(budget_),
           " memory budget (--memory_budget) is free now; retry later",
           bytes > capacity_ ? " with a smaller request" : ""));
     }

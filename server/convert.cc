@@ -104,22 +104,27 @@ absl::StatusOr<ParameterSet> ParameterSet::Resolve(
   return InvalidFieldError("", "set either a parameter list or a range");
 }
 
-absl::Span<const double> ParameterSet::Values(
-    size_t begin, size_t end, std::vector<double>& storage) const {
+absl::Span<const double> ParameterSet::Values(size_t begin, size_t end,
+                                              ParameterStorage& storage) const {
   if (!is_range_) return list_.subspan(begin, end - begin);
-  storage.resize(end - begin);
+  const size_t count = end - begin;
+  if (storage.capacity < count) {
+    storage.values.reset(new double[count]);
+    storage.capacity = count;
+  }
+  double* values = storage.values.get();
   // numpy.linspace's values: start + k step, the last one exactly `end`
   // (kept inside the range against rounding).
   const double step =
       count_ > 1 ? (end_ - start_) / static_cast<double>(count_ - 1) : 0.0;
   const double lo = std::min(start_, end_);
   const double hi = std::max(start_, end_);
-  for (size_t k = begin; k < end; ++k) {
-    storage[k - begin] =
-        std::clamp(start_ + static_cast<double>(k) * step, lo, hi);
+  for (size_t k = 0; k < count; ++k) {
+    const double value = start_ + static_cast<double>(begin + k) * step;
+    values[k] = std::min(std::max(value, lo), hi);
   }
-  if (count_ > 1 && end == count_) storage.back() = end_;
-  return storage;
+  if (count_ > 1 && end == count_) values[count - 1] = end_;
+  return absl::MakeConstSpan(values, count);
 }
 
 }  // namespace freeform::server

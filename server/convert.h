@@ -9,6 +9,7 @@
 #define FREEFORM_SERVER_CONVERT_H_
 
 #include <cstddef>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -41,6 +42,12 @@ absl::Span<double> UninitializedArray(
 
 // A resolved set of curve parameters: an explicit list (a view into the
 // request) or a uniform range generated on demand, chunk by chunk.
+// Room for generated parameters, reused from chunk to chunk.
+struct ParameterStorage {
+  std::unique_ptr<double[]> values;
+  size_t capacity = 0;
+};
+
 class ParameterSet {
  public:
   // Resolve checks `parameters` against the domain [lo, hi] and the count
@@ -53,9 +60,9 @@ class ParameterSet {
   size_t size() const { return count_; }
 
   // Values returns parameters [begin, end): a view of the list, or range
-  // values generated into `storage`.
+  // values generated into `storage` (grown as needed, never zero-filled).
   absl::Span<const double> Values(size_t begin, size_t end,
-                                  std::vector<double>& storage) const;
+                                  ParameterStorage& storage) const;
 
  private:
   absl::Span<const double> list_;

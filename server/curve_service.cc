@@ -114,7 +114,7 @@ absl::Status EvaluateChunk(const Evaluation<Curve>& evaluation, size_t first,
         points->set_dimension(dimension);
         return points->mutable_coordinates();
       });
-  std::vector<double> storage;
+  ParameterStorage storage;
   return evaluation.Run(evaluation.parameters.Values(first, last, storage),
                         output, execution);
 }
@@ -229,7 +229,7 @@ grpc::ServerUnaryReactor* CurveServiceImpl::EvaluateBasis(
                   evaluation.orders, count * evaluation.dimension, [&] {
                     return response->add_derivatives()->mutable_values();
                   });
-              std::vector<double> storage;
+              ParameterStorage storage;
               return evaluation.Run(
                   evaluation.parameters.Values(0, count, storage), output,
                   execution);

@@ -18,6 +18,7 @@
 #include "absl/flags/parse.h"
 #include "absl/flags/usage.h"
 #include "absl/strings/str_cat.h"
+#include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
 #include "server.h"
 #include "spdlog/sinks/stdout_sinks.h"
@@ -123,6 +124,9 @@ void ExitWhenDrained(const freeform::server::FreeformServer& server,
 int main(int argc, char** argv) {
   absl::SetProgramUsageMessage("freeform curve and surface gRPC server");
   absl::ParseCommandLine(argc, argv);
+  // Abseil's mutex deadlock detection is a debugging aid that costs every
+  // lock (gRPC's included) a graph update; the server runs without it.
+  absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
   ConfigureLogging();
 
   // Block the stop signals in every thread; this thread waits for them.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include "errors.h"
@@ -26,6 +27,16 @@ std::optional<CancellationToken::Clock::time_point> SteadyDeadline(
   return CancellationToken::Clock::now() +
          std::chrono::duration_cast<CancellationToken::Clock::duration>(
              remaining);
+}
+
+// Responses larger than this are freed before their call's reservation.
+constexpr size_t kFreeResponseBytes = 1 << 20;
+
+// FreeMessage empties `message` and gives back the memory of its fields
+// (Clear keeps their capacity).
+void FreeMessage(google::protobuf::Message& message) {
+  std::unique_ptr<google::protobuf::Message> empty(message.New());
+  message.GetReflection()->Swap(&message, empty.get());
 }
 
 absl::Status QueueFull() {
@@ -57,6 +68,9 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
   void OnCancel() override { record_.Cancel(); }
   void OnDone() override {
     record_.Done(status_, response_bytes_);
+    // gRPC frees the response only after OnDone; free a large one now, so
+    // its memory is gone before the reservation is (with this call).
+    if (response_bytes_ > kFreeResponseBytes) FreeMessage(*response_);
     delete this;
   }
 
@@ -172,7 +186,6 @@ bool CallRecord::Schedule(absl::AnyInvocable<void() &&> task) {
 }
 
 void CallRecord::Done(const absl::Status& status, size_t response_bytes) {
-  reservation_ = MemoryBudget::Reservation();
   const bool failed = !status.ok();
   const auto level = failed && status.code() == absl::StatusCode::kInternal
                          ? spdlog::level::err

@@ -105,7 +105,9 @@ class CallRecord {
   // Schedule runs `task` on the pool; false when its queue is full.
   bool Schedule(absl::AnyInvocable<void() &&> task);
   void Cancel() { token_.Cancel(); }
-  // Done writes the access-log line for the call's final status.
+  // Done writes the access-log line for the call's final status. The
+  // reservation is held until the record is destroyed, after the call's
+  // messages (declare the record first in a reactor, so it goes last).
   void Done(const absl::Status& status, size_t response_bytes);
 
  private:

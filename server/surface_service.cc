@@ -68,7 +68,7 @@ absl::StatusOr<ParameterSet> ResolveAxis(const v1::Parameters& axis,
 }
 
 std::vector<double> AllValues(const ParameterSet& set) {
-  std::vector<double> storage;
+  ParameterStorage storage;
   const absl::Span<const double> values = set.Values(0, set.size(), storage);
   return std::vector<double>(values.begin(), values.end());
 }
