@@ -119,9 +119,11 @@ absl::Span<const double> ParameterSet::Values(size_t begin, size_t end,
       count_ > 1 ? (end_ - start_) / static_cast<double>(count_ - 1) : 0.0;
   const double lo = std::min(start_, end_);
   const double hi = std::max(start_, end_);
-  for (size_t k = 0; k < count; ++k) {
-    const double value = start_ + static_cast<double>(begin + k) * step;
-    values[k] = std::min(std::max(value, lo), hi);
+  // The index counts in a double (exact below 2^53, far above any count
+  // allowed): converting a size_t per value costs more than the rest.
+  double index = static_cast<double>(begin);
+  for (size_t k = 0; k < count; ++k, index += 1.0) {
+    values[k] = std::min(std::max(start_ + index * step, lo), hi);
   }
   if (count_ > 1 && end == count_) values[count - 1] = end_;
   return absl::MakeConstSpan(values, count);

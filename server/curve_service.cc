@@ -100,6 +100,9 @@ std::vector<absl::Span<double>> OutputArrays(size_t orders, size_t size,
   return spans;
 }
 
+// Parameters per thread whose storage is kept between calls (1 MiB).
+constexpr size_t kReusedParameters = 1 << 17;
+
 // Evaluates parameters [first, last) into `response`.
 absl::Status EvaluateChunk(const Evaluation<Curve>& evaluation, size_t first,
                            size_t last, const ExecutionContext& execution,
@@ -114,7 +117,12 @@ absl::Status EvaluateChunk(const Evaluation<Curve>& evaluation, size_t first,
         points->set_dimension(dimension);
         return points->mutable_coordinates();
       });
-  ParameterStorage storage;
+  // Stream chunks reuse their thread's storage: fresh pages for every
+  // chunk's parameters cost more than generating them.
+  thread_local ParameterStorage chunk_storage;
+  ParameterStorage call_storage;
+  ParameterStorage& storage =
+      last - first <= kReusedParameters ? chunk_storage : call_storage;
   return evaluation.Run(evaluation.parameters.Values(first, last, storage),
                         output, execution);
 }

@@ -37,7 +37,7 @@ struct ServiceLimits {
   // (admission.h); a call that does not fit gets RESOURCE_EXHAUSTED.
   uint64_t memory_budget_bytes = 768ull << 20;
   // Points per streamed chunk when the request does not say.
-  size_t default_stream_chunk = 65536;
+  size_t default_stream_chunk = 32768;
 };
 
 // CheckDimensionLimit returns INVALID_ARGUMENT on "<field>.dimension" unless
