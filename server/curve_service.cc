@@ -184,19 +184,15 @@ CurveServiceImpl::EvaluateStream(grpc::CallbackServerContext* context,
         auto shared =
             std::make_shared<const Evaluation<Curve>>(*std::move(evaluation));
         const uint64_t chunk_values = chunk * shared->ValuesPerParameter();
-        return Work{.plan = {.memory_bytes = 2 * 8 * chunk_values *
-                                             frame_->chunks_in_flight(),
-                             .heavy = true},
-                    .chunk_count = (count + chunk - 1) / chunk,
-                    .prepare = {},
-                    .fill = [shared, chunk, count](
-                                size_t k, v1::EvaluateCurveResponse& response,
-                                const ExecutionContext& execution) {
-                      const size_t first = k * chunk;
-                      return EvaluateChunk(*shared, first,
-                                           std::min(count, first + chunk),
-                                           execution, response);
-                    }};
+        return EvenChunks<v1::EvaluateCurveResponse>(
+            {.memory_bytes = 2 * 8 * chunk_values * frame_->chunks_in_flight(),
+             .heavy = true},
+            count, chunk,
+            [shared](size_t first, size_t last,
+                     v1::EvaluateCurveResponse& response,
+                     const ExecutionContext& execution) {
+              return EvaluateChunk(*shared, first, last, execution, response);
+            });
       });
 }
 

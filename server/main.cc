@@ -47,9 +47,10 @@ ABSL_FLAG(uint64_t, max_parameters, 10'000'000,
 ABSL_FLAG(uint64_t, max_output_values, 64'000'000,
           "Most output numbers per request (streams included)");
 ABSL_FLAG(uint64_t, memory_budget, 768ull << 20,
-          "Bytes all calls together may hold for their answers and work; a "
-          "call that does not fit gets RESOURCE_EXHAUSTED. Keep it below the "
-          "container's memory limit, less about 100 MB for the process");
+          "Bytes the process may use: calls together may reserve 3/4 of it "
+          "for their answers and work (a call that does not fit gets "
+          "RESOURCE_EXHAUSTED), the rest covers gRPC and the allocator. Keep "
+          "it below the container's memory limit");
 
 namespace {
 

@@ -22,6 +22,7 @@
 #include <grpcpp/server_context.h>
 #include <grpcpp/support/server_callback.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -70,6 +71,24 @@ struct StreamWork {
   absl::AnyInvocable<absl::Status(size_t, Response&, const ExecutionContext&)>
       fill;
 };
+
+// EvenChunks returns the work of a stream of `count` items cut into chunks
+// of `chunk`: fill_range(first, last, response, execution) fills items
+// [first, last) into one message.
+template <typename Response, typename FillRange>
+StreamWork<Response> EvenChunks(const CallPlan& plan, size_t count,
+                                size_t chunk, FillRange fill_range) {
+  return {.plan = plan,
+          .chunk_count = (count + chunk - 1) / chunk,
+          .prepare = {},
+          .fill = [count, chunk, fill_range = std::move(fill_range)](
+                      size_t k, Response& response,
+                      const ExecutionContext& execution) {
+            const size_t first = k * chunk;
+            return fill_range(first, std::min(count, first + chunk), response,
+                              execution);
+          }};
+}
 
 using UnaryPlanner = absl::AnyInvocable<absl::StatusOr<UnaryWork>() &&>;
 template <typename Response>

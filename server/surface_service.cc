@@ -352,17 +352,13 @@ SurfaceServiceImpl::EvaluateStream(grpc::CallbackServerContext* context,
         memory.memory_bytes *= frame_->chunks_in_flight();
         memory.heavy = true;
         auto shared = std::make_shared<const SurfacePlan>(*std::move(plan));
-        return Work{.plan = memory,
-                    .chunk_count = (count + chunk - 1) / chunk,
-                    .prepare = {},
-                    .fill = [shared, chunk, count](
-                                size_t k, v1::EvaluateSurfaceResponse& response,
-                                const ExecutionContext& execution) {
-                      const size_t first = k * chunk;
-                      return EvaluateChunk(*shared, first,
-                                           std::min(count, first + chunk),
-                                           execution, response);
-                    }};
+        return EvenChunks<v1::EvaluateSurfaceResponse>(
+            memory, count, chunk,
+            [shared](size_t first, size_t last,
+                     v1::EvaluateSurfaceResponse& response,
+                     const ExecutionContext& execution) {
+              return EvaluateChunk(*shared, first, last, execution, response);
+            });
       });
 }
 
