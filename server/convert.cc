@@ -104,6 +104,13 @@ absl::StatusOr<ParameterSet> ParameterSet::Resolve(
   return InvalidFieldError("", "set either a parameter list or a range");
 }
 
+absl::Status CheckEnum(int value, bool (*is_valid)(int),
+                       absl::string_view field) {
+  if (is_valid(value)) return absl::OkStatus();
+  return InvalidFieldError(field,
+                           absl::StrCat(value, " is not one of its values"));
+}
+
 absl::Span<const double> ParameterSet::Values(size_t begin, size_t end,
                                               ParameterStorage& storage) const {
   if (!is_range_) return list_.subspan(begin, end - begin);

@@ -15,6 +15,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "absl/types/span.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/points.h"
@@ -42,6 +43,12 @@ absl::Span<double> UninitializedArray(
 
 // A resolved set of curve parameters: an explicit list (a view into the
 // request) or a uniform range generated on demand, chunk by chunk.
+// CheckEnum returns INVALID_ARGUMENT naming `field` when `value` is none of
+// its enum's values (`is_valid` is the generated <Enum>_IsValid): proto3
+// keeps unknown numbers, which must not run as some other value.
+absl::Status CheckEnum(int value, bool (*is_valid)(int),
+                       absl::string_view field);
+
 // Room for generated parameters, reused from chunk to chunk.
 struct ParameterStorage {
   std::unique_ptr<double[]> values;

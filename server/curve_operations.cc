@@ -190,6 +190,17 @@ absl::Status InterpolateWithBSpline(const v1::InterpolateCurveRequest& request,
                                     const PointsView& points,
                                     v1::InterpolateCurveResponse& response) {
   const v1::BSplineInterpolation& method = request.bspline();
+  if (absl::Status status =
+          CheckEnum(method.parameterization(), v1::Parameterization_IsValid,
+                    "parameterization");
+      !status.ok()) {
+    return status;
+  }
+  if (absl::Status status =
+          CheckEnum(method.knot_rule(), v1::KnotRule_IsValid, "knot_rule");
+      !status.ok()) {
+    return status;
+  }
   CurveInterpolationOptions options;
   options.degree = static_cast<int>(method.degree());
   options.parameterization = ToCore(method.parameterization());
@@ -209,6 +220,12 @@ absl::Status InterpolateWithCubicSpline(
     const v1::InterpolateCurveRequest& request, const PointsView& points,
     v1::InterpolateCurveResponse& response) {
   const v1::CubicSplineInterpolation& method = request.cubic_spline();
+  if (absl::Status status =
+          CheckEnum(method.end_condition(), v1::SplineEndCondition_IsValid,
+                    "end_condition");
+      !status.ok()) {
+    return status;
+  }
   absl::StatusOr<CurveInterpolation> result = InterpolateCubicSpline(
       points, SpanOf(method.parameters()), ToCore(method.end_condition()),
       SpanOf(method.start_derivative().coordinates()),
@@ -223,6 +240,12 @@ absl::Status ApproximateWithLeastSquares(
     const v1::InterpolateCurveRequest& request, const PointsView& points,
     v1::InterpolateCurveResponse& response) {
   const v1::LeastSquaresApproximation& method = request.least_squares();
+  if (absl::Status status =
+          CheckEnum(method.parameterization(), v1::Parameterization_IsValid,
+                    "parameterization");
+      !status.ok()) {
+    return status;
+  }
   absl::StatusOr<CurveApproximation> result = ApproximateCurve(
       points, static_cast<int>(method.degree()),
       static_cast<int>(method.control_point_count()),

@@ -80,6 +80,12 @@ absl::StatusOr<Evaluation<Curve>> CurveEvaluation(
       !status.ok()) {
     return status;
   }
+  if (absl::Status status =
+          CheckEnum(request.bezier_algorithm(), v1::BezierAlgorithm_IsValid,
+                    "bezier_algorithm");
+      !status.ok()) {
+    return status;
+  }
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits, "curve",
                                              request.bezier_algorithm());
   const int dimension = curve.ok() ? DimensionOf(*curve) : 0;

@@ -171,6 +171,12 @@ absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,
       return status;
     }
   }
+  if (absl::Status status =
+          CheckEnum(request.parameterization(), v1::Parameterization_IsValid,
+                    "parameterization");
+      !status.ok()) {
+    return status;
+  }
   const Parameterization parameterization =
       request.parameterization() == v1::PARAMETERIZATION_UNIFORM
           ? Parameterization::kUniform

@@ -33,8 +33,8 @@ struct Refuse {
   std::string reason;
 
   template <typename Kind>
-    requires(std::same_as<Kind, Kinds> || ...)
-  absl::Status operator()(const Kind&) const {
+  requires(std::same_as<Kind, Kinds> || ...) absl::Status operator()(
+      const Kind&) const {
     return InvalidFieldError(field, reason);
   }
 };
