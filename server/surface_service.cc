@@ -87,6 +87,30 @@ absl::Status CheckSampleCount(uint64_t count, uint64_t values_per_point,
                           field);
 }
 
+// ResolvePairs returns the (u, v) pairs of `points` once they are pairs
+// (an even, non-zero number of values) within the limits.
+absl::StatusOr<absl::Span<const double>> ResolvePairs(
+    const v1::SurfacePoints& points, uint64_t values_per_point,
+    const ServiceLimits& limits) {
+  const absl::Span<const double> uv =
+      absl::MakeConstSpan(points.uv().data(), points.uv().size());
+  if (uv.empty()) {
+    return InvalidFieldError("parameters.points.uv",
+                             "needs at least one (u, v) pair");
+  }
+  if (uv.size() % 2 != 0) {
+    return InvalidFieldError(
+        "parameters.points.uv",
+        absl::StrCat("holds ", uv.size(), " values, not (u, v) pairs"));
+  }
+  if (absl::Status status = CheckSampleCount(uv.size() / 2, values_per_point,
+                                             limits, "parameters.points.uv");
+      !status.ok()) {
+    return status;
+  }
+  return uv;
+}
+
 // ResolveSamples resolves the (u, v) points or the grid into `plan`, after
 // checking their number, with `values_per_point` numbers each, against the
 // limits: nothing as large as the answer is made before that.
@@ -95,18 +119,10 @@ absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
                             uint64_t values_per_point, SurfacePlan& plan) {
   switch (parameters.kind_case()) {
     case v1::SurfaceParameters::kPoints: {
-      const auto& uv = parameters.points().uv();
-      plan.uv = absl::MakeConstSpan(uv.data(), uv.size());
-      if (plan.uv.empty()) {
-        return InvalidFieldError("parameters.points.uv",
-                                 "needs at least one (u, v) pair");
-      }
-      if (absl::Status status =
-              CheckSampleCount(plan.uv.size() / 2, values_per_point, limits,
-                               "parameters.points.uv");
-          !status.ok()) {
-        return status;
-      }
+      absl::StatusOr<absl::Span<const double>> uv =
+          ResolvePairs(parameters.points(), values_per_point, limits);
+      if (!uv.ok()) return uv.status();
+      plan.uv = *uv;
       if (plan.triangular) return absl::OkStatus();  // checked by the core
       return PrefixFieldPath(
           ValidateSurfaceSamples(SurfaceSamples::Pairs(plan.uv),
@@ -273,9 +289,12 @@ absl::StatusOr<UnaryWork> PlanTriangularBasis(
         "parameters.points",
         "triangular Bernstein polynomials take (u, v) points");
   }
-  const auto& uv = request.parameters().points().uv();
-  const uint64_t count = static_cast<uint64_t>(uv.size()) / 2;
   const uint64_t functions = TriangularPointCount(static_cast<int>(degree));
+  absl::StatusOr<absl::Span<const double>> pairs =
+      ResolvePairs(request.parameters().points(), functions, limits);
+  if (!pairs.ok()) return pairs.status();
+  const absl::Span<const double> uv = *pairs;
+  const uint64_t count = uv.size() / 2;
   const uint64_t values = SaturatingProduct(count, functions);
   if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
       !status.ok()) {
@@ -283,14 +302,13 @@ absl::StatusOr<UnaryWork> PlanTriangularBasis(
   }
   return UnaryWork{
       .plan = AnswerPlan(values, 0, limits),
-      .run = [&uv, degree, count, functions, values,
+      .run = [uv, degree, count, functions, values,
               &response](const ExecutionContext& execution) {
         response.set_function_count(static_cast<uint32_t>(functions));
         response.set_count(static_cast<uint32_t>(count));
         return PrefixFieldPath(
             EvaluateTriangularBasis(
-                static_cast<int>(degree),
-                absl::MakeConstSpan(uv.data(), uv.size()),
+                static_cast<int>(degree), uv,
                 UninitializedArray(*response.mutable_values(), values),
                 execution),
             "parameters.points");

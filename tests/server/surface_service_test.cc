@@ -299,5 +299,35 @@ TEST_F(SurfaceServiceTest, InvalidSurfacesNameTheField) {
   ExpectInvalid(AtPoints(v1::Surface(), {0.5, 0.5}).status(), "surface");
 }
 
+// (u, v) points come in pairs: an odd count is refused, never truncated,
+// for every surface kind and for the triangular basis, which also needs at
+// least one pair.
+TEST_F(SurfaceServiceTest, PointsMustBePairs) {
+  ExpectInvalid(AtPoints(BiQuadratic(), {0.5, 0.5, 0.25}).status(),
+                "parameters.points.uv");
+  v1::Surface triangle;
+  v1::TriangularBezierPatch* patch = triangle.mutable_triangular_bezier();
+  patch->set_degree(1);
+  patch->mutable_control_points()->set_dimension(1);
+  Append(patch->mutable_control_points()->mutable_coordinates(), {1, 2, 3});
+  ExpectInvalid(AtPoints(triangle, {0.2, 0.3, 0.4}).status(),
+                "parameters.points.uv");
+
+  v1::EvaluateSurfaceBasisRequest basis;
+  basis.set_triangular_degree(2);
+  basis.mutable_parameters()->mutable_points();  // no pairs at all
+  v1::EvaluateSurfaceBasisResponse response;
+  grpc::ClientContext empty_context;
+  ExpectInvalid(FromGrpcStatus(client_->surfaces().EvaluateBasis(
+                    &empty_context, basis, &response)),
+                "parameters.points.uv");
+  Append(basis.mutable_parameters()->mutable_points()->mutable_uv(),
+         {0.2, 0.3, 0.4});
+  grpc::ClientContext odd_context;
+  ExpectInvalid(FromGrpcStatus(client_->surfaces().EvaluateBasis(
+                    &odd_context, basis, &response)),
+                "parameters.points.uv");
+}
+
 }  // namespace
 }  // namespace freeform::server
