@@ -39,11 +39,6 @@ void FreeMessage(google::protobuf::Message& message) {
   message.GetReflection()->Swap(&message, empty.get());
 }
 
-absl::Status QueueFull() {
-  return absl::ResourceExhaustedError(
-      "the server's work queue is full; retry later");
-}
-
 // A unary call: plan, reserve, run (inline or on the pool), answer.
 class UnaryCall final : public grpc::ServerUnaryReactor {
  public:
@@ -58,7 +53,7 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
   void Start() {
     if (record_.request_bytes() > kInlinePlanningBytes) {
       if (!record_.Schedule([this] { PlanAndRun(/*on_pool=*/true); })) {
-        Answer(QueueFull());
+        Answer(QueueFullError());
       }
       return;
     }
@@ -84,7 +79,7 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
     }
     run_ = std::move(work->run);
     if (work->plan.heavy && !on_pool) {
-      if (!record_.Schedule([this] { Run(); })) Answer(QueueFull());
+      if (!record_.Schedule([this] { Run(); })) Answer(QueueFullError());
       return;
     }
     Run();
@@ -217,6 +212,11 @@ grpc::ServerUnaryReactor* RpcFrame::Unary(
                              std::move(planner));
   call->Start();
   return call;
+}
+
+absl::Status QueueFullError() {
+  return absl::ResourceExhaustedError(
+      "the server's work queue is full; retry later");
 }
 
 absl::Status CheckAnswerFinite(const google::protobuf::Message& answer) {

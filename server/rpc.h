@@ -182,6 +182,10 @@ class RpcFrame {
 // Requests larger than this are planned on the pool, not the gRPC thread.
 inline constexpr size_t kInlinePlanningBytes = 64 * 1024;
 
+// QueueFullError is the answer to a call whose work the pool's full queue
+// refused.
+absl::Status QueueFullError();
+
 // CheckAnswerFinite returns INTERNAL when an OK answer holds a NaN or an
 // infinity; the frame calls it in debug and sanitizer builds.
 absl::Status CheckAnswerFinite(const google::protobuf::Message& answer);
@@ -211,7 +215,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
 
   void Start() {
     if (record_.request_bytes() > kInlinePlanningBytes) {
-      if (!record_.Schedule([this] { Plan(); })) Fail(Busy());
+      if (!record_.Schedule([this] { Plan(); })) Fail(QueueFullError());
       return;
     }
     Plan();
@@ -250,11 +254,6 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
     size_t slot = 0;
   };
 
-  static absl::Status Busy() {
-    return absl::ResourceExhaustedError(
-        "the server's work queue is full; retry later");
-  }
-
   void Plan() {
     absl::StatusOr<StreamWork<Response>> work = std::move(planner_)();
     if (!work.ok()) return Fail(work.status());
@@ -272,7 +271,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
           }
           Begin();
         })) {
-      Fail(Busy());
+      Fail(QueueFullError());
     }
   }
 
@@ -330,7 +329,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
         case Action::kCompute:
           if (!record_.Schedule(
                   [this, slot = action.slot] { Compute(slot); })) {
-            Computed(action.slot, Busy());
+            Computed(action.slot, QueueFullError());
           }
           break;
         case Action::kWrite:
