@@ -9,6 +9,7 @@
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
 #include "validated.h"
+#include "variant_dispatch.h"
 
 namespace freeform {
 
@@ -97,18 +98,14 @@ int FunctionCountOf(const CurveBasis& basis) {
 }
 
 ParameterDomain DomainOf(const CurveBasis& basis) {
-  return std::visit([](const auto& kind) { return kind.domain(); }, basis);
+  return internal::DomainOfKind(basis);
 }
 
 absl::Status EvaluateBasis(const CurveBasis& basis,
                            absl::Span<const double> parameters,
                            CurveOutput output,
                            const ExecutionContext& context) {
-  return std::visit(
-      [&](const auto& kind) {
-        return kind.Evaluate(parameters, output, context);
-      },
-      basis);
+  return internal::EvaluateKind(basis, parameters, output, context);
 }
 
 namespace {

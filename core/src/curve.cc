@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "validated.h"
+#include "variant_dispatch.h"
 
 namespace freeform {
 
@@ -96,18 +97,14 @@ int DimensionOf(const Curve& curve) {
 }
 
 ParameterDomain DomainOf(const Curve& curve) {
-  return std::visit([](const auto& kind) { return kind.domain(); }, curve);
+  return internal::DomainOfKind(curve);
 }
 
 absl::Status EvaluateCurve(const Curve& curve,
                            absl::Span<const double> parameters,
                            CurveOutput output,
                            const ExecutionContext& context) {
-  return std::visit(
-      [&](const auto& kind) {
-        return kind.Evaluate(parameters, output, context);
-      },
-      curve);
+  return internal::EvaluateKind(curve, parameters, output, context);
 }
 
 }  // namespace freeform

@@ -10,6 +10,7 @@
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
 #include "validated.h"
+#include "variant_dispatch.h"
 
 namespace freeform {
 namespace {
@@ -135,7 +136,7 @@ int DimensionOf(const Surface& surface) {
 }
 
 SurfaceDomain DomainOf(const Surface& surface) {
-  return std::visit([](const auto& kind) { return kind.domain(); }, surface);
+  return internal::DomainOfKind(surface);
 }
 
 bool IsTriangular(const Surface& surface) {
@@ -147,11 +148,7 @@ absl::Status EvaluateSurface(const Surface& surface,
                              SurfaceOutput partials, absl::Span<double> normals,
                              const ExecutionContext& context) {
   const auto evaluate = [&](SurfaceOutput output) {
-    return std::visit(
-        [&](const auto& kind) {
-          return kind.Evaluate(samples, output, context);
-        },
-        surface);
+    return internal::EvaluateKind(surface, samples, output, context);
   };
   if (normals.empty()) return evaluate(partials);
   if (DimensionOf(surface) != 3) {
