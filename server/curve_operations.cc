@@ -1,5 +1,7 @@
 // CurveService RPCs that build new curves: degree elevation and reduction,
 // interpolation and approximation.
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "curve_service.h"
@@ -71,9 +73,10 @@ absl::StatusOr<UnaryWork> PlanBSplineElevate(
   }
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
-      .run = [view, by, &response](const ExecutionContext&) -> absl::Status {
+      .run = [view, by,
+              &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<BSplineCurveData> elevated =
-            ElevateBSplineCurve(view, by);
+            ElevateBSplineCurve(view, by, execution.cancellation);
         if (!elevated.ok()) return elevated.status();
         ToProto(*elevated, *response.mutable_curve());
         return absl::OkStatus();
@@ -110,10 +113,13 @@ absl::StatusOr<UnaryWork> PlanBezierReduce(
     return InvalidFieldError("curve.bezier.weights", kReductionTakes);
   }
   if (request.by() < 1 ||
-      static_cast<int64_t>(request.by()) > bezier.degree()) {
+      static_cast<int64_t>(request.by()) >= bezier.degree()) {
     return InvalidFieldError(
-        "by", absl::StrCat("must be between 1 and the degree ", bezier.degree(),
-                           ", got ", request.by()));
+        "by", absl::StrCat("must be between 1 and the degree - 1 = ",
+                           bezier.degree() - 1,
+                           " (a curve keeps degree 1 or "
+                           "more), got ",
+                           request.by()));
   }
   const BezierCurveView view = bezier.view();
   const uint64_t values = view.control_points.coordinates.size() + 1;
@@ -188,6 +194,7 @@ void Answer(const BSplineCurveData& curve, const std::vector<double>& params,
 
 absl::Status InterpolateWithBSpline(const v1::InterpolateCurveRequest& request,
                                     const PointsView& points,
+                                    const CancellationToken* cancel,
                                     v1::InterpolateCurveResponse& response) {
   const v1::BSplineInterpolation& method = request.bspline();
   if (absl::Status status =
@@ -209,6 +216,7 @@ absl::Status InterpolateWithBSpline(const v1::InterpolateCurveRequest& request,
   options.start_derivative = SpanOf(method.start_derivative().coordinates());
   options.end_derivative = SpanOf(method.end_derivative().coordinates());
   options.closed = method.closed();
+  options.cancel = cancel;
   absl::StatusOr<CurveInterpolation> result = InterpolateCurve(points, options);
   if (!result.ok()) return result.status();
   Answer(result->curve, result->parameters, result->max_residual, 0.0,
@@ -218,7 +226,7 @@ absl::Status InterpolateWithBSpline(const v1::InterpolateCurveRequest& request,
 
 absl::Status InterpolateWithCubicSpline(
     const v1::InterpolateCurveRequest& request, const PointsView& points,
-    v1::InterpolateCurveResponse& response) {
+    const CancellationToken* cancel, v1::InterpolateCurveResponse& response) {
   const v1::CubicSplineInterpolation& method = request.cubic_spline();
   if (absl::Status status =
           CheckEnum(method.end_condition(), v1::SplineEndCondition_IsValid,
@@ -229,7 +237,7 @@ absl::Status InterpolateWithCubicSpline(
   absl::StatusOr<CurveInterpolation> result = InterpolateCubicSpline(
       points, SpanOf(method.parameters()), ToCore(method.end_condition()),
       SpanOf(method.start_derivative().coordinates()),
-      SpanOf(method.end_derivative().coordinates()));
+      SpanOf(method.end_derivative().coordinates()), cancel);
   if (!result.ok()) return result.status();
   Answer(result->curve, result->parameters, result->max_residual, 0.0,
          response);
@@ -238,7 +246,7 @@ absl::Status InterpolateWithCubicSpline(
 
 absl::Status ApproximateWithLeastSquares(
     const v1::InterpolateCurveRequest& request, const PointsView& points,
-    v1::InterpolateCurveResponse& response) {
+    const CancellationToken* cancel, v1::InterpolateCurveResponse& response) {
   const v1::LeastSquaresApproximation& method = request.least_squares();
   if (absl::Status status =
           CheckEnum(method.parameterization(), v1::Parameterization_IsValid,
@@ -249,7 +257,7 @@ absl::Status ApproximateWithLeastSquares(
   absl::StatusOr<CurveApproximation> result = ApproximateCurve(
       points, static_cast<int>(method.degree()),
       static_cast<int>(method.control_point_count()),
-      ToCore(method.parameterization()), SpanOf(method.parameters()));
+      ToCore(method.parameterization()), SpanOf(method.parameters()), cancel);
   if (!result.ok()) return result.status();
   Answer(result->curve, result->parameters, result->max_residual,
          result->rms_residual, response);
@@ -267,6 +275,7 @@ absl::Status WithMethodPrefix(const absl::Status& status,
 
 absl::Status Interpolate(const v1::InterpolateCurveRequest& request,
                          const PointsView& points, const ServiceLimits& limits,
+                         const CancellationToken* cancel,
                          v1::InterpolateCurveResponse& response) {
   switch (request.method_case()) {
     case v1::InterpolateCurveRequest::kBspline:
@@ -275,11 +284,11 @@ absl::Status Interpolate(const v1::InterpolateCurveRequest& request,
           !status.ok()) {
         return status;
       }
-      return WithMethodPrefix(InterpolateWithBSpline(request, points, response),
-                              "bspline");
+      return WithMethodPrefix(
+          InterpolateWithBSpline(request, points, cancel, response), "bspline");
     case v1::InterpolateCurveRequest::kCubicSpline:
       return WithMethodPrefix(
-          InterpolateWithCubicSpline(request, points, response),
+          InterpolateWithCubicSpline(request, points, cancel, response),
           "cubic_spline");
     case v1::InterpolateCurveRequest::kLeastSquares:
       if (absl::Status status = CheckDegreeLimit(
@@ -288,7 +297,7 @@ absl::Status Interpolate(const v1::InterpolateCurveRequest& request,
         return status;
       }
       return WithMethodPrefix(
-          ApproximateWithLeastSquares(request, points, response),
+          ApproximateWithLeastSquares(request, points, cancel, response),
           "least_squares");
     case v1::InterpolateCurveRequest::METHOD_NOT_SET:
       break;
@@ -319,20 +328,29 @@ absl::StatusOr<UnaryWork> PlanInterpolate(
                      request.least_squares().control_point_count()));
   }
   // The answer: control points (at most the points, their derivatives and
-  // a closing wrap), knots and parameters; the work: banded systems and
-  // copies of the data, a few values per point and degree.
+  // a closing wrap), knots and parameters; the work per point: the rows of
+  // the collocation or normal equations and the band of their LU (3 (p + 1)
+  // values), copies of the data and residuals (3 d) and bookkeeping.
   const uint64_t dimension = static_cast<uint64_t>(points.dimension);
+  const uint64_t degree = std::min<uint64_t>(
+      request.has_bspline()         ? request.bspline().degree()
+      : request.has_least_squares() ? request.least_squares().degree()
+                                    : 3,
+      static_cast<uint64_t>(limits.max_degree));
   const uint64_t values = (count + 8) * (dimension + 3);
-  const uint64_t work = 8 * (count + 8) * (dimension + 2 * 64 + 8) * 2;
+  const uint64_t work =
+      8 * (count + 8) * (3 * (degree + 1) + 3 * dimension + 8);
   if (absl::Status status = UnaryAnswerCheck(values, limits, "points");
       !status.ok()) {
     return status;
   }
-  return UnaryWork{.plan = AnswerPlan(values, work, limits),
-                   .run = [points, &request, &limits,
-                           &response](const ExecutionContext&) -> absl::Status {
-                     return Interpolate(request, points, limits, response);
-                   }};
+  return UnaryWork{
+      .plan = AnswerPlan(values, work, limits),
+      .run = [points, &request, &limits,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        return Interpolate(request, points, limits, execution.cancellation,
+                           response);
+      }};
 }
 
 }  // namespace

@@ -48,8 +48,8 @@ absl::StatusOr<UnaryWork> PlanBezierSplit(const BezierCurve& bezier,
       .plan = AnswerPlan(values, 8 * values, limits),
       .run = [view, &request,
               &response](const ExecutionContext& execution) -> absl::Status {
-        absl::StatusOr<std::vector<BezierCurveData>> pieces =
-            SplitBezierCurve(view, SpanOf(request.parameters()));
+        absl::StatusOr<std::vector<BezierCurveData>> pieces = SplitBezierCurve(
+            view, SpanOf(request.parameters()), execution.cancellation);
         if (!pieces.ok()) return pieces.status();
         for (const BezierCurveData& piece : *pieces) {
           if (execution.cancellation != nullptr &&
@@ -95,15 +95,16 @@ absl::StatusOr<UnaryWork> PlanBSplineInsert(
       !status.ok()) {
     return status;
   }
-  return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
-                   .run = [view, &request,
-                           &response](const ExecutionContext&) -> absl::Status {
-                     absl::StatusOr<BSplineCurveData> refined =
-                         InsertKnots(view, SpanOf(request.knots()));
-                     if (!refined.ok()) return refined.status();
-                     ToProto(*refined, *response.mutable_curve());
-                     return absl::OkStatus();
-                   }};
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [view, &request,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<BSplineCurveData> refined =
+            InsertKnots(view, SpanOf(request.knots()), execution.cancellation);
+        if (!refined.ok()) return refined.status();
+        ToProto(*refined, *response.mutable_curve());
+        return absl::OkStatus();
+      }};
 }
 
 absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
@@ -123,7 +124,9 @@ absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
 // The Bezier pieces of a curve and the size of that answer.
 struct DecompositionPlan {
   uint64_t values = 0;
-  absl::AnyInvocable<absl::StatusOr<BezierDecomposition>() const> decompose;
+  absl::AnyInvocable<absl::StatusOr<BezierDecomposition>(
+      const CancellationToken* cancel) const>
+      decompose;
 };
 
 absl::StatusOr<DecompositionPlan> PlanPieces(const Curve& curve) {
@@ -135,7 +138,8 @@ absl::StatusOr<DecompositionPlan> PlanPieces(const Curve& curve) {
                 .values = CurveValues(view.control_points.size(),
                                       bezier.dimension(), view.rational()) +
                           2,
-                .decompose = [view]() -> absl::StatusOr<BezierDecomposition> {
+                .decompose = [view](const CancellationToken*)
+                    -> absl::StatusOr<BezierDecomposition> {
                   BezierDecomposition single;
                   single.segments.push_back(
                       {.dimension = view.control_points.dimension,
@@ -157,7 +161,9 @@ absl::StatusOr<DecompositionPlan> PlanPieces(const Curve& curve) {
                         spans, CurveValues(view.degree + 1, bspline.dimension(),
                                            view.rational())) +
                     spans + 1,
-                .decompose = [view] { return DecomposeBSplineCurve(view); }};
+                .decompose = [view](const CancellationToken* cancel) {
+                  return DecomposeBSplineCurve(view, cancel);
+                }};
           },
           [](const HermiteCurve& hermite) -> absl::StatusOr<DecompositionPlan> {
             const HermiteCurveView view = hermite.view();
@@ -167,14 +173,30 @@ absl::StatusOr<DecompositionPlan> PlanPieces(const Curve& curve) {
                     SaturatingProduct(
                         pieces, CurveValues(4, hermite.dimension(), false)) +
                     pieces + 1,
-                .decompose = [view]() -> absl::StatusOr<BezierDecomposition> {
+                .decompose = [view](const CancellationToken*)
+                    -> absl::StatusOr<BezierDecomposition> {
                   return DecomposeHermiteCurve(view);
                 }};
           },
-          Refuse<LagrangeCurve>{
-              "curve",
-              "Decompose takes a Bezier, power-form, B-spline or Hermite "
-              "curve"}},
+          [](const LagrangeCurve& lagrange)
+              -> absl::StatusOr<DecompositionPlan> {
+            const LagrangeCurveView view = lagrange.view();
+            return DecompositionPlan{
+                .values = CurveValues(view.points.size(), lagrange.dimension(),
+                                      false) +
+                          2,
+                .decompose = [view](const CancellationToken*)
+                    -> absl::StatusOr<BezierDecomposition> {
+                  const auto [start, end] = LagrangeDomain(view);
+                  BezierDecomposition single;
+                  single.segments.push_back(
+                      {.dimension = view.points.dimension,
+                       .coordinates = LagrangeToBezier(view),
+                       .weights = {}});
+                  single.breakpoints = {start, end};
+                  return single;
+                }};
+          }},
       curve);
 }
 
@@ -193,8 +215,9 @@ absl::StatusOr<UnaryWork> PlanDecompose(
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
       .run = [curve = *std::move(curve), pieces = *std::move(pieces),
-              &response](const ExecutionContext&) -> absl::Status {
-        absl::StatusOr<BezierDecomposition> decomposition = pieces.decompose();
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<BezierDecomposition> decomposition =
+            pieces.decompose(execution.cancellation);
         if (!decomposition.ok()) return decomposition.status();
         for (const BezierCurveData& segment : decomposition->segments) {
           ToProto(segment, *response.add_segments());
@@ -236,7 +259,8 @@ absl::StatusOr<UnaryWork> PlanSubdivide(const v1::SubdivideRequest& request,
   }
   if (request.degree() > static_cast<uint32_t>(kMaxSubdivisionDegree)) {
     return InvalidFieldError(
-        "degree", absl::StrCat("must be at most ", kMaxSubdivisionDegree));
+        "degree", absl::StrCat("must be at most ", kMaxSubdivisionDegree,
+                               ", got ", request.degree()));
   }
   const uint64_t last =
       SaturatingProduct(SubdividedCount(polygon->size(), request.levels()),
@@ -248,28 +272,29 @@ absl::StatusOr<UnaryWork> PlanSubdivide(const v1::SubdivideRequest& request,
       !status.ok()) {
     return status;
   }
-  return UnaryWork{.plan = AnswerPlan(values, 16 * last, limits),
-                   .run = [polygon = *polygon, scheme, &request,
-                           &response](const ExecutionContext&) -> absl::Status {
-                     absl::StatusOr<std::vector<std::vector<double>>> levels =
-                         SubdividePolygon(polygon, request.closed(), scheme,
-                                          static_cast<int>(request.degree()),
-                                          static_cast<int>(request.levels()));
-                     if (!levels.ok()) return levels.status();
-                     const uint32_t dimension = request.polygon().dimension();
-                     for (size_t level = 0; level < levels->size(); ++level) {
-                       const bool is_last = level + 1 == levels->size();
-                       if (!is_last && !request.keep_levels()) continue;
-                       v1::Points* out = is_last ? response.mutable_polygon()
-                                                 : response.add_levels();
-                       out->set_dimension(dimension);
-                       out->mutable_coordinates()->Add((*levels)[level].begin(),
-                                                       (*levels)[level].end());
-                       if (is_last && request.keep_levels())
-                         *response.add_levels() = *out;
-                     }
-                     return absl::OkStatus();
-                   }};
+  return UnaryWork{
+      .plan = AnswerPlan(values, 16 * last, limits),
+      .run = [polygon = *polygon, scheme, &request,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<std::vector<std::vector<double>>> levels =
+            SubdividePolygon(polygon, request.closed(), scheme,
+                             static_cast<int>(request.degree()),
+                             static_cast<int>(request.levels()),
+                             execution.cancellation);
+        if (!levels.ok()) return levels.status();
+        const uint32_t dimension = request.polygon().dimension();
+        for (size_t level = 0; level < levels->size(); ++level) {
+          const bool is_last = level + 1 == levels->size();
+          if (!is_last && !request.keep_levels()) continue;
+          v1::Points* out =
+              is_last ? response.mutable_polygon() : response.add_levels();
+          out->set_dimension(dimension);
+          out->mutable_coordinates()->Add((*levels)[level].begin(),
+                                          (*levels)[level].end());
+          if (is_last && request.keep_levels()) *response.add_levels() = *out;
+        }
+        return absl::OkStatus();
+      }};
 }
 
 absl::StatusOr<UnaryWork> PlanTessellate(

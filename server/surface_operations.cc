@@ -42,19 +42,21 @@ absl::Status CheckTensorElevation(
   return CheckElevation(request.by_v(), degree_v, limits, "by_v");
 }
 
-// Runs `elevate` with the answer size `values` planned.
+// Runs `elevate` (called with the call's cancellation token) with the answer
+// size `values` planned.
 template <typename Elevate>
 UnaryWork ElevationWork(uint64_t values, const ServiceLimits& limits,
                         v1::ElevateSurfaceDegreeResponse& response,
                         Elevate elevate) {
-  return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
-                   .run = [elevate = std::move(elevate),
-                           &response](const ExecutionContext&) -> absl::Status {
-                     auto elevated = elevate();
-                     if (!elevated.ok()) return elevated.status();
-                     ToProto(*elevated, *response.mutable_surface());
-                     return absl::OkStatus();
-                   }};
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [elevate = std::move(elevate),
+              &response](const ExecutionContext& execution) -> absl::Status {
+        auto elevated = elevate(execution.cancellation);
+        if (!elevated.ok()) return elevated.status();
+        ToProto(*elevated, *response.mutable_surface());
+        return absl::OkStatus();
+      }};
 }
 
 // by_u and by_v within what CheckTensorElevation allows.
@@ -80,9 +82,10 @@ absl::StatusOr<UnaryWork> PlanBezierElevate(
   const uint64_t values = uint64_t(view.control_net.count_u + by_u) *
                           (view.control_net.count_v + by_v) *
                           (view.control_net.dimension + 1);
-  return ElevationWork(values, limits, response, [view, by_u, by_v] {
-    return ElevateBezierSurface(view, by_u, by_v);
-  });
+  return ElevationWork(values, limits, response,
+                       [view, by_u, by_v](const CancellationToken* cancel) {
+                         return ElevateBezierSurface(view, by_u, by_v, cancel);
+                       });
 }
 
 absl::StatusOr<UnaryWork> PlanBSplineElevate(
@@ -112,9 +115,10 @@ absl::StatusOr<UnaryWork> PlanBSplineElevate(
       !status.ok()) {
     return status;
   }
-  return ElevationWork(values, limits, response, [view, by_u, by_v] {
-    return ElevateBSplineSurface(view, by_u, by_v);
-  });
+  return ElevationWork(values, limits, response,
+                       [view, by_u, by_v](const CancellationToken* cancel) {
+                         return ElevateBSplineSurface(view, by_u, by_v, cancel);
+                       });
 }
 
 absl::StatusOr<UnaryWork> PlanTriangularElevate(
@@ -132,7 +136,9 @@ absl::StatusOr<UnaryWork> PlanTriangularElevate(
   const uint64_t values = TriangularPointCount(view.degree + by) *
                           (uint64_t(view.control_points.dimension) + 1);
   return ElevationWork(values, limits, response,
-                       [view, by] { return ElevateTriangularPatch(view, by); });
+                       [view, by](const CancellationToken*) {
+                         return ElevateTriangularPatch(view, by);
+                       });
 }
 
 absl::StatusOr<UnaryWork> PlanElevate(
@@ -156,6 +162,7 @@ absl::StatusOr<UnaryWork> PlanElevate(
 
 absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,
                              const ServiceLimits& limits,
+                             const CancellationToken* cancel,
                              v1::InterpolateSurfaceResponse& response) {
   absl::StatusOr<ControlNetView> points =
       PrepareNet(request.points(), limits, "points", false);
@@ -177,6 +184,11 @@ absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,
       !status.ok()) {
     return status;
   }
+  if (absl::Status status =
+          CheckEnum(request.knot_rule(), v1::KnotRule_IsValid, "knot_rule");
+      !status.ok()) {
+    return status;
+  }
   const Parameterization parameterization =
       request.parameterization() == v1::PARAMETERIZATION_UNIFORM
           ? Parameterization::kUniform
@@ -189,7 +201,8 @@ absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,
       *points, static_cast<int>(request.degree_u()),
       static_cast<int>(request.degree_v()), parameterization,
       request.knot_rule() == v1::KNOT_RULE_UNIFORM ? KnotRule::kUniform
-                                                   : KnotRule::kAveraging);
+                                                   : KnotRule::kAveraging,
+      cancel);
   if (!result.ok()) return result.status();
   ToProto(result->surface, *response.mutable_surface());
   response.mutable_parameters_u()->Add(result->parameters_u.begin(),
@@ -227,11 +240,13 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Interpolate(
             !status.ok()) {
           return status;
         }
-        return UnaryWork{.plan = AnswerPlan(values, 32 * values, limits),
-                         .run = [request, response, &limits](
-                                    const ExecutionContext&) -> absl::Status {
-                           return InterpolateGrid(*request, limits, *response);
-                         }};
+        return UnaryWork{
+            .plan = AnswerPlan(values, 32 * values, limits),
+            .run = [request, response, &limits](
+                       const ExecutionContext& execution) -> absl::Status {
+              return InterpolateGrid(*request, limits, execution.cancellation,
+                                     *response);
+            }};
       });
 }
 

@@ -116,15 +116,16 @@ absl::StatusOr<UnaryWork> PlanBSplineInsert(
       !status.ok()) {
     return status;
   }
-  return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
-                   .run = [view, in_u, &request,
-                           &response](const ExecutionContext&) -> absl::Status {
-                     absl::StatusOr<SurfaceData> refined = InsertSurfaceKnots(
-                         view, in_u, SpanOf(request.knots()));
-                     if (!refined.ok()) return refined.status();
-                     ToProto(*refined, *response.mutable_surface());
-                     return absl::OkStatus();
-                   }};
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [view, in_u, &request,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<SurfaceData> refined = InsertSurfaceKnots(
+            view, in_u, SpanOf(request.knots()), execution.cancellation);
+        if (!refined.ok()) return refined.status();
+        ToProto(*refined, *response.mutable_surface());
+        return absl::OkStatus();
+      }};
 }
 
 absl::StatusOr<UnaryWork> PlanInsert(

@@ -33,4 +33,9 @@ absl::Status CancellationToken::status() const {
   }
 }
 
+absl::Status CheckCancelled(const CancellationToken* cancel) {
+  if (cancel != nullptr && cancel->IsCancelled()) return cancel->status();
+  return absl::OkStatus();
+}
+
 }  // namespace freeform

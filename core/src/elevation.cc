@@ -8,8 +8,10 @@
 #include <vector>
 
 #include "absl/types/span.h"
+#include "freeform/core/cancellation.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "knots.h"
 
 namespace freeform {
 namespace {
@@ -66,10 +68,18 @@ std::vector<double> ElevationCoefficients(int p, int by) {
 }
 
 // out[i] = sum_j a[i][j] in[j] for i in [first, p + by] (eq. 5.36), with
-// `a` from ElevationCoefficients(p, by) and points of `dim` values.
-void ElevateSegment(const std::vector<double>& a, int p, int by, int dim,
-                    const double* in, int first, double* out) {
+// `a` from ElevationCoefficients(p, by) and points of `dim` values; `poll`
+// (may be null) is told the work of every point.
+absl::Status ElevateSegment(const std::vector<double>& a, int p, int by,
+                            int dim, const double* in, int first, double* out,
+                            CancellationPoll* poll = nullptr) {
   for (int i = first; i <= p + by; ++i) {
+    if (poll != nullptr) {
+      if (absl::Status status = poll->Done(static_cast<size_t>(p + 1) * dim);
+          !status.ok()) {
+        return status;
+      }
+    }
     double* q = out + static_cast<size_t>(i) * dim;
     std::fill(q, q + dim, 0.0);
     for (int j = std::max(0, i - by); j <= std::min(p, i); ++j) {
@@ -78,15 +88,22 @@ void ElevateSegment(const std::vector<double>& a, int p, int by, int dim,
       for (int x = 0; x < dim; ++x) q[x] += c * point[x];
     }
   }
+  return absl::OkStatus();
 }
 
 // ElevateBezierPoints raises the Bezier control polygon `points` by `by`.
-Points ElevateBezierPoints(const Points& points, int by) {
+absl::StatusOr<Points> ElevateBezierPoints(const Points& points, int by,
+                                           const CancellationToken* cancel) {
   const int p = static_cast<int>(points.count()) - 1;
   Points result{points.dim,
                 std::vector<double>((points.count() + by) * points.dim)};
-  ElevateSegment(ElevationCoefficients(p, by), p, by, points.dim,
-                 points.values.data(), 0, result.values.data());
+  CancellationPoll poll(cancel);
+  if (absl::Status status =
+          ElevateSegment(ElevationCoefficients(p, by), p, by, points.dim,
+                         points.values.data(), 0, result.values.data(), &poll);
+      !status.ok()) {
+    return status;
+  }
   return result;
 }
 
@@ -105,7 +122,7 @@ void InsertKnotOnce(Spline& spline, int p, double u) {
       static_cast<int>(std::upper_bound(knots.begin(), knots.end(), u) -
                        knots.begin()) -
       1;
-  const int s = static_cast<int>(std::count(knots.begin(), knots.end(), u));
+  const int s = internal::Multiplicity(knots, u);
   const int dim = spline.points.dim;
   Points next{dim, std::vector<double>((spline.points.count() + 1) * dim)};
   const Points& old = spline.points;
@@ -119,11 +136,6 @@ void InsertKnotOnce(Spline& spline, int p, double u) {
   }
   knots.insert(knots.begin() + k + 1, u);
   spline.points = std::move(next);
-}
-
-// Multiplicity of `u` in the sorted `knots`.
-int Multiplicity(const std::vector<double>& knots, double u) {
-  return static_cast<int>(std::count(knots.begin(), knots.end(), u));
 }
 
 bool IsClamped(absl::Span<const double> knots, int p) {
@@ -146,10 +158,10 @@ void Clamp(Spline& spline, int p) {
   const size_t n = spline.points.count() - 1;
   const double a = spline.knots[p];
   const double b = spline.knots[n + 1];
-  for (int s = Multiplicity(spline.knots, a); s < p; ++s) {
+  for (int s = internal::Multiplicity(spline.knots, a); s < p; ++s) {
     InsertKnotOnce(spline, p, a);
   }
-  for (int s = Multiplicity(spline.knots, b); s < p; ++s) {
+  for (int s = internal::Multiplicity(spline.knots, b); s < p; ++s) {
     InsertKnotOnce(spline, p, b);
   }
   const std::vector<double>& knots = spline.knots;
@@ -212,12 +224,18 @@ class BlossomElevator {
     }
   }
 
-  Spline Run() {
+  absl::StatusOr<Spline> Run(const CancellationToken* cancel) {
     Spline result{ElevatedKnots(knots_, ph_ - p_), Points{dim_, {}}};
     const std::vector<double>& uh = result.knots;
     const int count = static_cast<int>(uh.size()) - ph_ - 1;
     result.points.values.resize(static_cast<size_t>(count) * dim_);
+    CancellationPoll poll(cancel);
+    const size_t work_per_point =
+        static_cast<size_t>(ph_) * (p_ + 1) * (p_ + 1) * dim_;
     for (int i = 0; i < count; ++i) {
+      if (absl::Status status = poll.Done(work_per_point); !status.ok()) {
+        return status;
+      }
       const int s = SpanFor(uh, i);
       Blossom(s, &uh[i + 1], result.points.at(i));
     }
@@ -283,9 +301,10 @@ class BlossomElevator {
 
 // ElevateSpline raises a spline of degree p by `by` (see
 // ElevateBSplineCurve).
-Spline ElevateSpline(Spline spline, int p, int by) {
+absl::StatusOr<Spline> ElevateSpline(Spline spline, int p, int by,
+                                     const CancellationToken* cancel) {
   if (!IsClamped(spline.knots, p)) Clamp(spline, p);
-  return BlossomElevator(spline, p, by).Run();
+  return BlossomElevator(spline, p, by).Run(cancel);
 }
 
 // Control points as `Points`, homogeneous (dimension + 1 values) when there
@@ -366,42 +385,54 @@ struct Net {
 // ElevateNetU raises the net in u (along its rows index i): the rows are
 // the control points, of cols * dim values each, of one curve. `degree` < 0
 // means Bezier.
-void ElevateNetU(Net& net, int degree, int by) {
+absl::Status ElevateNetU(Net& net, int degree, int by,
+                         const CancellationToken* cancel) {
   Points rows{net.cols * net.dim, std::move(net.values)};
   if (degree < 0) {
-    rows = ElevateBezierPoints(rows, by);
+    absl::StatusOr<Points> elevated = ElevateBezierPoints(rows, by, cancel);
+    if (!elevated.ok()) return elevated.status();
+    rows = *std::move(elevated);
   } else {
-    Spline spline = ElevateSpline(
-        Spline{std::move(net.knots_u), std::move(rows)}, degree, by);
-    net.knots_u = std::move(spline.knots);
-    rows = std::move(spline.points);
+    absl::StatusOr<Spline> spline = ElevateSpline(
+        Spline{std::move(net.knots_u), std::move(rows)}, degree, by, cancel);
+    if (!spline.ok()) return spline.status();
+    net.knots_u = std::move(spline->knots);
+    rows = std::move(spline->points);
   }
   net.rows = static_cast<int>(rows.count());
   net.values = std::move(rows.values);
+  return absl::OkStatus();
 }
 
 // ElevateNetV raises the net in v by transposing it around ElevateNetU.
-void ElevateNetV(Net& net, int degree, int by) {
+absl::Status ElevateNetV(Net& net, int degree, int by,
+                         const CancellationToken* cancel) {
   Net transposed{net.cols,
                  net.rows,
                  net.dim,
                  Transpose(net.values, net.rows, net.cols, net.dim),
                  std::move(net.knots_v),
                  {}};
-  ElevateNetU(transposed, degree, by);
+  if (absl::Status status = ElevateNetU(transposed, degree, by, cancel);
+      !status.ok()) {
+    return status;
+  }
   net.cols = transposed.rows;
   net.values =
       Transpose(transposed.values, transposed.rows, transposed.cols, net.dim);
   net.knots_v = std::move(transposed.knots_u);
+  return absl::OkStatus();
 }
 
 // ElevateSurface raises a (homogeneous when rational) net; degrees < 0 mean
 // Bezier.
-SurfaceData ElevateSurface(const ControlNetView& view,
-                           absl::Span<const double> weights,
-                           absl::Span<const double> knots_u,
-                           absl::Span<const double> knots_v, int degree_u,
-                           int degree_v, int by_u, int by_v) {
+absl::StatusOr<SurfaceData> ElevateSurface(const ControlNetView& view,
+                                           absl::Span<const double> weights,
+                                           absl::Span<const double> knots_u,
+                                           absl::Span<const double> knots_v,
+                                           int degree_u, int degree_v, int by_u,
+                                           int by_v,
+                                           const CancellationToken* cancel) {
   Points points = ToPoints({view.dimension, view.coordinates}, weights);
   Net net{view.count_u,
           view.count_v,
@@ -409,8 +440,18 @@ SurfaceData ElevateSurface(const ControlNetView& view,
           std::move(points.values),
           std::vector<double>(knots_u.begin(), knots_u.end()),
           std::vector<double>(knots_v.begin(), knots_v.end())};
-  if (by_u > 0) ElevateNetU(net, degree_u, by_u);
-  if (by_v > 0) ElevateNetV(net, degree_v, by_v);
+  if (by_u > 0) {
+    if (absl::Status status = ElevateNetU(net, degree_u, by_u, cancel);
+        !status.ok()) {
+      return status;
+    }
+  }
+  if (by_v > 0) {
+    if (absl::Status status = ElevateNetV(net, degree_v, by_v, cancel);
+        !status.ok()) {
+      return status;
+    }
+  }
   SurfaceData result;
   result.dimension = view.dimension;
   result.count_u = net.rows;
@@ -535,27 +576,30 @@ absl::StatusOr<BezierCurveData> ElevateBezierCurve(const BezierCurveView& curve,
   if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
     return status;
   }
-  const Points elevated =
-      ElevateBezierPoints(ToPoints(curve.control_points, curve.weights), by);
+  absl::StatusOr<Points> elevated = ElevateBezierPoints(
+      ToPoints(curve.control_points, curve.weights), by, nullptr);
+  if (!elevated.ok()) return elevated.status();
   BezierCurveData result;
   result.dimension = curve.control_points.dimension;
-  FromPoints(elevated, curve.rational(), result.coordinates, result.weights);
+  FromPoints(*elevated, curve.rational(), result.coordinates, result.weights);
   return result;
 }
 
 absl::StatusOr<BSplineCurveData> ElevateBSplineCurve(
-    const BSplineCurveView& curve, int by) {
+    const BSplineCurveView& curve, int by, const CancellationToken* cancel) {
   if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
     return status;
   }
-  Spline spline{std::vector<double>(curve.knots.begin(), curve.knots.end()),
-                ToPoints(curve.control_points, curve.weights)};
-  spline = ElevateSpline(std::move(spline), curve.degree, by);
+  absl::StatusOr<Spline> spline = ElevateSpline(
+      Spline{std::vector<double>(curve.knots.begin(), curve.knots.end()),
+             ToPoints(curve.control_points, curve.weights)},
+      curve.degree, by, cancel);
+  if (!spline.ok()) return spline.status();
   BSplineCurveData result;
   result.degree = curve.degree + by;
   result.dimension = curve.control_points.dimension;
-  result.knots = std::move(spline.knots);
-  FromPoints(spline.points, curve.rational(), result.coordinates,
+  result.knots = std::move(spline->knots);
+  FromPoints(spline->points, curve.rational(), result.coordinates,
              result.weights);
   return result;
 }
@@ -572,7 +616,7 @@ absl::StatusOr<ReducedBezierCurve> ReduceBezierCurve(
   }
   const Points original = ToPoints(curve.control_points, {});
   Points reduced = ReducedPoints(original, by);
-  const Points back = ElevateBezierPoints(reduced, by);
+  const Points back = *ElevateBezierPoints(reduced, by, nullptr);
   ReducedBezierCurve result;
   for (size_t i = 0; i < original.count(); ++i) {
     double norm = 0.0;
@@ -587,22 +631,24 @@ absl::StatusOr<ReducedBezierCurve> ReduceBezierCurve(
 }
 
 absl::StatusOr<SurfaceData> ElevateBezierSurface(
-    const BezierSurfaceView& surface, int by_u, int by_v) {
+    const BezierSurfaceView& surface, int by_u, int by_v,
+    const CancellationToken* cancel) {
   if (absl::Status status = CheckSurfaceElevation(by_u, by_v); !status.ok()) {
     return status;
   }
   return ElevateSurface(surface.control_net, surface.weights, {}, {}, -1, -1,
-                        by_u, by_v);
+                        by_u, by_v, cancel);
 }
 
 absl::StatusOr<SurfaceData> ElevateBSplineSurface(
-    const BSplineSurfaceView& surface, int by_u, int by_v) {
+    const BSplineSurfaceView& surface, int by_u, int by_v,
+    const CancellationToken* cancel) {
   if (absl::Status status = CheckSurfaceElevation(by_u, by_v); !status.ok()) {
     return status;
   }
   return ElevateSurface(surface.control_net, surface.weights, surface.knots_u,
                         surface.knots_v, surface.degree_u, surface.degree_v,
-                        by_u, by_v);
+                        by_u, by_v, cancel);
 }
 
 absl::StatusOr<TriangularPatchData> ElevateTriangularPatch(

@@ -10,6 +10,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/bspline.h"
+#include "freeform/core/cancellation.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
 
@@ -31,12 +32,14 @@ absl::Status SingularError() {
 // normal equations; docs/references.md, 'Global B-spline interpolation').
 class BandedMatrix {
  public:
-  BandedMatrix(int n, int kl, int ku)
+  // `cancel` (may be null) is polled while factoring and solving.
+  BandedMatrix(int n, int kl, int ku, const CancellationToken* cancel)
       : n_(n),
         kl_(kl),
         ku_(ku),
         width_(kl + ku + 1),
-        band_(static_cast<size_t>(n) * static_cast<size_t>(width_), 0.0) {}
+        band_(static_cast<size_t>(n) * static_cast<size_t>(width_), 0.0),
+        cancel_(cancel) {}
 
   int size() const { return n_; }
   bool InBand(int i, int j) const { return j - i >= -kl_ && j - i <= ku_; }
@@ -45,9 +48,10 @@ class BandedMatrix {
                  static_cast<size_t>(j - i + kl_)];
   }
 
-  // Factor overwrites the matrix with L (unit diagonal) and U; false when a
-  // pivot vanishes relative to its row.
-  bool Factor() {
+  // Factor overwrites the matrix with L (unit diagonal) and U; fails with
+  // SingularError() when a pivot vanishes relative to its row.
+  absl::Status Factor() {
+    CancellationPoll poll(cancel_);
     std::vector<double> row_scale(static_cast<size_t>(n_), 0.0);
     for (int i = 0; i < n_; ++i) {
       for (int w = 0; w < width_; ++w) {
@@ -57,9 +61,14 @@ class BandedMatrix {
       }
     }
     for (int k = 0; k < n_; ++k) {
+      if (absl::Status status =
+              poll.Done(static_cast<size_t>(kl_ + 1) * (ku_ + 1));
+          !status.ok()) {
+        return status;
+      }
       const double pivot = at(k, k);
       if (!(std::abs(pivot) > 1e-14 * row_scale[static_cast<size_t>(k)])) {
-        return false;
+        return SingularError();
       }
       const int last_row = std::min(n_ - 1, k + kl_);
       const int last_column = std::min(n_ - 1, k + ku_);
@@ -71,14 +80,19 @@ class BandedMatrix {
           at(i, j) -= factor * at(k, j);
       }
     }
-    return true;
+    return absl::OkStatus();
   }
 
   // Solve replaces the n x columns row-major `rhs` by the solution of the
   // factored system.
-  void Solve(double* rhs, int columns) {
+  absl::Status Solve(double* rhs, int columns) {
     const size_t d = static_cast<size_t>(columns);
+    CancellationPoll poll(cancel_);
+    const size_t row_work = static_cast<size_t>(width_) * d;
     for (int i = 0; i < n_; ++i) {
+      if (absl::Status status = poll.Done(row_work); !status.ok()) {
+        return status;
+      }
       double* row = rhs + static_cast<size_t>(i) * d;
       for (int j = std::max(0, i - kl_); j < i; ++j) {
         const double factor = at(i, j);
@@ -87,6 +101,9 @@ class BandedMatrix {
       }
     }
     for (int i = n_ - 1; i >= 0; --i) {
+      if (absl::Status status = poll.Done(row_work); !status.ok()) {
+        return status;
+      }
       double* row = rhs + static_cast<size_t>(i) * d;
       for (int j = i + 1; j <= std::min(n_ - 1, i + ku_); ++j) {
         const double factor = at(i, j);
@@ -96,11 +113,13 @@ class BandedMatrix {
       const double pivot = at(i, i);
       for (size_t c = 0; c < d; ++c) row[c] /= pivot;
     }
+    return absl::OkStatus();
   }
 
  private:
   int n_, kl_, ku_, width_;
   std::vector<double> band_;
+  const CancellationToken* cancel_;
 };
 
 // DenseSolve solves the n x n system a x = b (b: n x columns, replaced by x)
@@ -343,9 +362,11 @@ struct OpenRows {
 
 // BuildOpenRows fills the rows of A9.1 / A9.2: the value at t_0, the start
 // condition, values at t_1..t_{n-1}, the end condition, the value at t_n.
-OpenRows BuildOpenRows(int p, absl::Span<const double> knots,
-                       absl::Span<const double> t, EndCondition start,
-                       EndCondition end) {
+absl::StatusOr<OpenRows> BuildOpenRows(int p, absl::Span<const double> knots,
+                                       absl::Span<const double> t,
+                                       EndCondition start, EndCondition end,
+                                       const CancellationToken* cancel) {
+  CancellationPoll poll(cancel);
   const size_t w = static_cast<size_t>(p) + 1;
   const int n = static_cast<int>(knots.size()) - p - 2;
   OpenRows rows;
@@ -365,6 +386,7 @@ OpenRows BuildOpenRows(int p, absl::Span<const double> knots,
   };
   int span = p;
   for (size_t k = 0; k < t.size(); ++k) {
+    if (absl::Status status = poll.Done(w * w); !status.ok()) return status;
     if (k + 1 == t.size() && end.order > 0) derivative_row(t[k], end.order);
     span = FindSpanFrom(span, n, p, t[k], knots);
     const size_t offset = rows.values.size();
@@ -380,7 +402,11 @@ OpenRows BuildOpenRows(int p, absl::Span<const double> knots,
 
 // FactorOpenSystem builds and factors the banded system of the rows; fails
 // when the Schoenberg-Whitney condition breaks (a zero diagonal value).
-absl::StatusOr<BandedMatrix> FactorOpenSystem(int p, const OpenRows& rows) {
+absl::StatusOr<BandedMatrix> FactorOpenSystem(
+    int p, const absl::StatusOr<OpenRows>& built,
+    const CancellationToken* cancel) {
+  if (!built.ok()) return built.status();
+  const OpenRows& rows = *built;
   const int count = static_cast<int>(rows.first.size());
   int kl = 0, ku = 0;
   for (int r = 0; r < count; ++r) {
@@ -389,7 +415,7 @@ absl::StatusOr<BandedMatrix> FactorOpenSystem(int p, const OpenRows& rows) {
     kl = std::max(kl, r - first);
     ku = std::max(ku, first + p - r);
   }
-  BandedMatrix matrix(count, kl, ku);
+  BandedMatrix matrix(count, kl, ku, cancel);
   for (int r = 0; r < count; ++r) {
     const int first = rows.first[static_cast<size_t>(r)];
     for (int j = 0; j <= p; ++j) {
@@ -401,7 +427,7 @@ absl::StatusOr<BandedMatrix> FactorOpenSystem(int p, const OpenRows& rows) {
       }
     }
   }
-  if (!matrix.Factor()) return SingularError();
+  if (absl::Status status = matrix.Factor(); !status.ok()) return status;
   return matrix;
 }
 
@@ -432,22 +458,27 @@ Matrix OpenRightHandSide(const PointsView& points, EndCondition start,
 absl::StatusOr<Matrix> SolveOpen(const PointsView& points, int p,
                                  absl::Span<const double> knots,
                                  absl::Span<const double> t, EndCondition start,
-                                 EndCondition end) {
-  absl::StatusOr<BandedMatrix> matrix =
-      FactorOpenSystem(p, BuildOpenRows(p, knots, t, start, end));
+                                 EndCondition end,
+                                 const CancellationToken* cancel) {
+  absl::StatusOr<BandedMatrix> matrix = FactorOpenSystem(
+      p, BuildOpenRows(p, knots, t, start, end, cancel), cancel);
   if (!matrix.ok()) return matrix.status();
   Matrix rhs = OpenRightHandSide(points, start, end);
-  matrix->Solve(rhs.data(), points.dimension);
+  if (absl::Status status = matrix->Solve(rhs.data(), points.dimension);
+      !status.ok()) {
+    return status;
+  }
   return rhs;
 }
 
 // MaxResidual returns max_k |C(t_k) - Q_k| (and the sum of squares).
 absl::StatusOr<std::pair<double, double>> Residuals(
     const BSplineCurveData& curve, absl::Span<const double> t,
-    const PointsView& points) {
+    const PointsView& points, const CancellationToken* cancel) {
   std::vector<double> values(points.coordinates.size());
   const std::vector<absl::Span<double>> output = {absl::MakeSpan(values)};
-  if (absl::Status status = EvaluateBSplineCurve(curve.view(), t, output);
+  if (absl::Status status = EvaluateBSplineCurve(
+          curve.view(), t, output, ExecutionContext{.cancellation = cancel});
       !status.ok()) {
     return status;
   }
@@ -464,9 +495,10 @@ absl::StatusOr<std::pair<double, double>> Residuals(
 
 absl::StatusOr<CurveInterpolation> Finish(BSplineCurveData curve,
                                           std::vector<double> t,
-                                          const PointsView& points) {
+                                          const PointsView& points,
+                                          const CancellationToken* cancel) {
   absl::StatusOr<std::pair<double, double>> residuals =
-      Residuals(curve, t, points);
+      Residuals(curve, t, points, cancel);
   if (!residuals.ok()) return residuals.status();
   return CurveInterpolation{.curve = std::move(curve),
                             .parameters = std::move(t),
@@ -504,8 +536,8 @@ long Mod(long a, long n) { return ((a % n) + n) % n; }
 // N - p unknowns bordered by a dense p x p Schur complement, or a dense
 // solve for small N. `rhs` (N x d) is replaced by the solution.
 absl::Status SolveCyclic(int n, int p, const std::vector<int>& columns,
-                         const std::vector<double>& values, double* rhs,
-                         int d) {
+                         const std::vector<double>& values, double* rhs, int d,
+                         const CancellationToken* cancel) {
   const size_t w = static_cast<size_t>(p) + 1;
   if (n <= 3 * p + 2) {
     Matrix dense(static_cast<size_t>(n) * static_cast<size_t>(n), 0.0);
@@ -518,7 +550,7 @@ absl::Status SolveCyclic(int n, int p, const std::vector<int>& columns,
   }
   const int m = n - p;  // interior unknowns
   const size_t r = static_cast<size_t>(p), mm = static_cast<size_t>(m);
-  BandedMatrix a11(m, p, p);
+  BandedMatrix a11(m, p, p, cancel);
   Matrix a12(mm * r, 0.0), a21(r * mm, 0.0), a22(r * r, 0.0);
   for (size_t e = 0; e < columns.size(); ++e) {
     const int row = static_cast<int>(e / w), column = columns[e];
@@ -538,9 +570,12 @@ absl::Status SolveCyclic(int n, int p, const std::vector<int>& columns,
           values[e];
     }
   }
-  if (!a11.Factor()) return SingularError();
-  a11.Solve(a12.data(), p);  // Y = A11^-1 A12
-  a11.Solve(rhs, d);         // z = A11^-1 b1
+  if (absl::Status status = a11.Factor(); !status.ok()) return status;
+  // Y = A11^-1 A12, z = A11^-1 b1.
+  if (absl::Status status = a11.Solve(a12.data(), p); !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = a11.Solve(rhs, d); !status.ok()) return status;
   const size_t dd = static_cast<size_t>(d);
   double* b2 = rhs + mm * dd;
   for (size_t i = 0; i < r; ++i) {
@@ -570,7 +605,7 @@ absl::Status SolveCyclic(int n, int p, const std::vector<int>& columns,
 // [u_p, u_p + period] holds every site (modulo the period).
 absl::StatusOr<CurveInterpolation> InterpolatePeriodic(
     const PointsView& points, int p, absl::Span<const double> t,
-    const PeriodicKnots& kappa, int shift) {
+    const PeriodicKnots& kappa, int shift, const CancellationToken* cancel) {
   const long n = static_cast<long>(points.size());
   long start = 0;
   while (kappa(start) > t[0]) --start;
@@ -601,8 +636,9 @@ absl::StatusOr<CurveInterpolation> InterpolatePeriodic(
     }
   }
   Matrix solution(points.coordinates.begin(), points.coordinates.end());
-  if (absl::Status status = SolveCyclic(static_cast<int>(n), p, columns, values,
-                                        solution.data(), points.dimension);
+  if (absl::Status status =
+          SolveCyclic(static_cast<int>(n), p, columns, values, solution.data(),
+                      points.dimension, cancel);
       !status.ok()) {
     return status;
   }
@@ -616,7 +652,7 @@ absl::StatusOr<CurveInterpolation> InterpolatePeriodic(
   }
   return Finish(
       MakeCurve(p, points.dimension, std::move(control), std::move(knots)),
-      std::move(sites), points);
+      std::move(sites), points, cancel);
 }
 
 // ClosedParameters returns N + 1 parameters: one per point and the one where
@@ -684,7 +720,7 @@ absl::StatusOr<CurveInterpolation> InterpolateClosed(
     }
   }
   t->pop_back();
-  return InterpolatePeriodic(points, p, *t, kappa, p);
+  return InterpolatePeriodic(points, p, *t, kappa, p, options.cancel);
 }
 
 // ------------------------------------------------------ knot insertion --
@@ -784,7 +820,8 @@ absl::Status ValidatePeriodicEnds(const PointsView& values) {
 }
 
 absl::StatusOr<CurveInterpolation> PeriodicCubicSpline(
-    const PointsView& values, absl::Span<const double> x) {
+    const PointsView& values, absl::Span<const double> x,
+    const CancellationToken* cancel) {
   if (absl::Status status = ValidatePeriodicEnds(values); !status.ok()) {
     return status;
   }
@@ -795,14 +832,14 @@ absl::StatusOr<CurveInterpolation> PeriodicCubicSpline(
   PeriodicKnots kappa{.base = std::vector<double>(x.begin(), x.end() - 1),
                       .period = x.back() - x.front()};
   absl::StatusOr<CurveInterpolation> result =
-      InterpolatePeriodic(distinct, 3, x.subspan(0, n), kappa, 2);
+      InterpolatePeriodic(distinct, 3, x.subspan(0, n), kappa, 2, cancel);
   if (!result.ok()) return result;
   // The knots u_3..u_{n+3} are the abscissas themselves (x_0 + T may differ
   // from x_n in the last bit).
   std::copy(x.begin(), x.end(), result->curve.knots.begin() + 3);
   result->parameters.assign(x.begin(), x.end());
-  return Finish(std::move(result->curve), std::move(result->parameters),
-                values);
+  return Finish(std::move(result->curve), std::move(result->parameters), values,
+                cancel);
 }
 
 absl::Status ValidateSplineInput(const PointsView& values,
@@ -894,13 +931,14 @@ std::vector<double> KnotsFor(absl::Span<const double> t, int p,
 }
 
 absl::StatusOr<double> SurfaceResidual(const SurfaceInterpolation& result,
-                                       const ControlNetView& points) {
+                                       const ControlNetView& points,
+                                       const CancellationToken* cancel) {
   std::vector<double> values(points.coordinates.size());
   const std::vector<absl::Span<double>> output = {absl::MakeSpan(values)};
   if (absl::Status status = EvaluateBSplineSurface(
           result.surface.bspline_view(),
           SurfaceSamples::Grid(result.parameters_u, result.parameters_v),
-          output);
+          output, ExecutionContext{.cancellation = cancel});
       !status.ok()) {
     return status;
   }
@@ -990,33 +1028,36 @@ absl::StatusOr<CurveInterpolation> InterpolateCurve(
                            .value = options.start_derivative};
   const EndCondition end{.order = has_end ? 1 : 0,
                          .value = options.end_derivative};
-  absl::StatusOr<Matrix> control = SolveOpen(points, p, knots, t, start, end);
+  absl::StatusOr<Matrix> control =
+      SolveOpen(points, p, knots, t, start, end, options.cancel);
   if (!control.ok()) return control.status();
   return Finish(
       MakeCurve(p, points.dimension, *std::move(control), std::move(knots)),
-      std::move(t), points);
+      std::move(t), points, options.cancel);
 }
 
 absl::StatusOr<CurveInterpolation> InterpolateCubicSpline(
     const PointsView& values, absl::Span<const double> x, SplineEnd end,
     absl::Span<const double> start_derivative,
-    absl::Span<const double> end_derivative) {
+    absl::Span<const double> end_derivative, const CancellationToken* cancel) {
   if (absl::Status status =
           ValidateSplineInput(values, x, end, start_derivative, end_derivative);
       !status.ok()) {
     return status;
   }
-  if (end == SplineEnd::kPeriodic) return PeriodicCubicSpline(values, x);
+  if (end == SplineEnd::kPeriodic) {
+    return PeriodicCubicSpline(values, x, cancel);
+  }
   std::vector<double> t(x.begin(), x.end());
   if (end == SplineEnd::kNotAKnot && values.size() >= 4) {
     absl::StatusOr<Matrix> control =
-        SolveOpen(values, 3, CubicKnots(x, true), x, {}, {});
+        SolveOpen(values, 3, CubicKnots(x, true), x, {}, {}, cancel);
     if (!control.ok()) return control.status();
     BSplineCurveData curve = MakeCurve(3, values.dimension, *std::move(control),
                                        CubicKnots(x, true));
     InsertKnot(curve, x[1]);
     InsertKnot(curve, x[x.size() - 2]);
-    return Finish(std::move(curve), std::move(t), values);
+    return Finish(std::move(curve), std::move(t), values, cancel);
   }
   EndCondition start{.order = 2, .value = {}}, finish{.order = 2, .value = {}};
   std::pair<Matrix, Matrix> slopes;
@@ -1029,16 +1070,17 @@ absl::StatusOr<CurveInterpolation> InterpolateCubicSpline(
     finish = {.order = 1, .value = end_derivative};
   }
   absl::StatusOr<Matrix> control =
-      SolveOpen(values, 3, CubicKnots(x, false), x, start, finish);
+      SolveOpen(values, 3, CubicKnots(x, false), x, start, finish, cancel);
   if (!control.ok()) return control.status();
   return Finish(
       MakeCurve(3, values.dimension, *std::move(control), CubicKnots(x, false)),
-      std::move(t), values);
+      std::move(t), values, cancel);
 }
 
 absl::StatusOr<CurveApproximation> ApproximateCurve(
     const PointsView& points, int degree, int control_point_count,
-    Parameterization parameterization, absl::Span<const double> parameters) {
+    Parameterization parameterization, absl::Span<const double> parameters,
+    const CancellationToken* cancel) {
   const int p = degree;
   if (absl::Status status = ValidateCurveData(points, p); !status.ok()) {
     return status;
@@ -1087,13 +1129,19 @@ absl::StatusOr<CurveApproximation> ApproximateCurve(
               control.end() - static_cast<ptrdiff_t>(d));
   const int unknowns = n - 1;  // P_1..P_{n-1}
   if (unknowns > 0) {
-    BandedMatrix normal(unknowns, p, p);
+    BandedMatrix normal(unknowns, p, p, cancel);
+    CancellationPoll poll(cancel);
     Matrix rhs(static_cast<size_t>(unknowns) * d, 0.0);
     std::vector<double> basis(static_cast<size_t>(p) + 1);
     std::vector<double> scratch(BasisScratchSize(p));
     std::vector<double> residual(d);
     int span = p;
     for (int k = 1; k < m; ++k) {
+      if (absl::Status status =
+              poll.Done(static_cast<size_t>(p + 1) * (p + 1 + d));
+          !status.ok()) {
+        return status;
+      }
       const double u = t[static_cast<size_t>(k)];
       span = FindSpanFrom(span, n, p, u, knots);
       BasisFunctions(span, u, p, knots, absl::MakeSpan(basis),
@@ -1123,8 +1171,11 @@ absl::StatusOr<CurveApproximation> ApproximateCurve(
         }
       }
     }
-    if (!normal.Factor()) return SingularError();
-    normal.Solve(rhs.data(), points.dimension);
+    if (absl::Status status = normal.Factor(); !status.ok()) return status;
+    if (absl::Status status = normal.Solve(rhs.data(), points.dimension);
+        !status.ok()) {
+      return status;
+    }
     std::copy(rhs.begin(), rhs.end(),
               control.begin() + static_cast<ptrdiff_t>(d));
   }
@@ -1133,7 +1184,7 @@ absl::StatusOr<CurveApproximation> ApproximateCurve(
           MakeCurve(p, points.dimension, std::move(control), std::move(knots)),
       .parameters = std::move(t)};
   absl::StatusOr<std::pair<double, double>> residuals =
-      Residuals(result.curve, result.parameters, points);
+      Residuals(result.curve, result.parameters, points, cancel);
   if (!residuals.ok()) return residuals.status();
   result.max_residual = residuals->first;
   result.rms_residual = std::sqrt(residuals->second / (m + 1));
@@ -1142,7 +1193,8 @@ absl::StatusOr<CurveApproximation> ApproximateCurve(
 
 absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
     const ControlNetView& points, int degree_u, int degree_v,
-    Parameterization parameterization, KnotRule knot_rule) {
+    Parameterization parameterization, KnotRule knot_rule,
+    const CancellationToken* cancel) {
   if (absl::Status status = ValidateDegree(degree_u, "degree_u");
       !status.ok()) {
     return status;
@@ -1178,23 +1230,35 @@ absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
   // Two factorizations (docs/references.md, 'Global B-spline
   // interpolation'): u once for all columns, v once for all rows of the
   // intermediate net.
-  absl::StatusOr<BandedMatrix> along_u = FactorOpenSystem(
-      degree_u,
-      BuildOpenRows(degree_u, surface.knots_u, result.parameters_u, {}, {}));
+  absl::StatusOr<BandedMatrix> along_u =
+      FactorOpenSystem(degree_u,
+                       BuildOpenRows(degree_u, surface.knots_u,
+                                     result.parameters_u, {}, {}, cancel),
+                       cancel);
   if (!along_u.ok()) return along_u.status();
-  absl::StatusOr<BandedMatrix> along_v = FactorOpenSystem(
-      degree_v,
-      BuildOpenRows(degree_v, surface.knots_v, result.parameters_v, {}, {}));
+  absl::StatusOr<BandedMatrix> along_v =
+      FactorOpenSystem(degree_v,
+                       BuildOpenRows(degree_v, surface.knots_v,
+                                     result.parameters_v, {}, {}, cancel),
+                       cancel);
   if (!along_v.ok()) return along_v.status();
   surface.coordinates.assign(points.coordinates.begin(),
                              points.coordinates.end());
   const size_t row = static_cast<size_t>(points.count_v) *
                      static_cast<size_t>(points.dimension);
-  along_u->Solve(surface.coordinates.data(), static_cast<int>(row));
-  for (size_t k = 0; k < static_cast<size_t>(points.count_u); ++k) {
-    along_v->Solve(surface.coordinates.data() + k * row, points.dimension);
+  if (absl::Status status =
+          along_u->Solve(surface.coordinates.data(), static_cast<int>(row));
+      !status.ok()) {
+    return status;
   }
-  absl::StatusOr<double> residual = SurfaceResidual(result, points);
+  for (size_t k = 0; k < static_cast<size_t>(points.count_u); ++k) {
+    if (absl::Status status = along_v->Solve(
+            surface.coordinates.data() + k * row, points.dimension);
+        !status.ok()) {
+      return status;
+    }
+  }
+  absl::StatusOr<double> residual = SurfaceResidual(result, points, cancel);
   if (!residual.ok()) return residual.status();
   result.max_residual = *residual;
   return result;

@@ -256,6 +256,70 @@ void LagrangeBasis(absl::Span<const double> nodes,
   std::fill(above.begin(), above.end(), 0.0);
 }
 
+namespace {
+
+// BezierHalfFromTaylor writes control points b_0..b_top of the curve seen
+// from one end of its domain: `from` = t_0 with `step` = h gives b_j, and
+// `from` = t_n with `step` = -h gives b_{n-j} (the reversed curve), at
+// out[index(j)].
+template <typename Index>
+void BezierHalfFromTaylor(const LagrangeCurveView& curve,
+                          absl::Span<const double> nodes,
+                          absl::Span<const double> weights, double from,
+                          double step, int top, Index index,
+                          std::vector<double>& out) {
+  const size_t count = nodes.size();
+  const int n = static_cast<int>(count) - 1;
+  const size_t d = static_cast<size_t>(curve.points.dimension);
+  std::vector<double> basis((static_cast<size_t>(top) + 1) * count);
+  std::vector<double> scratch(static_cast<size_t>(top) + 1);
+  LagrangeBasis(nodes, weights, from, top, absl::MakeSpan(scratch),
+                absl::MakeSpan(basis));
+  // a_k = C^(k)(from) step^k / k!.
+  std::vector<double> taylor((static_cast<size_t>(top) + 1) * d, 0.0);
+  double factor = 1.0;
+  for (int k = 0; k <= top; ++k) {
+    double* a = &taylor[static_cast<size_t>(k) * d];
+    for (size_t i = 0; i < count; ++i) {
+      const double weight = factor * basis[static_cast<size_t>(k) * count + i];
+      const double* point = curve.points.point(i);
+      for (size_t x = 0; x < d; ++x) a[x] += weight * point[x];
+    }
+    factor *= step / (k + 1);
+  }
+  // b_j = sum_{k<=j} (C(j, k) / C(n, k)) a_k; the ratio is
+  // prod_{i<k} (j - i) / (n - i).
+  for (int j = 0; j <= top; ++j) {
+    double* b = &out[index(j) * d];
+    double ratio = 1.0;
+    for (int k = 0; k <= j; ++k) {
+      const double* a = &taylor[static_cast<size_t>(k) * d];
+      for (size_t x = 0; x < d; ++x) b[x] += ratio * a[x];
+      ratio *= static_cast<double>(j - k) / (n - k);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<double> LagrangeToBezier(const LagrangeCurveView& curve) {
+  const std::vector<double> nodes = LagrangeNodes(curve);
+  const int n = curve.degree();
+  std::vector<double> out(curve.points.coordinates.size(), 0.0);
+  if (n == 0)
+    return {curve.points.coordinates.begin(), curve.points.coordinates.end()};
+  const std::vector<double> weights = BarycentricWeights(nodes);
+  const double h = nodes.back() - nodes.front();
+  const int front = n / 2;  // b_0..b_front from t_0, the rest from t_n
+  BezierHalfFromTaylor(
+      curve, nodes, weights, nodes.front(), h, front,
+      [](int j) { return static_cast<size_t>(j); }, out);
+  BezierHalfFromTaylor(
+      curve, nodes, weights, nodes.back(), -h, n - front - 1,
+      [n](int j) { return static_cast<size_t>(n - j); }, out);
+  return out;
+}
+
 absl::Status EvaluateLagrangeCurve(const LagrangeCurveView& curve,
                                    absl::Span<const double> parameters,
                                    CurveOutput output,

@@ -9,8 +9,10 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/types/span.h"
+#include "freeform/core/cancellation.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "knots.h"
 
 namespace freeform {
 namespace {
@@ -182,8 +184,7 @@ absl::Status CheckKnotsToInsert(int p, absl::Span<const double> knots,
       return InvalidFieldError(field, "knots must be non-decreasing");
     }
     run = (i > 0 && u == x[i - 1]) ? run + 1 : 1;
-    const int existing =
-        static_cast<int>(std::count(knots.begin(), knots.end(), u));
+    const int existing = internal::Multiplicity(knots, u);
     const int limit = (u > lo && u < hi) ? p : p + 1;
     if (existing + run > limit) {
       return InvalidFieldError(
@@ -198,8 +199,10 @@ absl::Status CheckKnotsToInsert(int p, absl::Span<const double> knots,
 
 // Refine inserts the non-decreasing knots `x` into `spline` (The NURBS Book
 // A5.4, RefineKnotVectCurve), with the spans found by LastKnotAtOrBelow.
-Spline Refine(const Spline& spline, absl::Span<const double> x) {
+absl::StatusOr<Spline> Refine(const Spline& spline, absl::Span<const double> x,
+                              const CancellationToken* cancel) {
   if (x.empty()) return spline;
+  CancellationPoll poll(cancel);
   const int p = spline.degree;
   const std::vector<double>& u = spline.knots;
   const Polygon& pw = spline.points;
@@ -221,6 +224,10 @@ Spline Refine(const Spline& spline, absl::Span<const double> x) {
   int i = b + p - 1;
   int k = b + p + r;
   for (int j = r; j >= 0; --j) {
+    if (absl::Status status = poll.Done(static_cast<size_t>(p + 1) * dim);
+        !status.ok()) {
+      return status;
+    }
     while (x[j] <= u[i] && i > a) {
       std::copy_n(pw.at(i - p - 1), dim, qw.at(k - p - 1));
       ubar[k] = u[i];
@@ -276,14 +283,20 @@ int FloorDiv2(int a) { return a >= 0 ? a / 2 : -((1 - a) / 2); }
 // RefinePolygon applies one subdivision step: point r of the result is
 // Q_{r+d} = sum_i s_{r+d-2i} P_i, the indices i taken modulo m when closed;
 // open polygons keep r in [0, 2m - d), where every P_i lies in the polygon.
-Polygon RefinePolygon(const Polygon& points, bool closed,
-                      const std::vector<double>& mask) {
+absl::StatusOr<Polygon> RefinePolygon(const Polygon& points, bool closed,
+                                      const std::vector<double>& mask,
+                                      const CancellationToken* cancel) {
+  CancellationPoll poll(cancel);
   const int d = static_cast<int>(mask.size()) - 2;
   const int m = points.count();
   const int dim = points.dim;
   const int count = closed ? 2 * m : 2 * m - d;
   Polygon out{dim, std::vector<double>(static_cast<size_t>(count) * dim, 0.0)};
   for (int r = 0; r < count; ++r) {
+    if (absl::Status status = poll.Done(static_cast<size_t>(d + 2) * dim);
+        !status.ok()) {
+      return status;
+    }
     const int j = r + d;
     double* q = out.at(r);
     for (int i = FloorDiv2(j - d); i <= FloorDiv2(j); ++i) {
@@ -408,14 +421,20 @@ Polygon SubPatch(const std::vector<Polygon>& levels, int n, int vertex) {
 }  // namespace
 
 absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
-    const BezierCurveView& curve, absl::Span<const double> parameters) {
+    const BezierCurveView& curve, absl::Span<const double> parameters,
+    const CancellationToken* cancel) {
   if (absl::Status status = CheckSplitParameters(parameters); !status.ok()) {
     return status;
   }
   const Polygon points = Lift(curve.control_points, curve.weights);
   std::vector<BezierCurveData> pieces;
   pieces.reserve(parameters.size() + 1);
+  const size_t piece_work = points.values.size() * points.values.size();
+  CancellationPoll poll(cancel);
   for (size_t k = 0; k <= parameters.size(); ++k) {
+    if (absl::Status status = poll.Done(piece_work); !status.ok()) {
+      return status;
+    }
     const double a = k == 0 ? 0.0 : parameters[k - 1];
     const double b = k == parameters.size() ? 1.0 : parameters[k];
     pieces.push_back(ToBezierCurve(Piece(points, a, b), curve.rational()));
@@ -424,46 +443,53 @@ absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
 }
 
 absl::StatusOr<BSplineCurveData> InsertKnots(const BSplineCurveView& curve,
-                                             absl::Span<const double> knots) {
+                                             absl::Span<const double> knots,
+                                             const CancellationToken* cancel) {
   if (absl::Status status =
           CheckKnotsToInsert(curve.degree, curve.knots, knots);
       !status.ok()) {
     return status;
   }
-  const Spline refined = Refine(LiftCurve(curve), knots);
+  absl::StatusOr<Spline> refined = Refine(LiftCurve(curve), knots, cancel);
+  if (!refined.ok()) return refined.status();
   BSplineCurveData result;
   result.degree = curve.degree;
   result.dimension = curve.control_points.dimension;
-  result.knots = refined.knots;
-  Project(refined.points, curve.rational(), result.coordinates, result.weights);
+  result.knots = refined->knots;
+  Project(refined->points, curve.rational(), result.coordinates,
+          result.weights);
   return result;
 }
 
 absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
-    const BSplineCurveView& curve) {
+    const BSplineCurveView& curve, const CancellationToken* cancel) {
   const int p = curve.degree;
   const std::vector<double> knots(curve.knots.begin(), curve.knots.end());
   const int n = static_cast<int>(curve.control_points.size()) - 1;
   const double lo = knots[static_cast<size_t>(p)];
   const double hi = knots[static_cast<size_t>(n) + 1];
   // Every distinct value in the domain to multiplicity p (at least).
+  // The knots are sorted, so each value's multiplicity is its run.
   std::vector<double> insert;
-  for (size_t i = 0; i < knots.size(); ++i) {
+  for (size_t i = 0; i < knots.size();) {
     const double u = knots[i];
-    if (u < lo || u > hi || (i > 0 && knots[i - 1] == u)) continue;
-    const int have =
-        static_cast<int>(std::count(knots.begin(), knots.end(), u));
+    size_t run = i + 1;
+    while (run < knots.size() && knots[run] == u) ++run;
+    const int have = static_cast<int>(run - i);
+    i = run;
+    if (u < lo || u > hi) continue;
     for (int c = have; c < p; ++c) insert.push_back(u);
   }
-  const Spline refined = Refine(LiftCurve(curve), insert);
-  const std::vector<double>& ubar = refined.knots;
-  const int last = refined.points.count() - 1;
-  const int dim = refined.points.dim;
+  absl::StatusOr<Spline> refined = Refine(LiftCurve(curve), insert, cancel);
+  if (!refined.ok()) return refined.status();
+  const std::vector<double>& ubar = refined->knots;
+  const int last = refined->points.count() - 1;
+  const int dim = refined->points.dim;
   BezierDecomposition result;
   result.breakpoints.push_back(lo);
   for (int s = p; s <= last; ++s) {
     if (!(ubar[s] < ubar[s + 1])) continue;
-    const auto first = refined.points.values.begin() +
+    const auto first = refined->points.values.begin() +
                        static_cast<std::ptrdiff_t>(s - p) * dim;
     Polygon segment{
         dim, std::vector<double>(
@@ -476,7 +502,7 @@ absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
 
 absl::StatusOr<std::vector<std::vector<double>>> SubdividePolygon(
     const PointsView& polygon, bool closed, SubdivisionScheme scheme,
-    int degree, int levels) {
+    int degree, int levels, const CancellationToken* cancel) {
   const int d = scheme == SubdivisionScheme::kChaikin ? 2 : degree;
   if (absl::Status status = CheckSubdivision(polygon.size(), closed, d, levels);
       !status.ok()) {
@@ -489,7 +515,10 @@ absl::StatusOr<std::vector<std::vector<double>>> SubdividePolygon(
   std::vector<std::vector<double>> result;
   result.reserve(static_cast<size_t>(levels));
   for (int level = 0; level < levels; ++level) {
-    current = RefinePolygon(current, closed, mask);
+    absl::StatusOr<Polygon> refined =
+        RefinePolygon(current, closed, mask, cancel);
+    if (!refined.ok()) return refined.status();
+    current = *std::move(refined);
     result.push_back(current.values);
   }
   return result;
@@ -497,7 +526,7 @@ absl::StatusOr<std::vector<std::vector<double>>> SubdividePolygon(
 
 absl::StatusOr<SurfaceData> InsertSurfaceKnots(
     const BSplineSurfaceView& surface, bool in_u,
-    absl::Span<const double> knots) {
+    absl::Span<const double> knots, const CancellationToken* cancel) {
   const int degree = in_u ? surface.degree_u : surface.degree_v;
   const absl::Span<const double> old_knots =
       in_u ? surface.knots_u : surface.knots_v;
@@ -508,15 +537,16 @@ absl::StatusOr<SurfaceData> InsertSurfaceKnots(
   const Spline lines{degree,
                      std::vector<double>(old_knots.begin(), old_knots.end()),
                      RowsOf(surface.control_net, surface.weights, in_u)};
-  const Spline refined = Refine(lines, knots);
+  absl::StatusOr<Spline> refined = Refine(lines, knots, cancel);
+  if (!refined.ok()) return refined.status();
   SurfaceData result;
   result.degree_u = surface.degree_u;
   result.degree_v = surface.degree_v;
   result.dimension = surface.control_net.dimension;
   result.knots_u.assign(surface.knots_u.begin(), surface.knots_u.end());
   result.knots_v.assign(surface.knots_v.begin(), surface.knots_v.end());
-  (in_u ? result.knots_u : result.knots_v) = refined.knots;
-  FillNet(refined.points, in_u, surface.rational(), result);
+  (in_u ? result.knots_u : result.knots_v) = refined->knots;
+  FillNet(refined->points, in_u, surface.rational(), result);
   return result;
 }
 

@@ -62,11 +62,6 @@ absl::Status Exhausted(absl::string_view what, size_t limit) {
                                 what, " at this tolerance"));
 }
 
-absl::Status CheckCancel(const CancellationToken* cancel) {
-  if (cancel != nullptr && cancel->IsCancelled()) return cancel->status();
-  return absl::OkStatus();
-}
-
 // ---------------------------------------------------------------- curves --
 
 // The layout of a Bezier piece's control points: degree + 1 points of
@@ -175,7 +170,7 @@ absl::Status SubdivideBezierPiece(const double* control,
   size_t steps = 0;
   while (!intervals.empty()) {
     if (++steps % kCancelStride == 0) {
-      if (absl::Status status = CheckCancel(cancel); !status.ok()) {
+      if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
         return status;
       }
     }
@@ -707,7 +702,8 @@ void MeshBuilder::BuildPatch(uint32_t patch) {
 
 absl::Status MeshBuilder::Build(const CancellationToken* cancel) {
   for (uint32_t patch = 0; patch < patches_.size(); ++patch) {
-    if (absl::Status status = CheckCancel(cancel); !status.ok()) return status;
+    if (absl::Status status = CheckCancelled(cancel); !status.ok())
+      return status;
     BuildPatch(patch);
   }
   return absl::OkStatus();
@@ -725,7 +721,8 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
   std::vector<std::vector<double>> buffers(PartialCount(kOrder));
   std::vector<double> normals;
   for (size_t patch = 0; patch < patches_.size(); ++patch) {
-    if (absl::Status status = CheckCancel(cancel); !status.ok()) return status;
+    if (absl::Status status = CheckCancelled(cancel); !status.ok())
+      return status;
     const std::vector<uint32_t>& vertices = owned[patch];
     if (vertices.empty()) continue;
     uv.clear();
@@ -910,7 +907,8 @@ absl::StatusOr<Polyline> TessellateBSplineCurve(
   std::vector<double> bezier(shape.size()), work;
   for (int s = p; s <= n; ++s) {
     if (!(curve.knots[s] < curve.knots[s + 1])) continue;
-    if (absl::Status status = CheckCancel(cancel); !status.ok()) return status;
+    if (absl::Status status = CheckCancelled(cancel); !status.ok())
+      return status;
     BlossomBezierPoints(control, shape.stride(), p, s, curve.knots, work,
                         bezier.data());
     if (absl::Status status = SubdivideBezierPiece(

@@ -641,3 +641,68 @@ TEST(LagrangeCurveTest, WronglySizedOutputIsRejected) {
 
 }  // namespace
 }  // namespace freeform
+
+namespace freeform {
+namespace {
+
+// The parabola through (0, 0), (1, 1), (2, 4) at nodes 0, 1, 2 is the
+// Bezier curve (0, 0), (1, 0), (2, 4): x = 2s, y = 4s^2.
+TEST(LagrangeToBezierTest, ParabolaThroughThreePoints) {
+  const std::vector<double> xy = {0, 0, 1, 1, 2, 4};
+  const std::vector<double> nodes = {0, 1, 2};
+  const LagrangeCurveView curve{.points = {.dimension = 2, .coordinates = xy},
+                                .nodes = nodes};
+  EXPECT_THAT(LagrangeToBezier(curve),
+              Pointwise(DoubleNear(1e-15), {0.0, 0.0, 1.0, 0.0, 2.0, 4.0}));
+}
+
+// Bezier evaluation of the converted points (de Casteljau) against the
+// Lagrange ladder on the original, for degrees 1 to 12 on uneven nodes, to
+// rounding relative to the Bezier points' size.
+TEST(LagrangeToBezierTest, AgreesWithLagrangeEvaluation) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  for (int degree = 1; degree <= 12; ++degree) {
+    std::vector<double> points(3 * (degree + 1));
+    for (double& value : points) value = uniform(random);
+    std::vector<double> nodes = {-2.0};
+    for (int i = 1; i <= degree; ++i) {
+      nodes.push_back(nodes.back() + 0.5 + 0.5 * (uniform(random) + 1.0));
+    }
+    const LagrangeCurveView curve{
+        .points = {.dimension = 3, .coordinates = points}, .nodes = nodes};
+    const std::vector<double> bezier = LagrangeToBezier(curve);
+    // The conversion is backward stable: its error scales with the size of
+    // the Bezier points, which grows with the degree for random data.
+    double scale = 1.0;
+    for (double value : bezier) scale = std::max(scale, std::abs(value));
+    std::vector<double> parameters, s;
+    for (int k = 0; k <= 20; ++k) {
+      s.push_back(k / 20.0);
+      parameters.push_back(
+          std::min(nodes.back(),
+                   nodes.front() + s.back() * (nodes.back() - nodes.front())));
+    }
+    std::vector<double> expected(3 * parameters.size());
+    const absl::Span<double> expected_output[] = {absl::MakeSpan(expected)};
+    ASSERT_TRUE(EvaluateLagrangeCurve(curve, parameters, expected_output).ok());
+    for (size_t k = 0; k < s.size(); ++k) {
+      std::vector<double> work = bezier;  // de Casteljau in place
+      for (int r = 1; r <= degree; ++r) {
+        for (int i = 0; i <= degree - r; ++i) {
+          for (int x = 0; x < 3; ++x) {
+            work[3 * i + x] =
+                (1 - s[k]) * work[3 * i + x] + s[k] * work[3 * (i + 1) + x];
+          }
+        }
+      }
+      for (int x = 0; x < 3; ++x) {
+        EXPECT_NEAR(work[x], expected[3 * k + x], 1e-13 * scale)
+            << "degree " << degree << " s " << s[k];
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace freeform

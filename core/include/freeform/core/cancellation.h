@@ -14,6 +14,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 #include <functional>
 #include <optional>
 
@@ -53,6 +54,45 @@ class CancellationToken {
   mutable std::atomic<int> state_{kRunning};
   std::optional<Clock::time_point> deadline_;
   std::function<bool()> poll_;
+};
+
+// CheckCancelled returns OK while `cancel` runs (a null token always runs),
+// else its CANCELLED or DEADLINE_EXCEEDED status.
+absl::Status CheckCancelled(const CancellationToken* cancel);
+
+// CancellationPoll polls a token from a sequential loop whose iterations
+// may differ widely in cost: the loop reports the work each iteration did
+// (in arithmetic operations, roughly), and the token is asked once per
+// `work_per_poll` units, so the loop stops within about a tenth of a
+// millisecond of the deadline and the polls cost nothing next to the work.
+//   CancellationPoll poll(cancel);
+//   for (...) {
+//     ...;
+//     if (absl::Status status = poll.Done(p * dim); !status.ok()) return
+//     status;
+//   }
+class CancellationPoll {
+ public:
+  static constexpr size_t kDefaultWorkPerPoll = size_t{1} << 16;
+
+  explicit CancellationPoll(const CancellationToken* cancel,
+                            size_t work_per_poll = kDefaultWorkPerPoll)
+      : cancel_(cancel), work_per_poll_(work_per_poll) {}
+
+  // Done counts `work` units and returns the token's status when it is
+  // time to ask and the token stopped; OK otherwise.
+  absl::Status Done(size_t work) {
+    if (cancel_ == nullptr) return absl::OkStatus();
+    pending_ += work;
+    if (pending_ < work_per_poll_) return absl::OkStatus();
+    pending_ = 0;
+    return CheckCancelled(cancel_);
+  }
+
+ private:
+  const CancellationToken* const cancel_;
+  const size_t work_per_poll_;
+  size_t pending_ = 0;
 };
 
 }  // namespace freeform

@@ -13,7 +13,10 @@
 // Inputs are views that the caller has validated (ValidateBezierCurve,
 // ValidateBSplineCurve, ValidateBezierSurface, ValidateBSplineSurface,
 // ValidateTriangularPatch); the functions here only check their own
-// arguments ("by", "by_u", "by_v").
+// arguments ("by", "by_u", "by_v"). Those whose work grows with a curve's
+// length or a surface's net take a CancellationToken (may be null), poll it
+// as they go and return its CANCELLED / DEADLINE_EXCEEDED status once it
+// stops.
 //
 // Example, a quadratic Bezier curve raised to degree 4:
 //   absl::StatusOr<BezierCurveData> quartic = ElevateBezierCurve(curve, 2);
@@ -29,6 +32,7 @@
 #include "absl/status/statusor.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/bspline.h"
+#include "freeform/core/cancellation.h"
 #include "freeform/core/geometry_data.h"
 #include "freeform/core/tensor_surface.h"
 #include "freeform/core/triangular.h"
@@ -63,7 +67,8 @@ absl::StatusOr<BezierCurveData> ElevateBezierCurve(const BezierCurveView& curve,
 // input's there, while the curve on the domain is unchanged. Fails with
 // INVALID_ARGUMENT "by" when by < 1.
 absl::StatusOr<BSplineCurveData> ElevateBSplineCurve(
-    const BSplineCurveView& curve, int by);
+    const BSplineCurveView& curve, int by,
+    const CancellationToken* cancel = nullptr);
 
 // The result of ReduceBezierCurve: the curve of lower degree and an upper
 // bound of max_{t in [0,1]} |C(t) - R(t)| between the original C and it.
@@ -96,14 +101,16 @@ absl::StatusOr<ReducedBezierCurve> ReduceBezierCurve(
 // INVALID_ARGUMENT "by_u" / "by_v" for a negative value and "by_u" when both
 // are 0.
 absl::StatusOr<SurfaceData> ElevateBezierSurface(
-    const BezierSurfaceView& surface, int by_u, int by_v);
+    const BezierSurfaceView& surface, int by_u, int by_v,
+    const CancellationToken* cancel = nullptr);
 
 // ElevateBSplineSurface is ElevateBezierSurface for a B-spline (NURBS)
 // surface, with ElevateBSplineCurve's algorithm and knot rules applied in
 // each direction (every column of the net is a curve in u, every row a
 // curve in v, and all share their knot vector).
 absl::StatusOr<SurfaceData> ElevateBSplineSurface(
-    const BSplineSurfaceView& surface, int by_u, int by_v);
+    const BSplineSurfaceView& surface, int by_u, int by_v,
+    const CancellationToken* cancel = nullptr);
 
 // A triangular Bezier patch that owns its data (see triangular.h for the
 // storage order); view() hands out the matching TriangularPatchView.

@@ -25,6 +25,8 @@
 // Errors are INVALID_ARGUMENT naming the field (status.h); a singular system
 // (parameters and knots breaking the Schoenberg-Whitney condition) names
 // "parameters". All functions are thread-safe and allocate O(n) memory.
+// Each takes a CancellationToken (may be null), polls it as it works and
+// returns its CANCELLED / DEADLINE_EXCEEDED status once it stops.
 #ifndef FREEFORM_CORE_INTERPOLATION_H_
 #define FREEFORM_CORE_INTERPOLATION_H_
 
@@ -32,6 +34,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "freeform/core/cancellation.h"
 #include "freeform/core/geometry_data.h"
 #include "freeform/core/points.h"
 #include "freeform/core/tensor_surface.h"
@@ -93,6 +96,9 @@ struct CurveInterpolationOptions {
   // Interpolate a closed curve through the points (the first point is not
   // repeated at the end).
   bool closed = false;
+  // Polled while the system is built, solved and checked (may be null); the
+  // call then returns the token's CANCELLED / DEADLINE_EXCEEDED status.
+  const CancellationToken* cancel = nullptr;
 };
 
 // A curve through data points.
@@ -154,7 +160,8 @@ enum class SplineEnd {
 absl::StatusOr<CurveInterpolation> InterpolateCubicSpline(
     const PointsView& values, absl::Span<const double> x, SplineEnd end,
     absl::Span<const double> start_derivative,
-    absl::Span<const double> end_derivative);
+    absl::Span<const double> end_derivative,
+    const CancellationToken* cancel = nullptr);
 
 // A least-squares approximation of data points.
 struct CurveApproximation {
@@ -177,7 +184,8 @@ struct CurveApproximation {
 // "parameters"/"parameters[i]" and a repeated point as InterpolateCurve.
 absl::StatusOr<CurveApproximation> ApproximateCurve(
     const PointsView& points, int degree, int control_point_count,
-    Parameterization parameterization, absl::Span<const double> parameters);
+    Parameterization parameterization, absl::Span<const double> parameters,
+    const CancellationToken* cancel = nullptr);
 
 // A surface through a grid of points.
 struct SurfaceInterpolation {
@@ -202,7 +210,8 @@ struct SurfaceInterpolation {
 // repeated).
 absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
     const ControlNetView& points, int degree_u, int degree_v,
-    Parameterization parameterization, KnotRule knot_rule);
+    Parameterization parameterization, KnotRule knot_rule,
+    const CancellationToken* cancel = nullptr);
 
 }  // namespace freeform
 

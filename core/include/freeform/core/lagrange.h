@@ -141,6 +141,18 @@ absl::Status EvaluateLagrangeCurve(const LagrangeCurveView& curve,
                                    CurveOutput output,
                                    const ExecutionContext& context = {});
 
+// LagrangeToBezier returns the Bezier control points (flat, as in
+// PointsView) of a valid `curve` on its domain [t_0, t_n], reparameterized
+// to [0, 1]: the same polynomial in Bernstein form. With s = (t - t_0) / h,
+// h = t_n - t_0, and a_k = C^(k)(t_0) h^k / k! the Taylor coefficients in s,
+// b_j = sum_{k<=j} (C(j, k) / C(n, k)) a_k (the power-to-Bernstein
+// conversion, docs/references.md, 'The Bezier geometry matrix'). The first
+// half of the points comes from the Taylor coefficients at t_0 and the
+// second half, symmetrically, from those at t_n, so no derivative above
+// order n / 2 is needed. A single point is its own degree-0 curve.
+// O(n^2) per coordinate.
+std::vector<double> LagrangeToBezier(const LagrangeCurveView& curve);
+
 // EvaluateLagrangeBasis writes the dense Lagrange basis of `nodes` (the
 // EvaluateBasis RPC): output[k][r * (n + 1) + i] = L_i^(k)(parameters[r]),
 // so each output buffer holds parameters.size() * (n + 1) doubles. The

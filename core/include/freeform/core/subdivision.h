@@ -12,7 +12,9 @@
 // ValidateBSplineCurve, ValidateBezierSurface, ValidateBSplineSurface,
 // ValidateTriangularPatch, ValidatePoints); the functions here check only
 // their own arguments and report INVALID_ARGUMENT naming them
-// ("parameters[2]", "knots[0]", "levels", ...).
+// ("parameters[2]", "knots[0]", "levels", ...). Those whose work grows with
+// their input take a CancellationToken (may be null), poll it as they go and
+// return its CANCELLED / DEADLINE_EXCEEDED status once it stops.
 //
 // Example, the half circle with a knot inserted at 1/2:
 //   absl::StatusOr<BSplineCurveData> refined = InsertKnots(curve, {0.5});
@@ -29,6 +31,7 @@
 #include "absl/types/span.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/bspline.h"
+#include "freeform/core/cancellation.h"
 #include "freeform/core/elevation.h"
 #include "freeform/core/geometry_data.h"
 #include "freeform/core/hermite.h"
@@ -49,7 +52,8 @@ namespace freeform {
 // homogeneous form. Fails with INVALID_ARGUMENT "parameters[i]"
 // for a value not finite, not in (0, 1) or not above its predecessor.
 absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
-    const BezierCurveView& curve, absl::Span<const double> parameters);
+    const BezierCurveView& curve, absl::Span<const double> parameters,
+    const CancellationToken* cancel = nullptr);
 
 // InsertKnots returns `curve` with every value of `knots` inserted once (a
 // value repeated r times is inserted r times), by Boehm's knot refinement
@@ -62,8 +66,9 @@ absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
 // above what ValidateBSplineCurve allows: p strictly inside the domain,
 // p + 1 at the domain ends (so an unclamped curve may be clamped by
 // inserting its domain ends).
-absl::StatusOr<BSplineCurveData> InsertKnots(const BSplineCurveView& curve,
-                                             absl::Span<const double> knots);
+absl::StatusOr<BSplineCurveData> InsertKnots(
+    const BSplineCurveView& curve, absl::Span<const double> knots,
+    const CancellationToken* cancel = nullptr);
 
 // The Bezier pieces of a B-spline curve: segments[k] is the curve on
 // [breakpoints[k], breakpoints[k + 1]], reparameterized to [0, 1].
@@ -79,7 +84,7 @@ struct BezierDecomposition {
 // in the domain to multiplicity p, after which the p + 1 control points of
 // each span are its Bezier points. Never fails for a valid curve.
 absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
-    const BSplineCurveView& curve);
+    const BSplineCurveView& curve, const CancellationToken* cancel = nullptr);
 
 // DecomposeHermiteCurve returns the cubic Bezier segment of every piece of
 // a valid Hermite curve (HermiteSegmentBezier) with its nodes as
@@ -122,7 +127,7 @@ inline constexpr int kMaxSubdivisionDegree = 64;
 // d + 1 points when open, 3 when closed).
 absl::StatusOr<std::vector<std::vector<double>>> SubdividePolygon(
     const PointsView& polygon, bool closed, SubdivisionScheme scheme,
-    int degree, int levels);
+    int degree, int levels, const CancellationToken* cancel = nullptr);
 
 // InsertSurfaceKnots inserts `knots` into the u (in_u) or v knot vector of
 // `surface` by InsertKnots' refinement applied to all columns (rows) of the
@@ -130,7 +135,7 @@ absl::StatusOr<std::vector<std::vector<double>>> SubdividePolygon(
 // degree and domain of that direction.
 absl::StatusOr<SurfaceData> InsertSurfaceKnots(
     const BSplineSurfaceView& surface, bool in_u,
-    absl::Span<const double> knots);
+    absl::Span<const double> knots, const CancellationToken* cancel = nullptr);
 
 // SplitBezierSurface cuts `surface` at u = t (in_u) or v = t into two Bezier
 // surfaces, each reparameterized to [0, 1]^2: first the part with u (v) in

@@ -1,0 +1,301 @@
+// Hostile requests through a real in-process server, one test per class of
+// defect the first independent probing found: integer fields taken beyond
+// their range, work that outgrows the request or outlives its deadline,
+// validation gaps, and non-finite answers with status OK. Each refusal must
+// be INVALID_ARGUMENT or RESOURCE_EXHAUSTED naming the field's full path.
+#include <gmock/gmock.h>
+#include <google/protobuf/text_format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <thread>
+
+#include "absl/strings/str_cat.h"
+#include "in_process_server.h"
+
+namespace freeform::server {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+template <typename Message>
+Message Parse(const std::string& text) {
+  Message message;
+  EXPECT_TRUE(google::protobuf::TextFormat::ParseFromString(text, &message))
+      << text;
+  return message;
+}
+
+// A line y = x as a clamped uniform cubic B-spline with `count` points.
+std::string LongBSpline(int count) {
+  std::string text = "bspline { degree: 3 control_points { dimension: 2 ";
+  for (int i = 0; i < count; ++i) {
+    absl::StrAppend(&text, "coordinates: ", i, " coordinates: ", i, " ");
+  }
+  text += "} ";
+  for (int k = 0; k < count + 4; ++k) {
+    const int value = std::clamp(k - 3, 0, count - 3);
+    absl::StrAppend(&text, "knots: ", value, " ");
+  }
+  return text + "}";
+}
+
+class HostileInputTest : public InProcessServerTest {
+ protected:
+  // Waits until no call is in flight: a call the client gave up on must not
+  // keep computing.
+  bool Drains(std::chrono::milliseconds within) {
+    const auto until = std::chrono::steady_clock::now() + within;
+    while (std::chrono::steady_clock::now() < until) {
+      if (server_->calls_in_flight() == 0) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return server_->calls_in_flight() == 0;
+  }
+
+  std::unique_ptr<Client> Hurried(std::chrono::milliseconds timeout) {
+    ClientOptions options;
+    options.timeout = timeout;
+    return std::make_unique<Client>(server_->InProcessChannel(), options);
+  }
+};
+
+// 1. Integer fields are checked in their own type.
+
+TEST_F(HostileInputTest, LeastSquaresCountBeyondInt32IsRefused) {
+  for (const std::string count : {"2147483648", "4294967295"}) {
+    std::string text = "points { dimension: 1 ";
+    for (int i = 0; i < 20; ++i)
+      absl::StrAppend(&text, "coordinates: ", i, " ");
+    text += "} least_squares { degree: 3 control_point_count: " + count + " }";
+    auto result =
+        client_->InterpolateCurve(Parse<v1::InterpolateCurveRequest>(text));
+    ExpectInvalid(result.status(), "least_squares.control_point_count");
+    EXPECT_THAT(std::string(result.status().message()), HasSubstr(count));
+  }
+}
+
+TEST_F(HostileInputTest, DegreesBeyondInt32AreReportedAsSent) {
+  auto curve = client_->EvaluateCurve(Parse<v1::EvaluateCurveRequest>(
+      "curve { bspline { degree: 4294967295 control_points { dimension: 1 "
+      "coordinates: 0 coordinates: 1 } } } parameters { list { values: 0 } }"));
+  ExpectInvalid(curve.status(), "curve.bspline.degree");
+  EXPECT_THAT(std::string(curve.status().message()), HasSubstr("4294967295"));
+
+  auto subdivided = client_->SubdividePolygon(Parse<v1::SubdivideRequest>(
+      "polygon { dimension: 1 coordinates: 0 coordinates: 1 coordinates: 2 }"
+      " scheme: SUBDIVISION_SCHEME_UNIFORM_BSPLINE degree: 4294967295 "
+      "levels: 1"));
+  ExpectInvalid(subdivided.status(), "degree");
+  EXPECT_THAT(std::string(subdivided.status().message()),
+              HasSubstr("4294967295"));
+
+  auto levels = client_->SubdividePolygon(Parse<v1::SubdivideRequest>(
+      "polygon { dimension: 1 coordinates: 0 coordinates: 1 coordinates: 2 }"
+      " scheme: SUBDIVISION_SCHEME_CHAIKIN levels: 4294967295"));
+  EXPECT_EQ(FieldViolationsOf(levels.status()).at(0).field, "levels")
+      << levels.status();
+
+  auto basis =
+      client_->EvaluateSurfaceBasis(Parse<v1::EvaluateSurfaceBasisRequest>(
+          "triangular_degree: 4294967295 parameters { points { uv: 0 uv: 0 } "
+          "}"));
+  ExpectInvalid(basis.status(), "triangular_degree");
+}
+
+// 2. Work stays linear in the request and stops at the deadline.
+
+TEST_F(HostileInputTest, DecomposeIsLinearInTheKnots) {
+  // 2 * 10^5 control points: a quadratic algorithm takes minutes.
+  auto client = Hurried(std::chrono::seconds(20));
+  auto result = client->DecomposeCurve(Parse<v1::DecomposeCurveRequest>(
+      "curve { " + LongBSpline(200'000) + " }"));
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_EQ(result->segments_size(), 200'000 - 3);
+}
+
+TEST_F(HostileInputTest, PowerFormBeyondTheDegreeLimitIsRefused) {
+  std::string text = "curve { power { coefficients { dimension: 1 ";
+  for (int i = 0; i < 2000; ++i) text += "coordinates: 1 ";
+  text += "} } }";
+  auto result = client_->DecomposeCurve(Parse<v1::DecomposeCurveRequest>(text));
+  ExpectInvalid(result.status(), "curve.power.coefficients");
+}
+
+// Interpolation and least squares of degree 64 through 3 * 10^5 points take
+// seconds of work for a 2.4 MB request; with a 300 ms deadline the server
+// must stop soon after it.
+TEST_F(HostileInputTest, InterpolationStopsAtTheDeadline) {
+  v1::InterpolateCurveRequest request;
+  request.mutable_points()->set_dimension(1);
+  for (int i = 0; i < 300'000; ++i) {
+    request.mutable_points()->add_coordinates(std::sin(0.001 * i));
+  }
+  request.mutable_bspline()->set_degree(64);
+  v1::InterpolateCurveRequest least_squares = request;
+  least_squares.mutable_least_squares()->set_degree(64);
+  least_squares.mutable_least_squares()->set_control_point_count(150'000);
+  for (const auto& hurried : {request, least_squares}) {
+    auto result =
+        Hurried(std::chrono::milliseconds(300))->InterpolateCurve(hurried);
+    EXPECT_EQ(result.status().code(), absl::StatusCode::kDeadlineExceeded)
+        << result.status();
+    EXPECT_TRUE(Drains(std::chrono::milliseconds(500)));
+  }
+}
+
+// A degree-10 B-spline of 16,000 points in 4-D elevated by 54: about
+// 10^10 operations for an answer under every limit.
+TEST_F(HostileInputTest, ElevationStopsAtTheDeadline) {
+  v1::ElevateCurveDegreeRequest request;
+  v1::BSplineCurve* curve = request.mutable_curve()->mutable_bspline();
+  constexpr int kCount = 16'000, kDegree = 10;
+  curve->set_degree(kDegree);
+  curve->mutable_control_points()->set_dimension(4);
+  for (int i = 0; i < 4 * kCount; ++i) {
+    curve->mutable_control_points()->add_coordinates(std::cos(i));
+  }
+  for (int k = 0; k < kCount + kDegree + 1; ++k) {
+    curve->add_knots(std::clamp(k - kDegree, 0, kCount - kDegree));
+  }
+  request.set_by(54);
+  auto result = Hurried(std::chrono::seconds(1))->ElevateCurveDegree(request);
+  EXPECT_EQ(result.status().code(), absl::StatusCode::kDeadlineExceeded)
+      << result.status();
+  EXPECT_TRUE(Drains(std::chrono::milliseconds(500)));
+}
+
+TEST_F(HostileInputTest, CurveTessellationRefusesATinyToleranceAtOnce) {
+  auto result = Hurried(std::chrono::seconds(1))
+                    ->TessellateCurve(Parse<v1::TessellateCurveRequest>(
+                        "curve { bezier { control_points { dimension: 2 "
+                        "coordinates: 0 coordinates: 0 coordinates: 1 "
+                        "coordinates: 2 coordinates: 3 coordinates: -1 } "
+                        "weights: 1 weights: 3 weights: 1 } } "
+                        "tolerance: 1e-300"));
+  EXPECT_EQ(FieldViolationsOf(result.status()).at(0).field, "tolerance")
+      << result.status();
+}
+
+// 3. Answers too large are refused before they are built.
+
+TEST_F(HostileInputTest, SurfaceStreamCutsInsideRows) {
+  auto request = Parse<v1::EvaluateSurfaceRequest>(
+      "surface { bezier { control_net { dimension: 3 count_u: 2 count_v: 2 "
+      "coordinates: [0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 1] } } } "
+      "parameters { grid { u { range { count: 1 } } v { range { count: "
+      "3000000 } } } }");
+  auto result = client_->EvaluateSurfaceStreamed(request);
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_EQ(result->count, 3'000'000u);
+}
+
+// 4. Validation gaps.
+
+TEST_F(HostileInputTest, BernsteinBasisOfTheHighestDegreeEvaluates) {
+  auto result = client_->EvaluateBasis(Parse<v1::EvaluateBasisRequest>(
+      "basis { bernstein { degree: 64 } } parameters { list { values: 0.25 "
+      "} }"));
+  ASSERT_TRUE(result.ok()) << result.status();
+  double sum = 0;
+  for (double value : result->derivatives[0]) sum += value;
+  EXPECT_NEAR(sum, 1.0, 1e-14);
+  EXPECT_NEAR(result->derivatives[0][0], std::pow(0.75, 64), 1e-20);
+}
+
+TEST_F(HostileInputTest, TriangularParameterErrorHasItsFullPath) {
+  auto result = client_->EvaluateSurface(Parse<v1::EvaluateSurfaceRequest>(
+      "surface { triangular_bezier { degree: 1 control_points { dimension: 1 "
+      "coordinates: [0, 1, 2] } } } parameters { points { uv: [0.9, 0.9] } "
+      "}"));
+  ExpectInvalid(result.status(), "parameters.points.uv[0]");
+}
+
+TEST_F(HostileInputTest, DegreeZeroBSplineIsAStepFunction) {
+  auto result = client_->EvaluateCurve(Parse<v1::EvaluateCurveRequest>(
+      "curve { bspline { degree: 0 control_points { dimension: 1 "
+      "coordinates: [5, 7] } knots: [0, 1, 2] } } "
+      "parameters { list { values: [0, 0.5, 1.5, 2] } }"));
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_THAT(result->derivatives[0], testing::ElementsAre(5, 5, 7, 7));
+}
+
+TEST_F(HostileInputTest, DecomposeTakesLagrangeCurves) {
+  // The parabola through (0, 0), (1, 1), (2, 4) at nodes 0, 1, 2 is one
+  // Bezier segment with control points 0, 0, 4 (x: 0, 1, 2).
+  auto result = client_->DecomposeCurve(Parse<v1::DecomposeCurveRequest>(
+      "curve { lagrange { points { dimension: 2 coordinates: [0, 0, 1, 1, 2, "
+      "4] } nodes: [0, 1, 2] } }"));
+  ASSERT_TRUE(result.ok()) << result.status();
+  ASSERT_EQ(result->segments_size(), 1);
+  const auto& points = result->segments(0).bezier().control_points();
+  ASSERT_EQ(points.coordinates_size(), 6);
+  const double expected[] = {0, 0, 1, 0, 2, 4};
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(points.coordinates(i), expected[i], 1e-14) << i;
+  }
+}
+
+TEST_F(HostileInputTest, ReductionByTheWholeDegreeIsRefused) {
+  auto result = client_->ReduceCurveDegree(Parse<v1::ReduceCurveDegreeRequest>(
+      "curve { bezier { control_points { dimension: 1 coordinates: [0, 1, 0] "
+      "} } } by: 2"));
+  ExpectInvalid(result.status(), "by");
+}
+
+// 5. An OK answer is finite.
+
+TEST_F(HostileInputTest, HugeControlPointsGiveAFiniteAnswerOrARefusal) {
+  auto result = client_->EvaluateCurve(Parse<v1::EvaluateCurveRequest>(
+      "curve { bezier { control_points { dimension: 1 coordinates: [1e308, "
+      "-1e308, 1e308, -1e308] } } } parameters { list { values: [0.3, 0.5] "
+      "} } derivative_order: 2"));
+  if (result.ok()) {
+    for (const auto& order : result->derivatives) {
+      for (double value : order) EXPECT_TRUE(std::isfinite(value));
+    }
+  } else {
+    EXPECT_THAT(FieldViolationsOf(result.status()).at(0).field,
+                testing::StartsWith("curve.bezier"))
+        << result.status();
+  }
+}
+
+TEST_F(HostileInputTest, DenormalKnotSpanGivesAFiniteAnswerOrARefusal) {
+  auto result = client_->EvaluateBasis(Parse<v1::EvaluateBasisRequest>(
+      "basis { bspline { degree: 2 knots: [0, 0, 0, 5e-324, 1, 1, 1] } } "
+      "parameters { list { values: [0, 1e-324, 0.5] } } derivative_order: "
+      "2"));
+  if (result.ok()) {
+    for (const auto& order : result->derivatives) {
+      for (double value : order) EXPECT_TRUE(std::isfinite(value));
+    }
+  } else {
+    EXPECT_THAT(FieldViolationsOf(result.status()).at(0).field,
+                testing::StartsWith("basis.bspline"))
+        << result.status();
+  }
+}
+
+TEST_F(HostileInputTest, ExtremeWeightsGiveAFiniteAnswerOrARefusal) {
+  auto result = client_->EvaluateCurve(Parse<v1::EvaluateCurveRequest>(
+      "curve { bezier { control_points { dimension: 1 coordinates: [0, 1, 2]"
+      " } weights: [1e-300, 1e300, 1e-300] } } parameters { list { values: "
+      "[0, 1e-300, 0.5, 1] } } derivative_order: 3"));
+  if (result.ok()) {
+    for (const auto& order : result->derivatives) {
+      for (double value : order) EXPECT_TRUE(std::isfinite(value));
+    }
+  } else {
+    EXPECT_THAT(FieldViolationsOf(result.status()).at(0).field,
+                testing::StartsWith("curve.bezier"))
+        << result.status();
+  }
+}
+
+}  // namespace
+}  // namespace freeform::server
