@@ -8,7 +8,10 @@
 #include <memory>
 #include <optional>
 
+#include "absl/base/casts.h"
+#include "absl/strings/str_cat.h"
 #include "errors.h"
+#include "freeform/core/status.h"
 #include "spdlog/spdlog.h"
 
 namespace freeform::server {
@@ -88,7 +91,7 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
   void Run() { Answer(std::move(run_)(record_.execution())); }
 
   void Answer(absl::Status status) {
-    if (status.ok() && kCheckAnswers) status = CheckAnswerFinite(*response_);
+    if (status.ok()) status = record_.CheckAnswer(*response_);
     if (status.ok()) response_bytes_ = response_->ByteSizeLong();
     status_ = status;
     Finish(AnswerStatus(status));
@@ -102,7 +105,31 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
   size_t response_bytes_ = 0;
 };
 
-// Every double of `message` and its submessages is finite.
+// True when no value of `values` is a NaN or an infinity: an exponent of all
+// ones. A branch-free loop the compiler vectorizes.
+bool FiniteValues(const double* values, size_t count) {
+  constexpr uint64_t kExponent = 0x7ff0000000000000ull;
+  uint64_t non_finite = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const uint64_t bits = absl::bit_cast<uint64_t>(values[i]);
+    non_finite |= static_cast<uint64_t>((bits & kExponent) == kExponent);
+  }
+  return non_finite == 0;
+}
+
+// The values of a repeated double field, read without a virtual call per
+// value (RepeatedFieldRef has one).
+const google::protobuf::RepeatedField<double>& RepeatedDoubles(
+    const google::protobuf::Message& message,
+    const google::protobuf::FieldDescriptor* field) {
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+  return message.GetReflection()->GetRepeatedField<double>(message, field);
+#pragma GCC diagnostic pop
+}
+
+}  // namespace
+
 bool AllFinite(const google::protobuf::Message& message) {
   using google::protobuf::FieldDescriptor;
   const google::protobuf::Reflection* reflection = message.GetReflection();
@@ -111,10 +138,9 @@ bool AllFinite(const google::protobuf::Message& message) {
   for (const FieldDescriptor* field : fields) {
     if (field->cpp_type() == FieldDescriptor::CPPTYPE_DOUBLE) {
       if (field->is_repeated()) {
-        for (const double value :
-             reflection->GetRepeatedFieldRef<double>(message, field)) {
-          if (!std::isfinite(value)) return false;
-        }
+        const google::protobuf::RepeatedField<double>& values =
+            RepeatedDoubles(message, field);
+        if (!FiniteValues(values.data(), values.size())) return false;
       } else if (!std::isfinite(reflection->GetDouble(message, field))) {
         return false;
       }
@@ -134,14 +160,13 @@ bool AllFinite(const google::protobuf::Message& message) {
   return true;
 }
 
-}  // namespace
-
 CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
                        grpc::CallbackServerContext* context,
                        const google::protobuf::Message* request)
     : frame_(frame),
       method_(method),
       context_(context),
+      request_(request),
       request_bytes_(request->ByteSizeLong()),
       started_(std::chrono::steady_clock::now()) {
   if (auto deadline = SteadyDeadline(*context); deadline.has_value()) {
@@ -173,6 +198,22 @@ absl::Status CallRecord::Reserve(const CallPlan& plan) {
       frame_->budget().Reserve(plan.memory_bytes + request_bytes_, method_);
   if (!reservation.ok()) return reservation.status();
   reservation_ = *std::move(reservation);
+  planned_bytes_ = plan.memory_bytes;
+  return absl::OkStatus();
+}
+
+absl::Status CallRecord::CheckAnswer(
+    const google::protobuf::Message& answer) const {
+  if (!AllFinite(answer)) return OverflowError(*request_);
+  if (kCheckAnswers) {
+    const size_t bytes = answer.ByteSizeLong();
+    if (bytes > planned_bytes_) {
+      return absl::InternalError(absl::StrCat(
+          "the answer of ", bytes, " bytes exceeds the ", planned_bytes_,
+          " bytes its plan reserved (a server bug: please report the "
+          "request)"));
+    }
+  }
   return absl::OkStatus();
 }
 
@@ -219,11 +260,33 @@ absl::Status QueueFullError() {
       "the server's work queue is full; retry later");
 }
 
-absl::Status CheckAnswerFinite(const google::protobuf::Message& answer) {
-  if (AllFinite(answer)) return absl::OkStatus();
-  return absl::InternalError(
-      "the answer holds a value that is not finite (a server bug: please "
-      "report the request)");
+std::string GeometryFieldOf(const google::protobuf::Message& request) {
+  const google::protobuf::FieldDescriptor* field =
+      request.GetDescriptor()->FindFieldByNumber(1);
+  if (field == nullptr) return "";
+  std::string path = field->name();
+  if (field->cpp_type() != google::protobuf::FieldDescriptor::CPPTYPE_MESSAGE ||
+      field->is_repeated()) {
+    return path;
+  }
+  const google::protobuf::Message& geometry =
+      request.GetReflection()->GetMessage(request, field);
+  const google::protobuf::Descriptor* type = geometry.GetDescriptor();
+  for (int i = 0; i < type->oneof_decl_count(); ++i) {
+    const google::protobuf::FieldDescriptor* kind =
+        geometry.GetReflection()->GetOneofFieldDescriptor(geometry,
+                                                          type->oneof_decl(i));
+    if (kind != nullptr) return absl::StrCat(path, ".", kind->name());
+  }
+  return path;
+}
+
+absl::Status OverflowError(const google::protobuf::Message& request) {
+  return InvalidFieldError(
+      GeometryFieldOf(request),
+      "the answer is not finite in double precision: the values (coordinates, "
+      "weights, knot spacing, parameters) are too extreme for this request; "
+      "scale the geometry");
 }
 
 grpc::Status AnswerStatus(const absl::Status& status) {

@@ -13,8 +13,11 @@
 //      (chunks_in_flight);
 //   5. answers with the status (field paths as google.rpc.BadRequest), and
 //      writes one access-log line: method, peer, sizes, status, microseconds.
-// In debug and sanitizer builds it also checks that every OK answer is
-// finite. Thread-safe: one frame serves every call.
+// Every OK answer (each streamed message too) is checked to be finite: a
+// value that overflowed double precision turns the answer into
+// INVALID_ARGUMENT on the request's geometry. Debug and sanitizer builds
+// also check that the answer fits the memory its plan reserved.
+// Thread-safe: one frame serves every call.
 #ifndef FREEFORM_SERVER_RPC_H_
 #define FREEFORM_SERVER_RPC_H_
 
@@ -121,6 +124,10 @@ class CallRecord {
   size_t request_bytes() const { return request_bytes_; }
   // Reserve takes the plan's memory from the budget.
   absl::Status Reserve(const CallPlan& plan);
+  // CheckAnswer returns INVALID_ARGUMENT on the request's geometry when
+  // `answer` holds a NaN or an infinity (OverflowError), and, in debug and
+  // sanitizer builds, INTERNAL when it is larger than the reserved plan.
+  absl::Status CheckAnswer(const google::protobuf::Message& answer) const;
   // Schedule runs `task` on the pool; false when its queue is full.
   bool Schedule(absl::AnyInvocable<void() &&> task);
   void Cancel() { token_.Cancel(); }
@@ -133,7 +140,9 @@ class CallRecord {
   RpcFrame* const frame_;
   const absl::string_view method_;
   grpc::CallbackServerContext* const context_;
+  const google::protobuf::Message* const request_;
   const size_t request_bytes_;
+  uint64_t planned_bytes_ = 0;
   const std::chrono::steady_clock::time_point started_;
   CancellationToken token_;
   MemoryBudget::Reservation reservation_;
@@ -186,11 +195,20 @@ inline constexpr size_t kInlinePlanningBytes = 64 * 1024;
 // refused.
 absl::Status QueueFullError();
 
-// CheckAnswerFinite returns INTERNAL when an OK answer holds a NaN or an
-// infinity; the frame calls it in debug and sanitizer builds.
-absl::Status CheckAnswerFinite(const google::protobuf::Message& answer);
+// GeometryFieldOf returns the path of the geometry a request describes: its
+// field number 1 (curve, surface, basis, points, polygon, surfaces), with
+// the kind chosen in its oneof ("curve.bezier").
+std::string GeometryFieldOf(const google::protobuf::Message& request);
 
-// Debug and sanitizer builds check every OK answer (CheckAnswerFinite).
+// OverflowError is the answer to a request whose result is not finite in
+// double precision, on the request's geometry.
+absl::Status OverflowError(const google::protobuf::Message& request);
+
+// AllFinite returns true when every double of `message` and of its
+// submessages is finite.
+bool AllFinite(const google::protobuf::Message& message);
+
+// Debug and sanitizer builds check every OK answer's size against its plan.
 #ifdef NDEBUG
 inline constexpr bool kCheckAnswers = false;
 #else
@@ -348,7 +366,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
     message.Clear();
     absl::Status status =
         work_.fill(slots_[slot].chunk, message, record_.chunk_execution());
-    if (status.ok() && kCheckAnswers) status = CheckAnswerFinite(message);
+    if (status.ok()) status = record_.CheckAnswer(message);
     Computed(slot, status);
   }
 

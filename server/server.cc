@@ -5,11 +5,14 @@
 #include <grpcpp/security/server_credentials.h>
 #include <grpcpp/server_builder.h>
 
+#include <memory>
 #include <thread>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "curve_service.h"
 #include "freeform/core/file.h"
+#include "parse_errors.h"
 #include "surface_service.h"
 
 namespace freeform::server {
@@ -76,6 +79,11 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   builder.SetMaxSendMessageSize(max_message);
   builder.AddListeningPort(options.listen_address, *credentials,
                            &server->port_);
+  std::vector<
+      std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>>
+      interceptors;
+  interceptors.push_back(std::make_unique<ParseErrorInterceptorFactory>());
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
   builder.RegisterService(server->curve_service_.get());
   builder.RegisterService(server->surface_service_.get());
   server->server_ = builder.BuildAndStart();

@@ -41,14 +41,47 @@ struct SurfacePlan {
 
   size_t size() const { return grid ? u.size() * v.size() : uv.size() / 2; }
 
-  // Samples of points [first, last); on a grid both must be row multiples.
-  SurfaceSamples Chunk(size_t first, size_t last) const {
+  // Samples of points [first, last) of a grid that start at point
+  // `offset` of the range.
+  struct Piece {
+    size_t offset = 0;
+    SurfaceSamples samples;
+  };
+
+  // Pieces returns the samples of points [first, last): one piece for (u,
+  // v) pairs; for a grid (u-major) up to three grids, the end of the first
+  // row, the whole rows and the start of the last, so a chunk may cut a
+  // row anywhere.
+  std::vector<Piece> Pieces(size_t first, size_t last) const {
     if (!grid) {
-      return SurfaceSamples::Pairs(uv.subspan(2 * first, 2 * (last - first)));
+      return {{.offset = 0,
+               .samples = SurfaceSamples::Pairs(
+                   uv.subspan(2 * first, 2 * (last - first)))}};
     }
     const size_t row = v.size();
-    return SurfaceSamples::Grid(
-        absl::MakeConstSpan(u).subspan(first / row, (last - first) / row), v);
+    const absl::Span<const double> all_u = absl::MakeConstSpan(u);
+    const absl::Span<const double> all_v = absl::MakeConstSpan(v);
+    std::vector<Piece> pieces;
+    size_t at = first;
+    while (at < last) {
+      const size_t i = at / row, j = at % row;
+      size_t rows = 1, columns = std::min(row - j, last - at);
+      if (j == 0 && last - at >= row) {  // whole rows
+        rows = (last - at) / row;
+        columns = row;
+      }
+      pieces.push_back(
+          {.offset = at - first,
+           .samples = SurfaceSamples::Grid(all_u.subspan(i, rows),
+                                           all_v.subspan(j, columns))});
+      at += rows * columns;
+    }
+    return pieces;
+  }
+
+  // All returns every sample.
+  SurfaceSamples All() const {
+    return grid ? SurfaceSamples::Grid(u, v) : SurfaceSamples::Pairs(uv);
   }
 
   size_t ValuesPerPoint() const {
@@ -123,7 +156,11 @@ absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
           ResolvePairs(parameters.points(), values_per_point, limits);
       if (!uv.ok()) return uv.status();
       plan.uv = *uv;
-      if (plan.triangular) return absl::OkStatus();  // checked by the core
+      if (plan.triangular) {
+        return PrefixFieldPath(
+            ValidateSamples(*plan.surface, SurfaceSamples::Pairs(plan.uv)),
+            "parameters.points");
+      }
       return PrefixFieldPath(
           ValidateSurfaceSamples(SurfaceSamples::Pairs(plan.uv),
                                  plan.domain.u_start, plan.domain.u_end,
@@ -228,8 +265,26 @@ absl::Status EvaluateChunk(const SurfacePlan& plan, size_t first, size_t last,
     normals = UninitializedArray(
         *response.mutable_normals()->mutable_coordinates(), 3 * count);
   }
-  return EvaluateSurface(*plan.surface, plan.Chunk(first, last), output,
-                         normals, execution);
+  const size_t dimensions = static_cast<size_t>(dimension);
+  for (const SurfacePlan::Piece& piece : plan.Pieces(first, last)) {
+    const size_t points = piece.samples.size();
+    std::vector<absl::Span<double>> piece_output;
+    piece_output.reserve(output.size());
+    for (absl::Span<double> partial : output) {
+      piece_output.push_back(
+          partial.subspan(piece.offset * dimensions, points * dimensions));
+    }
+    const absl::Span<double> piece_normals =
+        normals.empty() ? normals
+                        : normals.subspan(3 * piece.offset, 3 * points);
+    if (absl::Status status =
+            EvaluateSurface(*plan.surface, piece.samples, piece_output,
+                            piece_normals, execution);
+        !status.ok()) {
+      return status;
+    }
+  }
+  return absl::OkStatus();
 }
 
 absl::StatusOr<UnaryWork> PlanTensorBasis(
@@ -270,7 +325,7 @@ absl::StatusOr<UnaryWork> PlanTensorBasis(
         response.set_function_count(static_cast<uint32_t>(functions));
         response.set_count(static_cast<uint32_t>(plan.size()));
         return EvaluateTensorBasis(
-            u, v, plan.Chunk(0, plan.size()),
+            u, v, plan.All(),
             UninitializedArray(*response.mutable_values(), values), execution);
       }};
 }
@@ -361,10 +416,6 @@ SurfaceServiceImpl::EvaluateStream(grpc::CallbackServerContext* context,
         size_t chunk = std::min(max_points, request->chunk_size() > 0
                                                 ? request->chunk_size()
                                                 : limits.default_stream_chunk);
-        if (plan->grid) {  // whole rows of the grid
-          const size_t row = plan->v.size();
-          chunk = std::max<size_t>(1, chunk / row) * row;
-        }
         const size_t count = plan->size();
         CallPlan memory = EvaluationMemory(*plan, chunk, limits);
         memory.memory_bytes *= frame_->chunks_in_flight();

@@ -15,10 +15,9 @@ namespace freeform {
 
 absl::StatusOr<BernsteinFunctions> BernsteinFunctions::Create(
     int degree, absl::Span<const double> weights) {
-  if (degree < 0 || degree + 1 > kMaxDimension) {
+  if (degree < 0) {
     return InvalidFieldError(
-        "degree", absl::StrCat("must be between 0 and ", kMaxDimension - 1,
-                               ", got ", degree));
+        "degree", absl::StrCat("must not be negative, got ", degree));
   }
   // The weights follow the rules of a rational Bezier curve's.
   const std::vector<double> points(static_cast<size_t>(degree) + 1, 0.0);

@@ -206,23 +206,97 @@ std::vector<double> BezierToPower(const PointsView& control_points) {
   return coefficients;
 }
 
+namespace {
+
+// BernsteinDerivatives writes B(n,i)^(k)(t) for k = 0..max_order into
+// out[k * (n + 1) + i]. The triangle of every degree's Bernstein values
+// (levels[m (m + 1) / 2 + i] = B(m,i)(t)) gives order k from degree n - k by
+// the derivative rule B(m,i)' = m (B(m-1,i-1) - B(m-1,i)) applied k times.
+// `levels` holds (n + 1)(n + 2) / 2 doubles. O(n^2 + max_order^2 n).
+void BernsteinDerivatives(int n, double t, int max_order, double* levels,
+                          double* out) {
+  const double s = 1.0 - t;
+  levels[0] = 1.0;
+  for (int m = 1; m <= n; ++m) {
+    const double* previous = levels + (m - 1) * m / 2;
+    double* level = levels + m * (m + 1) / 2;
+    level[0] = s * previous[0];
+    for (int i = 1; i < m; ++i)
+      level[i] = s * previous[i] + t * previous[i - 1];
+    level[m] = t * previous[m - 1];
+  }
+  const size_t count = static_cast<size_t>(n) + 1;
+  for (int k = 0; k <= max_order; ++k) {
+    double* row = out + static_cast<size_t>(k) * count;
+    std::fill(row, row + count, 0.0);
+    if (k > n) continue;
+    const int m = n - k;
+    std::copy_n(levels + m * (m + 1) / 2, m + 1, row);
+    // Apply the rule k times; the row grows by one entry each time.
+    for (int degree = m + 1; degree <= n; ++degree) {
+      for (int i = degree; i >= 0; --i) {
+        const double left = i > 0 ? row[i - 1] : 0.0;
+        const double right = i < degree ? row[i] : 0.0;
+        row[i] = degree * (left - right);
+      }
+    }
+  }
+}
+
+}  // namespace
+
 absl::Status EvaluateBernsteinBasis(int n, absl::Span<const double> weights,
                                     absl::Span<const double> parameters,
                                     CurveOutput output,
                                     const ExecutionContext& context) {
-  if (n < 0 || n + 1 > kMaxDimension) {
-    return InvalidFieldError(
-        "degree", absl::StrCat("must be between 0 and ", kMaxDimension - 1));
+  if (n < 0) return InvalidFieldError("degree", "must not be negative");
+  const size_t count = static_cast<size_t>(n) + 1;
+  const std::vector<double> zeros(count, 0.0);
+  if (absl::Status status = ValidateBezierCurve(
+          {.control_points = {.dimension = 1, .coordinates = zeros},
+           .weights = weights});
+      !status.ok()) {
+    return status;
   }
-  // The basis functions are the curve whose control points are the unit
-  // vectors e_i in dimension n + 1: C(t) = (B_0(t), ..., B_n(t)).
-  const size_t count = static_cast<size_t>(n + 1);
-  std::vector<double> identity(count * count, 0.0);
-  for (size_t i = 0; i < count; ++i) identity[i * count + i] = 1.0;
-  const BezierCurveView curve{
-      .control_points = {.dimension = n + 1, .coordinates = identity},
-      .weights = weights};
-  return EvaluateBezierCurve(curve, parameters, output, context);
+  if (absl::Status status =
+          ValidateBatch(parameters, 0.0, 1.0, output, static_cast<int>(count));
+      !status.ok()) {
+    return status;
+  }
+  const int max_order = static_cast<int>(output.size()) - 1;
+  const size_t orders = output.size();
+  const bool rational = !weights.empty();
+  return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
+    std::vector<double> levels(count * (count + 1) / 2);
+    std::vector<double> values(orders * count);
+    // Homogeneous basis (w_i B_i^(k), then sum_i w_i B_i^(k)) and its
+    // projection, for rational weights.
+    std::vector<double> homogeneous(rational ? orders * (count + 1) : 0);
+    std::vector<double> projected(rational ? orders * count : 0);
+    for (size_t r = begin; r < end; ++r) {
+      BernsteinDerivatives(n, parameters[r], max_order, levels.data(),
+                           values.data());
+      const double* result = values.data();
+      if (rational) {
+        for (size_t k = 0; k < orders; ++k) {
+          double* row = &homogeneous[k * (count + 1)];
+          double sum = 0.0;
+          for (size_t i = 0; i < count; ++i) {
+            row[i] = weights[i] * values[k * count + i];
+            sum += row[i];
+          }
+          row[count] = sum;
+        }
+        ProjectHomogeneousDerivatives(homogeneous.data(),
+                                      static_cast<int>(count), max_order,
+                                      projected.data());
+        result = projected.data();
+      }
+      for (size_t k = 0; k < orders; ++k) {
+        std::copy_n(result + k * count, count, &output[k][r * count]);
+      }
+    }
+  });
 }
 
 BezierPointEvaluator::BezierPointEvaluator(const BezierCurveView& curve,

@@ -436,7 +436,8 @@ absl::Status ValidateKnotOrder(absl::Span<const double> knots) {
 }
 
 // A value strictly inside the domain may appear at most p times (the curve
-// stays continuous), any other value at most p + 1 times (every basis
+// stays continuous; once for degree 0, whose curve is a step function), any
+// other value at most p + 1 times (every basis
 // function is nonzero somewhere: the knot vector is (p + 1)-regular,
 // docs/references.md, 'Cox-de Boor recurrence'). Names the first knot beyond
 // the allowed multiplicity.
@@ -449,16 +450,18 @@ absl::Status ValidateMultiplicities(int p, int n,
     if (i < knots.size() && knots[i] == knots[run]) continue;
     const double value = knots[run];
     const bool interior = start < value && value < end;
-    const size_t allowed = static_cast<size_t>(p) + (interior ? 0 : 1);
+    const size_t allowed = interior ? static_cast<size_t>(std::max(p, 1))
+                                    : static_cast<size_t>(p) + 1;
     if (i - run > allowed) {
       return InvalidFieldError(
           IndexedField("knots", run + allowed),
           absl::StrCat("knot value ", value, " appears ", i - run,
                        " times; a degree ", p, " curve allows at most ",
                        allowed,
-                       interior ? " inside the domain (more would make "
-                                  "it discontinuous)"
-                                : ""));
+                       interior && p > 0 ? " inside the domain (more would "
+                                           "make it discontinuous)"
+                       : interior        ? " inside the domain"
+                                         : ""));
     }
     run = i;
   }

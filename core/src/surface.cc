@@ -143,6 +143,20 @@ bool IsTriangular(const Surface& surface) {
   return std::holds_alternative<TriangularPatch>(surface);
 }
 
+absl::Status ValidateSamples(const Surface& surface,
+                             const SurfaceSamples& samples) {
+  if (const auto* patch = std::get_if<TriangularPatch>(&surface)) {
+    if (samples.grid) {
+      return InvalidFieldError(
+          "grid", "a triangular patch takes (u, v) points, not a grid");
+    }
+    return internal::ValidateTriangularPairs(patch->view(), samples.uv);
+  }
+  const SurfaceDomain domain = DomainOf(surface);
+  return ValidateSurfaceSamples(samples, domain.u_start, domain.u_end,
+                                domain.v_start, domain.v_end);
+}
+
 absl::Status EvaluateSurface(const Surface& surface,
                              const SurfaceSamples& samples,
                              SurfaceOutput partials, absl::Span<double> normals,

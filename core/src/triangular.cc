@@ -336,6 +336,11 @@ absl::Status EvaluateTriangularPatch(const TriangularPatchView& patch,
 
 namespace internal {
 
+absl::Status ValidateTriangularPairs(const TriangularPatchView& patch,
+                                     absl::Span<const double> uv) {
+  return ValidatePairs(uv, ParameterMap(patch.domain_triangle));
+}
+
 absl::Status EvaluateValidTriangularPatch(const TriangularPatchView& patch,
                                           absl::Span<const double> uv,
                                           SurfaceOutput output,

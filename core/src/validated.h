@@ -68,6 +68,11 @@ absl::Status EvaluateValidTriangularPatch(const TriangularPatchView& patch,
                                           SurfaceOutput output,
                                           const ExecutionContext& context);
 
+// ValidateTriangularPairs checks the (u, v) pairs EvaluateTriangularPatch
+// would take from a valid patch ("uv", "uv[i]").
+absl::Status ValidateTriangularPairs(const TriangularPatchView& patch,
+                                     absl::Span<const double> uv);
+
 }  // namespace freeform::internal
 
 #endif  // FREEFORM_CORE_SRC_VALIDATED_H_

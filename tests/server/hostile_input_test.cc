@@ -5,11 +5,15 @@
 // be INVALID_ARGUMENT or RESOURCE_EXHAUSTED naming the field's full path.
 #include <gmock/gmock.h>
 #include <google/protobuf/text_format.h>
+#include <grpcpp/generic/generic_stub.h>
+#include <grpcpp/support/byte_buffer.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <mutex>
 #include <string>
 #include <thread>
 
@@ -194,6 +198,27 @@ TEST_F(HostileInputTest, SurfaceStreamCutsInsideRows) {
   EXPECT_EQ(result->count, 3'000'000u);
 }
 
+TEST_F(HostileInputTest, GridStreamCutAnywhereEqualsUnary) {
+  auto request = Parse<v1::EvaluateSurfaceRequest>(
+      "surface { bezier { control_net { dimension: 3 count_u: 2 count_v: 3 "
+      "coordinates: [0, 0, 0, 1, 0, 2, 2, 0, 0, 0, 1, 0, 1, 1, -1, 2, 1, 0] "
+      "} } } parameters { grid { u { range { count: 3 } } v { range { count: "
+      "5 } } } } derivative_order: 1 normals: true chunk_size: 4");
+  auto unary = client_->EvaluateSurface(request);
+  auto streamed = client_->EvaluateSurfaceStreamed(request);
+  ASSERT_TRUE(unary.ok()) << unary.status();
+  ASSERT_TRUE(streamed.ok()) << streamed.status();
+  ASSERT_EQ(streamed->count, 15u);
+  ASSERT_EQ(streamed->partials.size(), unary->partials.size());
+  for (size_t k = 0; k < unary->partials.size(); ++k) {
+    EXPECT_EQ(streamed->partials[k].values, unary->partials[k].values) << k;
+  }
+  EXPECT_EQ(streamed->normals, unary->normals);
+  // Point (1, 2) is u = v = 1/2: rows (1, 0, 1) and (1, 1, -1/2) with the
+  // quadratic weights 1/4, 1/2, 1/4 in v, then averaged in u.
+  EXPECT_THAT(unary->Point(0, 0, 7), testing::ElementsAre(1.0, 0.5, 0.25));
+}
+
 // 4. Validation gaps.
 
 TEST_F(HostileInputTest, BernsteinBasisOfTheHighestDegreeEvaluates) {
@@ -295,6 +320,38 @@ TEST_F(HostileInputTest, ExtremeWeightsGiveAFiniteAnswerOrARefusal) {
                 testing::StartsWith("curve.bezier"))
         << result.status();
   }
+}
+
+// 6. Bytes that do not parse as the request message.
+
+TEST_F(HostileInputTest, UnparseableBytesNameTheRequestMessage) {
+  grpc::GenericStub stub(server_->InProcessChannel());
+  // Field 1 (curve) as a length-delimited field longer than the message.
+  const char garbage[] = {0x0a, 0x7f, 0x01, 0x02};
+  grpc::Slice slice(garbage, sizeof(garbage));
+  const grpc::ByteBuffer request(&slice, 1);
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() +
+                       std::chrono::seconds(10));
+  grpc::ByteBuffer response;
+  grpc::Status status;
+  std::mutex mutex;
+  std::condition_variable done_signal;
+  bool done = false;
+  stub.UnaryCall(&context, "/freeform.v1.CurveService/Evaluate",
+                 grpc::StubOptions(), &request, &response,
+                 [&](grpc::Status result) {
+                   std::lock_guard<std::mutex> lock(mutex);
+                   status = std::move(result);
+                   done = true;
+                   done_signal.notify_one();
+                 });
+  std::unique_lock<std::mutex> lock(mutex);
+  done_signal.wait(lock, [&] { return done; });
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT)
+      << status.error_message();
+  EXPECT_THAT(status.error_message(),
+              HasSubstr("not a valid freeform.v1.EvaluateCurveRequest"));
 }
 
 }  // namespace

@@ -27,7 +27,7 @@ namespace freeform {
 // weights (R_i = w_i B_i / sum_j w_j B_j).
 class BernsteinFunctions {
  public:
-  // Create checks 0 <= degree < kMaxDimension ("degree") and the weights as
+  // Create checks 0 <= degree ("degree") and the weights as
   // ValidateBezierCurve does ("weights", "weights[i]").
   static absl::StatusOr<BernsteinFunctions> Create(
       int degree, absl::Span<const double> weights);

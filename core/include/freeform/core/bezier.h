@@ -149,8 +149,11 @@ std::vector<double> BezierToPower(const PointsView& control_points);
 // EvaluateBernsteinBasis writes the Bernstein polynomials B(n,i,t) of degree
 // n (or, with n + 1 weights, the rational basis w_i B_i / sum_j w_j B_j) and
 // their derivatives: output[k][r * (n + 1) + i] is the k-th derivative of
-// function i at parameters[r]. Weights follow the Bezier rules ("weights",
-// "weights[i]"); parameters must lie in [0, 1] ("parameters[i]").
+// function i at parameters[r], from the triangle of Bernstein values of
+// degrees 0..n and B(m,i)' = m (B(m-1,i-1) - B(m-1,i)); rational functions
+// by the quotient rule (rational.h). Any degree n >= 0 ("degree"); weights
+// follow the Bezier rules ("weights", "weights[i]"); parameters must lie in
+// [0, 1] ("parameters[i]"). O(n^2) per parameter and order.
 absl::Status EvaluateBernsteinBasis(int n, absl::Span<const double> weights,
                                     absl::Span<const double> parameters,
                                     CurveOutput output,

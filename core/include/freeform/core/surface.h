@@ -115,6 +115,14 @@ SurfaceDomain DomainOf(const Surface& surface);
 // IsTriangular returns true for a triangular patch.
 bool IsTriangular(const Surface& surface);
 
+// ValidateSamples checks `samples` for `surface` before any work, as its
+// evaluator would: finite values inside the domain for a tensor-product
+// surface (ValidateSurfaceSamples: "uv[i]", "u[i]", "v[i]"), (u, v) pairs
+// inside the triangle for a triangular patch ("uv", "uv[i]"; a grid is
+// refused as "grid").
+absl::Status ValidateSamples(const Surface& surface,
+                             const SurfaceSamples& samples);
+
 // EvaluateSurface writes every partial d^(k+l) S / du^k dv^l with
 // k + l <= MaxOrderOf(partials) at every sample into `partials`, and, when
 // `normals` is not empty, the unit normals (3 * samples.size() doubles; 3D
