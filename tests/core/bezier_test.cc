@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "freeform/core/bspline.h"
 #include "freeform/core/status.h"
 #include "test_util.h"
 
@@ -603,6 +604,40 @@ TEST(BezierBatchTest, MillionParametersUseEveryThreadAndMatchSerial) {
       ExecutionContext{.pool = &pool, .cancellation = &token, .grain = 4096});
   EXPECT_EQ(serial, parallel);
   EXPECT_EQ(threads.size(), kWorkers + 1);
+}
+
+// The Bernstein basis of degree n is the B-spline basis on n + 1 zeros and
+// n + 1 ones: Cox-de Boor (A2.3) against the Bernstein triangle, with and
+// without weights, to degree 64 and third derivatives.
+TEST(BernsteinBasisTest, EqualsTheBSplineBasisOnBezierKnots) {
+  const std::vector<double> params = {0, 0.1, 0.37, 0.5, 0.93, 1};
+  for (int n : {0, 1, 5, 17, 64}) {
+    std::vector<double> knots(static_cast<size_t>(n) + 1, 0.0);
+    knots.insert(knots.end(), static_cast<size_t>(n) + 1, 1.0);
+    std::vector<double> weights(static_cast<size_t>(n) + 1);
+    for (int i = 0; i <= n; ++i) weights[i] = 1.0 + 0.5 * std::sin(i);
+    for (const std::vector<double>& w : {std::vector<double>{}, weights}) {
+      const size_t size = params.size() * (static_cast<size_t>(n) + 1);
+      std::vector<std::vector<double>> bernstein(4, std::vector<double>(size));
+      std::vector<std::vector<double>> bspline(4, std::vector<double>(size));
+      std::vector<absl::Span<double>> out_bernstein(bernstein.begin(),
+                                                    bernstein.end());
+      std::vector<absl::Span<double>> out_bspline(bspline.begin(),
+                                                  bspline.end());
+      ASSERT_TRUE(EvaluateBernsteinBasis(n, w, params, out_bernstein).ok());
+      ASSERT_TRUE(
+          EvaluateBSplineBasis(n, knots, w, params, out_bspline).ok());
+      for (int k = 0; k <= 3; ++k) {
+        // Derivative k of degree n grows like n^k.
+        const double scale = std::pow(std::max(n, 1), k);
+        for (size_t i = 0; i < size; ++i) {
+          EXPECT_NEAR(bernstein[k][i], bspline[k][i], 1e-12 * scale)
+              << "degree " << n << " order " << k << " value " << i
+              << (w.empty() ? "" : " rational");
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
