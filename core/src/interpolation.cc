@@ -54,6 +54,10 @@ class BandedMatrix {
     CancellationPoll poll(cancel_);
     std::vector<double> row_scale(static_cast<size_t>(n_), 0.0);
     for (int i = 0; i < n_; ++i) {
+      if (absl::Status status = poll.Done(static_cast<size_t>(width_));
+          !status.ok()) {
+        return status;
+      }
       for (int w = 0; w < width_; ++w) {
         row_scale[static_cast<size_t>(i)] =
             std::max(row_scale[static_cast<size_t>(i)],
@@ -416,7 +420,12 @@ absl::StatusOr<BandedMatrix> FactorOpenSystem(
     ku = std::max(ku, first + p - r);
   }
   BandedMatrix matrix(count, kl, ku, cancel);
+  CancellationPoll poll(cancel);
   for (int r = 0; r < count; ++r) {
+    if (absl::Status status = poll.Done(static_cast<size_t>(p) + 1);
+        !status.ok()) {
+      return status;
+    }
     const int first = rows.first[static_cast<size_t>(r)];
     for (int j = 0; j <= p; ++j) {
       const int column = first + j;

@@ -148,7 +148,7 @@ TEST_F(HostileInputTest, InterpolationStopsAtTheDeadline) {
         Hurried(std::chrono::milliseconds(300))->InterpolateCurve(hurried);
     EXPECT_EQ(result.status().code(), absl::StatusCode::kDeadlineExceeded)
         << result.status();
-    EXPECT_TRUE(Drains(std::chrono::milliseconds(500)));
+    EXPECT_TRUE(Drains(std::chrono::seconds(1)));
   }
 }
 
@@ -170,7 +170,7 @@ TEST_F(HostileInputTest, ElevationStopsAtTheDeadline) {
   auto result = Hurried(std::chrono::seconds(1))->ElevateCurveDegree(request);
   EXPECT_EQ(result.status().code(), absl::StatusCode::kDeadlineExceeded)
       << result.status();
-  EXPECT_TRUE(Drains(std::chrono::milliseconds(500)));
+  EXPECT_TRUE(Drains(std::chrono::seconds(1)));
 }
 
 TEST_F(HostileInputTest, CurveTessellationRefusesATinyToleranceAtOnce) {
