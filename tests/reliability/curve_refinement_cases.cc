@@ -149,7 +149,7 @@ void CheckSegments(const v1::DecomposeCurveResponse& answer,
 CallResult Decompose(Client& client, Rng& rng) {
   v1::DecomposeCurveRequest request;
   const int dimension = UniformInt(rng, 1, 4);
-  const int kind = UniformInt(rng, 0, 3);
+  const int kind = UniformInt(rng, 0, 4);
   Values breakpoints = {0, 1};
   int degree = 0;
   PointAt original;
@@ -183,6 +183,18 @@ CallResult Decompose(Client& client, Rng& rng) {
     degree = 3;
     original = [&](double t) {
       return HermiteCurveAt(nodes, dimension, points, tangents, t)[0];
+    };
+  } else if (kind == 3) {  // Lagrange: one Bezier segment on [t_0, t_n].
+    const size_t count = static_cast<size_t>(UniformInt(rng, 2, 7));
+    nodes = SpreadValues(rng, count, -1, 2, 0.1);
+    points = RandomValues(rng, count * dimension, -2, 2);
+    v1::LagrangeCurve* lagrange = request.mutable_curve()->mutable_lagrange();
+    SetPoints(dimension, points, lagrange->mutable_points());
+    lagrange->mutable_nodes()->Add(nodes.begin(), nodes.end());
+    breakpoints = {nodes.front(), nodes.back()};
+    degree = static_cast<int>(count) - 1;
+    original = [&](double t) {
+      return LagrangeCurveAt(nodes, dimension, points, t)[0];
     };
   } else {  // Power form: one Bezier segment of the same degree.
     degree = UniformInt(rng, 1, 3);
