@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "absl/base/casts.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "errors.h"
 #include "freeform/core/status.h"
@@ -30,6 +31,23 @@ std::optional<CancellationToken::Clock::time_point> SteadyDeadline(
   return CancellationToken::Clock::now() +
          std::chrono::duration_cast<CancellationToken::Clock::duration>(
              remaining);
+}
+
+// RetryAttempt returns the attempt number of a call that gRPC's retry
+// policy sent again (its grpc-previous-rpc-attempts header counts the
+// attempts before it), or 0 for a first attempt.
+int RetryAttempt(const grpc::CallbackServerContext& context) {
+  const auto& metadata = context.client_metadata();
+  const auto header = metadata.find("grpc-previous-rpc-attempts");
+  int previous = 0;
+  if (header == metadata.end() ||
+      !absl::SimpleAtoi(
+          absl::string_view(header->second.data(), header->second.size()),
+          &previous) ||
+      previous < 1) {
+    return 0;
+  }
+  return previous + 1;
 }
 
 // Responses larger than this are freed before their call's reservation.
@@ -230,11 +248,13 @@ void CallRecord::Done(const absl::Status& status, size_t response_bytes) {
   const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
                           std::chrono::steady_clock::now() - started_)
                           .count();
+  const int attempt = RetryAttempt(*context_);
   spdlog::log(level,
               "rpc method={} peer={} request_bytes={} response_bytes={} "
-              "status={} micros={}{}{}{}",
+              "status={} micros={}{}{}{}{}",
               std::string(method_), context_->peer(), request_bytes_,
               response_bytes, absl::StatusCodeToString(status.code()), micros,
+              attempt > 0 ? absl::StrCat(" attempt=", attempt) : "",
               failed ? " error=\"" : "",
               failed ? std::string(status.message()) : std::string(),
               failed ? "\"" : "");

@@ -12,7 +12,8 @@
 //      chunk per pool thread is computed while an earlier one is written
 //      (chunks_in_flight);
 //   5. answers with the status (field paths as google.rpc.BadRequest), and
-//      writes one access-log line: method, peer, sizes, status, microseconds.
+//      writes one access-log line: method, peer, sizes, status, microseconds,
+//      and `attempt=N` for a call gRPC's retry policy sent again.
 // Every OK answer (each streamed message too) is checked to be finite: a
 // value that overflowed double precision turns the answer into
 // INVALID_ARGUMENT on the request's geometry. Debug and sanitizer builds

@@ -1,9 +1,12 @@
 // ServerProcess: a freeformd child process listening on 127.0.0.1 with a
-// kernel-chosen port, for the integration tests. The constructor starts it
-// and reads the port it prints; the destructor kills it if it still runs.
+// kernel-chosen port, for the integration and reliability tests. The
+// constructor starts it and reads the port it prints; the destructor kills
+// it if it still runs. Its log (stderr) can go to a file, and its resident
+// memory is read from /proc.
 #ifndef FREEFORM_TESTS_INTEGRATION_SERVER_PROCESS_H_
 #define FREEFORM_TESTS_INTEGRATION_SERVER_PROCESS_H_
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -12,6 +15,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <thread>
@@ -24,8 +28,11 @@ namespace freeform {
 class ServerProcess {
  public:
   // Runs freeformd with --threads=2 and --grace_period=5s; `extra_flags`
-  // come after those, so they may override them.
-  explicit ServerProcess(std::vector<std::string> extra_flags = {}) {
+  // come after those, so they may override them (--listen=127.0.0.1:PORT
+  // restarts a replica on its port). With `log_path` the log is appended to
+  // that file instead of the test's stderr.
+  explicit ServerProcess(std::vector<std::string> extra_flags = {},
+                         const std::string& log_path = "") {
     std::vector<std::string> arguments = {FREEFORMD_PATH,
                                           "--listen=127.0.0.1:0", "--threads=2",
                                           "--grace_period=5s"};
@@ -37,6 +44,13 @@ class ServerProcess {
       dup2(out[1], STDOUT_FILENO);
       close(out[0]);
       close(out[1]);
+      if (!log_path.empty()) {
+        const int log =
+            open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+        if (log < 0) _exit(126);
+        dup2(log, STDERR_FILENO);
+        close(log);
+      }
       std::vector<char*> argv;
       for (std::string& argument : arguments) argv.push_back(argument.data());
       argv.push_back(nullptr);
@@ -66,6 +80,7 @@ class ServerProcess {
   ServerProcess& operator=(const ServerProcess&) = delete;
 
   int port() const { return port_; }
+  pid_t pid() const { return pid_; }
   std::string address() const { return absl::StrCat("127.0.0.1:", port_); }
 
   // Signal sends `signal` to the process.
@@ -84,6 +99,19 @@ class ServerProcess {
       if (std::chrono::steady_clock::now() >= give_up) return std::nullopt;
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
+  }
+
+  // ResidentKiB returns a memory figure of /proc/PID/status in KiB: VmRSS
+  // (resident now) or VmHWM (peak resident); -1 when it cannot be read.
+  long ResidentKiB(const std::string& field = "VmRSS") const {
+    std::ifstream status("/proc/" + std::to_string(pid_) + "/status");
+    std::string line;
+    while (std::getline(status, line)) {
+      if (line.rfind(field + ":", 0) == 0) {
+        return std::stol(line.substr(field.size() + 1));
+      }
+    }
+    return -1;
   }
 
   // Sends `signal` and returns the exit status (or -1 after `timeout`).

@@ -1,0 +1,121 @@
+// Memory: after a burst of maximal calls freeformd's resident
+// memory returns to within 20% of its baseline. The baseline is VmRSS
+// after a warm-up of every RPC and of a few maximal calls, and an idle pause
+// (the MemoryTrimmer hands freed memory back once idle, every second); the
+// check polls VmRSS for up to 10 s after the burst. The burst: 64 callers for
+// half of FREEFORM_LOAD_SECONDS, each asking for a cubic B-spline at
+// 2.6 10^6 points in one unary answer (62 MB, just under the 64 MiB
+// message limit; bench/service_load.cc --workload=s2 with larger calls).
+// That is deliberately above capacity: the default memory budget admits a
+// few such calls at once and refuses the others with RESOURCE_EXHAUSTED,
+// counted as refused; a refused caller pauses 20 ms. Answers are checked at
+// every 10007th point. Skipped under the sanitizers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <thread>
+
+#include "../integration/server_process.h"
+#include "driver.h"
+
+namespace freeform::reliability {
+namespace {
+
+constexpr int kCallers = 64;
+constexpr uint32_t kPoints = 2'600'000;
+constexpr double kAllowedGrowth = 1.2;
+// A refused caller retries after this pause, as RESOURCE_EXHAUSTED asks.
+constexpr auto kRefusalPause = std::chrono::milliseconds(20);
+
+std::unique_ptr<Client> Connect(const ServerProcess& server) {
+  ClientOptions options;
+  options.target = server.address();
+  options.timeout = std::chrono::seconds(120);
+  options.retry_unavailable = false;
+  absl::StatusOr<std::unique_ptr<Client>> client = Client::Create(options);
+  EXPECT_TRUE(client.ok()) << client.status();
+  return client.ok() ? *std::move(client) : nullptr;
+}
+
+TEST(Memory, ResidentMemoryReturnsToBaselineAfterABurstOfMaximalCalls) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "the sanitizers keep freed memory in their own allocator";
+#endif
+
+  ServerProcess server({"--log_level=warn"});
+  ASSERT_GT(server.port(), 0) << "freeformd did not report its port";
+  std::unique_ptr<Client> client = Connect(server);
+  ASSERT_NE(client, nullptr);
+
+  // Warm-up: every RPC, then a few maximal calls (4 callers), then idle
+  // long enough to be trimmed. This pages in the code of both: most of
+  // freeformd's idle VmRSS is code (RssFile), the rest is anonymous.
+  const std::vector<RpcCase> every_rpc = AllCases();
+  const std::vector<RpcCase> maximal = {LargeCurveEvaluation(kPoints, 10007)};
+  for (const auto& [cases, callers] :
+       {std::pair(&every_rpc, 8), std::pair(&maximal, 4)}) {
+    LoadDriver warm_up(client.get(), cases, callers, LoadSeed());
+    warm_up.Start(
+        {.duration = std::chrono::seconds(2), .refusal_pause = kRefusalPause});
+    warm_up.Join();
+    ASSERT_EQ(warm_up.Total().answered + warm_up.Total().refused,
+              warm_up.Total().calls)
+        << warm_up.Total().first_problem;
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  const long baseline = server.ResidentKiB();
+  const long baseline_anonymous = server.ResidentKiB("RssAnon");
+  ASSERT_GT(baseline, 0);
+  const auto allowed =
+      static_cast<long>(static_cast<double>(baseline) * kAllowedGrowth);
+
+  LoadDriver burst(client.get(), &maximal, kCallers, LoadSeed());
+  const std::chrono::milliseconds length = std::max<std::chrono::milliseconds>(
+      LoadSeconds() / 2, std::chrono::seconds(3));
+  const auto end = std::chrono::steady_clock::now() + length;
+  burst.Start({.duration = length, .refusal_pause = kRefusalPause});
+  long peak = baseline;
+  while (std::chrono::steady_clock::now() < end || burst.in_flight() > 0) {
+    peak = std::max(peak, server.ResidentKiB());
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  burst.Join();
+  peak = std::max(peak, server.ResidentKiB("VmHWM"));
+
+  // The trimmer runs every second once no call holds a reservation.
+  const auto idle = std::chrono::steady_clock::now();
+  long after = server.ResidentKiB();
+  while (after > allowed &&
+         std::chrono::steady_clock::now() - idle < std::chrono::seconds(10)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    after = server.ResidentKiB();
+  }
+  const auto waited = std::chrono::duration_cast<std::chrono::milliseconds>(
+      std::chrono::steady_clock::now() - idle);
+
+  const Tally total = burst.Total();
+  std::fprintf(
+      stderr,
+      "memory: %d callers, %u points per call for %lld s: %lld calls, "
+      "%lld answered, %lld refused (RESOURCE_EXHAUSTED); VmRSS baseline "
+      "%ld KiB, peak %ld KiB, after %ld KiB (%.0f%% of baseline, "
+      "%lld ms after the burst); of which anonymous: baseline %ld KiB, "
+      "after %ld KiB\n%s",
+      kCallers, kPoints, static_cast<long long>(length.count() / 1000),
+      static_cast<long long>(total.calls),
+      static_cast<long long>(total.answered),
+      static_cast<long long>(total.refused), baseline, peak, after,
+      100.0 * static_cast<double>(after) / static_cast<double>(baseline),
+      static_cast<long long>(waited.count()), baseline_anonymous,
+      server.ResidentKiB("RssAnon"), burst.Report().c_str());
+  EXPECT_GT(total.answered, 0);
+  EXPECT_EQ(total.answered + total.refused, total.calls) << total.first_problem;
+  EXPECT_LE(after, allowed);
+  EXPECT_EQ(server.StopWith(SIGTERM, std::chrono::seconds(10)), 0);
+}
+
+}  // namespace
+}  // namespace freeform::reliability
