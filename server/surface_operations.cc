@@ -80,8 +80,8 @@ absl::StatusOr<UnaryWork> PlanBezierElevate(
   const uint64_t values = uint64_t(view.control_net.count_u + by_u) *
                           (view.control_net.count_v + by_v) *
                           (view.control_net.dimension + 1);
-  return ElevationWork(values, limits, response, [view, by_u, by_v] {
-    return ElevateBezierSurface(view, by_u, by_v);
+  return ElevationWork(values, limits, response, [bezier, by_u, by_v] {
+    return ElevateBezierSurface(bezier.view(), by_u, by_v);
   });
 }
 
