@@ -18,6 +18,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +41,12 @@ namespace {
 
 using google::protobuf::Message;
 using google::protobuf::MethodDescriptor;
+
+// The message of CheckAnswerFinite (server/rpc.cc) for an answer that
+// holds a NaN or an infinity.
+constexpr absl::string_view kNotFiniteAnswer =
+    "the answer holds a value that is not finite (a server bug: please "
+    "report the request)";
 
 // Each call's deadline. A call of the small limits below takes milliseconds;
 // one that reaches the deadline is a finding.
@@ -78,6 +85,37 @@ void Check(bool condition, absl::string_view what) {
 std::string Describe(const grpc::Status& status) {
   return absl::StrCat("status ", status.error_code(), " \"",
                       status.error_message(), "\"");
+}
+
+// HoldsExtremeNumber tells whether a double of `message` (or of a message
+// in it) has a magnitude over 1e100 or under 1e-100 (but not 0).
+bool HoldsExtremeNumber(const Message& message) {
+  using google::protobuf::FieldDescriptor;
+  const auto extreme = [](double x) {
+    const double magnitude = std::abs(x);
+    return magnitude > 1e100 || (magnitude > 0 && magnitude < 1e-100);
+  };
+  const google::protobuf::Reflection* reflection = message.GetReflection();
+  std::vector<const FieldDescriptor*> fields;
+  reflection->ListFields(message, &fields);
+  for (const FieldDescriptor* field : fields) {
+    const bool repeated = field->is_repeated();
+    const int size = repeated ? reflection->FieldSize(message, field) : 1;
+    for (int i = 0; i < size; ++i) {
+      if (field->cpp_type() == FieldDescriptor::CPPTYPE_DOUBLE &&
+          extreme(repeated ? reflection->GetRepeatedDouble(message, field, i)
+                           : reflection->GetDouble(message, field))) {
+        return true;
+      }
+      if (field->cpp_type() == FieldDescriptor::CPPTYPE_MESSAGE &&
+          HoldsExtremeNumber(
+              repeated ? reflection->GetRepeatedMessage(message, field, i)
+                       : reflection->GetMessage(message, field))) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 std::string ToString(const grpc::ByteBuffer& buffer) {
@@ -132,6 +170,18 @@ class Harness {
       case grpc::StatusCode::INVALID_ARGUMENT:
       case grpc::StatusCode::RESOURCE_EXHAUSTED:
         return CheckFieldViolations(status);
+      case grpc::StatusCode::INTERNAL:
+        // TEMPORARY ALLOWANCE, to remove once the service decides what a
+        // request whose answer overflows gets (docs/fuzzing.md, "Known
+        // findings"): the server's own check of its answers
+        // (CheckAnswerFinite) refuses an answer that overflowed, which
+        // finite numbers of extreme magnitude can make (their squares,
+        // derivatives over tiny knot spans, ...).
+        if (status.error_message() == kNotFiniteAnswer &&
+            HoldsExtremeNumber(*request)) {
+          return;
+        }
+        [[fallthrough]];
       default:
         Fail(absl::StrCat("a valid request got ", Describe(status)));
     }
