@@ -14,6 +14,8 @@ packages=(
   grpc-proto
   # Certificates for the TLS tests.
   openssl
+  # The fuzz preset: clang with libFuzzer, ASan and UBSan (docs/fuzzing.md).
+  clang-14 libfuzzer-14-dev
 )
 
 missing=()

@@ -14,9 +14,9 @@ absl::Status CheckCount(size_t count, size_t max_count,
     return InvalidFieldError(field, "needs at least one parameter");
   }
   if (count > max_count) {
-    return absl::ResourceExhaustedError(absl::StrCat(
-        field, ": ", count, " parameters exceed the server's limit of ",
-        max_count, " (--max_parameters)"));
+    return ExhaustedFieldError(
+        field, absl::StrCat(count, " parameters exceed the server's limit of ",
+                            max_count, " (--max_parameters)"));
   }
   return absl::OkStatus();
 }

@@ -40,8 +40,9 @@ absl::StatusOr<UnaryWork> PlanBezierElevate(
                           (static_cast<uint64_t>(bezier.dimension()) + 1);
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
-      .run = [view, by, &response](const ExecutionContext&) -> absl::Status {
-        absl::StatusOr<BezierCurveData> elevated = ElevateBezierCurve(view, by);
+      .run = [bezier, by, &response](const ExecutionContext&) -> absl::Status {
+        absl::StatusOr<BezierCurveData> elevated =
+            ElevateBezierCurve(bezier.view(), by);
         if (!elevated.ok()) return elevated.status();
         ToProto(*elevated, *response.mutable_curve());
         return absl::OkStatus();
@@ -124,10 +125,10 @@ absl::StatusOr<UnaryWork> PlanBezierReduce(
   const BezierCurveView view = bezier.view();
   const uint64_t values = view.control_points.coordinates.size() + 1;
   return UnaryWork{.plan = AnswerPlan(values, 64 * values, limits),
-                   .run = [view, by = static_cast<int>(request.by()),
+                   .run = [bezier, by = static_cast<int>(request.by()),
                            &response](const ExecutionContext&) -> absl::Status {
                      absl::StatusOr<ReducedBezierCurve> reduced =
-                         ReduceBezierCurve(view, by);
+                         ReduceBezierCurve(bezier.view(), by);
                      if (!reduced.ok()) {
                        return PrefixFieldPath(reduced.status(), "curve.bezier");
                      }

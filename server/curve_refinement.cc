@@ -46,10 +46,10 @@ absl::StatusOr<UnaryWork> PlanBezierSplit(const BezierCurve& bezier,
   }
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
-      .run = [view, &request,
+      .run = [bezier, &request,
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<std::vector<BezierCurveData>> pieces = SplitBezierCurve(
-            view, SpanOf(request.parameters()), execution.cancellation);
+            bezier.view(), SpanOf(request.parameters()), execution.cancellation);
         if (!pieces.ok()) return pieces.status();
         for (const BezierCurveData& piece : *pieces) {
           if (execution.cancellation != nullptr &&

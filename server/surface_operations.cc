@@ -83,8 +83,9 @@ absl::StatusOr<UnaryWork> PlanBezierElevate(
                           (view.control_net.count_v + by_v) *
                           (view.control_net.dimension + 1);
   return ElevationWork(values, limits, response,
-                       [view, by_u, by_v](const CancellationToken* cancel) {
-                         return ElevateBezierSurface(view, by_u, by_v, cancel);
+                       [bezier, by_u, by_v](const CancellationToken* cancel) {
+                         return ElevateBezierSurface(bezier.view(), by_u, by_v,
+                                                     cancel);
                        });
 }
 

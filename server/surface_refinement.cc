@@ -63,10 +63,10 @@ absl::StatusOr<UnaryWork> PlanBezierSplit(
       2 * (view.control_net.coordinates.size() + view.weights.size());
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
-      .run = [view, &request,
+      .run = [bezier, &request,
               &response](const ExecutionContext&) -> absl::Status {
         absl::StatusOr<std::vector<SurfaceData>> pieces = SplitBezierSurface(
-            view, request.direction() == v1::SURFACE_DIRECTION_U,
+            bezier.view(), request.direction() == v1::SURFACE_DIRECTION_U,
             request.parameter());
         if (!pieces.ok()) return pieces.status();
         for (const SurfaceData& piece : *pieces) {
