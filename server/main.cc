@@ -7,6 +7,7 @@
 // turns NOT_SERVING, in-flight RPCs get --grace_period to finish, exit 0.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -122,6 +123,25 @@ void ExitWhenDrained(const freeform::server::FreeformServer& server,
   }
 }
 
+// WaitUntilQuiet returns once no call is in flight and none has started for
+// 50 ms (the server answers new calls UNAVAILABLE while it drains), or at
+// `deadline`. gRPC's Shutdown cancels the calls its transport has accepted
+// but not yet handed to a handler; starting it only when the server is
+// quiet leaves it none.
+void WaitUntilQuiet(const freeform::server::FreeformServer& server,
+                    absl::Time deadline) {
+  int64_t started = server.calls_started();
+  int quiet_checks = 0;
+  while (absl::Now() < deadline && quiet_checks < 5) {
+    absl::SleepFor(absl::Milliseconds(10));
+    const int64_t now_started = server.calls_started();
+    quiet_checks = server.calls_in_flight() == 0 && now_started == started
+                       ? quiet_checks + 1
+                       : 0;
+    started = now_started;
+  }
+}
+
 int main(int argc, char** argv) {
   absl::SetProgramUsageMessage("freeform curve and surface gRPC server");
   absl::ParseCommandLine(argc, argv);
@@ -155,9 +175,13 @@ int main(int argc, char** argv) {
   spdlog::info("signal {}: draining for up to {}", signal_number,
                absl::FormatDuration(grace));
   StopWithin(grace + absl::Milliseconds(900));
+  const absl::Time deadline = absl::Now() + grace;
+  (*server)->BeginDrain();
+  WaitUntilQuiet(**server, deadline);
   std::atomic<bool> stopped{false};
   std::thread drain([&] {
-    (*server)->Shutdown(absl::ToChronoMilliseconds(grace));
+    (*server)->Shutdown(absl::ToChronoMilliseconds(
+        std::max(absl::ZeroDuration(), deadline - absl::Now())));
     (*server)->Wait();
     stopped = true;
   });

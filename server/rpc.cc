@@ -72,6 +72,7 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
         planner_(std::move(planner)) {}
 
   void Start() {
+    if (record_.frame().draining()) return Answer(DrainingError());
     if (record_.request_bytes() > kInlinePlanningBytes) {
       if (!record_.Schedule([this] { PlanAndRun(/*on_pool=*/true); })) {
         Answer(QueueFullError());
@@ -192,6 +193,7 @@ CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
   }
   token_.SetPoll([context] { return context->IsCancelled(); });
   frame_->calls_in_flight_.fetch_add(1, std::memory_order_acq_rel);
+  frame_->calls_started_.fetch_add(1, std::memory_order_acq_rel);
 }
 
 CallRecord::~CallRecord() {
@@ -273,6 +275,11 @@ grpc::ServerUnaryReactor* RpcFrame::Unary(
                              std::move(planner));
   call->Start();
   return call;
+}
+
+absl::Status DrainingError() {
+  return absl::UnavailableError(
+      "the server is shutting down; retry on another replica");
 }
 
 absl::Status QueueFullError() {

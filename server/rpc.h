@@ -160,10 +160,19 @@ class RpcFrame {
   // chunks_in_flight is how many chunks of one stream exist at once; a
   // stream's plan counts that many chunk messages.
   size_t chunks_in_flight() const;
-  // calls_in_flight counts the calls started and not yet done.
+  // calls_in_flight counts the calls started and not yet done;
+  // calls_started every call ever started.
   int64_t calls_in_flight() const {
     return calls_in_flight_.load(std::memory_order_acquire);
   }
+  int64_t calls_started() const {
+    return calls_started_.load(std::memory_order_acquire);
+  }
+  // BeginDrain makes every call that starts from now on fail at once with
+  // UNAVAILABLE (DrainingError), before any work: a client retries it on
+  // another replica, while the calls already running finish.
+  void BeginDrain() { draining_.store(true, std::memory_order_release); }
+  bool draining() const { return draining_.load(std::memory_order_acquire); }
   MemoryBudget& budget() const { return *budget_; }
 
   // Unary serves a unary call whose handler is `planner`.
@@ -187,6 +196,8 @@ class RpcFrame {
   MemoryBudget* const budget_;
   const ServiceLimits limits_;
   std::atomic<int64_t> calls_in_flight_{0};
+  std::atomic<int64_t> calls_started_{0};
+  std::atomic<bool> draining_{false};
 };
 
 // Requests larger than this are planned on the pool, not the gRPC thread.
@@ -195,6 +206,10 @@ inline constexpr size_t kInlinePlanningBytes = 64 * 1024;
 // QueueFullError is the answer to a call whose work the pool's full queue
 // refused.
 absl::Status QueueFullError();
+
+// DrainingError is the answer to a call that starts while the server
+// drains before it stops.
+absl::Status DrainingError();
 
 // GeometryFieldOf returns the path of the geometry a request describes: its
 // field number 1 (curve, surface, basis, points, polygon, surfaces), with
@@ -233,6 +248,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
         slots_(frame->chunks_in_flight()) {}
 
   void Start() {
+    if (record_.frame().draining()) return Fail(DrainingError());
     if (record_.request_bytes() > kInlinePlanningBytes) {
       if (!record_.Schedule([this] { Plan(); })) Fail(QueueFullError());
       return;

@@ -110,6 +110,15 @@ std::shared_ptr<grpc::Channel> FreeformServer::InProcessChannel() {
   return server_->InProcessChannel(arguments);
 }
 
+void FreeformServer::BeginDrain() {
+  if (grpc::HealthCheckServiceInterface* health =
+          server_->GetHealthCheckService();
+      health != nullptr) {
+    health->Shutdown();  // every service reports NOT_SERVING from now on
+  }
+  frame_->BeginDrain();
+}
+
 void FreeformServer::Shutdown(std::chrono::milliseconds grace) {
   if (shut_down_.exchange(true)) return;
   if (grpc::HealthCheckServiceInterface* health =

@@ -56,6 +56,12 @@ class FreeformServer {
   const MemoryBudget& budget() const { return *budget_; }
   // calls_in_flight counts the freeform calls started and not yet done.
   int64_t calls_in_flight() const { return frame_->calls_in_flight(); }
+  // calls_started counts every freeform call ever started.
+  int64_t calls_started() const { return frame_->calls_started(); }
+  // BeginDrain turns health NOT_SERVING and answers every call that starts
+  // from now on with UNAVAILABLE at once, while the calls in flight run on;
+  // Shutdown afterwards then finds nothing to cancel.
+  void BeginDrain();
   // pool_size returns the number of math threads.
   int pool_size() const { return pool_->size(); }
   // InProcessChannel returns a channel that skips the network.
