@@ -1,6 +1,6 @@
 // Memory: after a burst of maximal calls freeformd's resident
 // memory returns to within 20% of its baseline. The baseline is VmRSS
-// after a warm-up of every RPC and of a few maximal calls, and an idle pause
+// after a warm-up of every RPC and of maximal calls, and an idle pause
 // (the MemoryTrimmer hands freed memory back once idle, every second); the
 // check polls VmRSS for up to 10 s after the burst. The burst: 64 callers for
 // half of FREEFORM_LOAD_SECONDS, each asking for a cubic B-spline at
@@ -50,13 +50,16 @@ TEST(Memory, ResidentMemoryReturnsToBaselineAfterABurstOfMaximalCalls) {
   std::unique_ptr<Client> client = Connect(server);
   ASSERT_NE(client, nullptr);
 
-  // Warm-up: every RPC, then a few maximal calls (4 callers), then idle
-  // long enough to be trimmed. This pages in the code of both: most of
-  // freeformd's idle VmRSS is code (RssFile), the rest is anonymous.
+  // Warm-up: every RPC, then maximal calls from as many callers as the
+  // burst, then idle long enough to be trimmed. This pages in the code of
+  // both (most of freeformd's idle VmRSS is code, RssFile) and creates the
+  // threads the burst's concurrency needs, with their malloc arenas, whose
+  // few MB glibc keeps once they exist: the test asks that a burst leaves
+  // nothing behind beyond the server's steady state.
   const std::vector<RpcCase> every_rpc = AllCases();
   const std::vector<RpcCase> maximal = {LargeCurveEvaluation(kPoints, 10007)};
   for (const auto& [cases, callers] :
-       {std::pair(&every_rpc, 8), std::pair(&maximal, 4)}) {
+       {std::pair(&every_rpc, 8), std::pair(&maximal, kCallers)}) {
     LoadDriver warm_up(client.get(), cases, callers, LoadSeed());
     warm_up.Start(
         {.duration = std::chrono::seconds(2), .refusal_pause = kRefusalPause});
