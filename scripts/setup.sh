@@ -14,8 +14,9 @@ packages=(
   grpc-proto
   # Certificates for the TLS tests.
   openssl
-  # The fuzz preset: clang with libFuzzer, ASan and UBSan (docs/fuzzing.md).
-  clang-14 libfuzzer-14-dev
+  # The fuzz preset: clang with libFuzzer, ASan and UBSan, linked by lld
+  # (docs/fuzzing.md).
+  clang-14 libfuzzer-14-dev lld-14
 )
 
 missing=()
