@@ -269,7 +269,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
       }
       actions = PumpLocked();
     }
-    Execute(std::move(actions));
+    if (!actions.empty()) Execute(std::move(actions));
   }
   void OnDone() override {
     record_.Done(final_status_, streamed_bytes_);
@@ -316,7 +316,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
       std::lock_guard<std::mutex> lock(mutex_);
       actions = PumpLocked();
     }
-    Execute(std::move(actions));
+    if (!actions.empty()) Execute(std::move(actions));
   }
 
   void Fail(const absl::Status& status) {
@@ -358,6 +358,10 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
     return actions;
   }
 
+  // Callers run Execute only with actions: once the lock is released,
+  // another thread may finish the call and delete it, unless this caller
+  // holds a compute or a write (which keep it alive until they complete)
+  // or the finish (the last action).
   void Execute(std::vector<Action> actions) {
     for (const Action& action : actions) {
       switch (action.kind) {
@@ -399,7 +403,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
       }
       actions = PumpLocked();
     }
-    Execute(std::move(actions));
+    if (!actions.empty()) Execute(std::move(actions));
   }
 
   CallRecord record_;
