@@ -625,8 +625,7 @@ TEST(BernsteinBasisTest, EqualsTheBSplineBasisOnBezierKnots) {
       std::vector<absl::Span<double>> out_bspline(bspline.begin(),
                                                   bspline.end());
       ASSERT_TRUE(EvaluateBernsteinBasis(n, w, params, out_bernstein).ok());
-      ASSERT_TRUE(
-          EvaluateBSplineBasis(n, knots, w, params, out_bspline).ok());
+      ASSERT_TRUE(EvaluateBSplineBasis(n, knots, w, params, out_bspline).ok());
       for (int k = 0; k <= 3; ++k) {
         // Derivative k of degree n grows like n^k.
         const double scale = std::pow(std::max(n, 1), k);
