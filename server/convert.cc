@@ -136,4 +136,22 @@ absl::Span<const double> ParameterSet::Values(size_t begin, size_t end,
   return absl::MakeConstSpan(values, count);
 }
 
+Parameterization ToCore(v1::Parameterization parameterization) {
+  switch (parameterization) {
+    case v1::PARAMETERIZATION_UNIFORM:
+      return Parameterization::kUniform;
+    case v1::PARAMETERIZATION_CENTRIPETAL:
+      return Parameterization::kCentripetal;
+    case v1::PARAMETERIZATION_UNIVERSAL:
+      return Parameterization::kUniversal;
+    default:
+      return Parameterization::kChordLength;
+  }
+}
+
+KnotRule ToCore(v1::KnotRule rule) {
+  return rule == v1::KNOT_RULE_UNIFORM ? KnotRule::kUniform
+                                       : KnotRule::kAveraging;
+}
+
 }  // namespace freeform::server

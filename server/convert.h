@@ -18,7 +18,9 @@
 #include "absl/strings/string_view.h"
 #include "absl/types/span.h"
 #include "freeform/core/bezier.h"
+#include "freeform/core/interpolation.h"
 #include "freeform/core/points.h"
+#include "freeform/v1/curve_service.pb.h"
 #include "freeform/v1/geometry.pb.h"
 
 namespace freeform::server {
@@ -43,6 +45,12 @@ absl::Span<double> UninitializedArray(
 
 // A resolved set of curve parameters: an explicit list (a view into the
 // request) or a uniform range generated on demand, chunk by chunk.
+// ToCore maps the interpolation enums of the curve and surface Interpolate
+// RPCs (checked with CheckEnum first): unspecified is chord length and
+// averaging.
+Parameterization ToCore(v1::Parameterization parameterization);
+KnotRule ToCore(v1::KnotRule rule);
+
 // CheckEnum returns INVALID_ARGUMENT naming `field` when `value` is none of
 // its enum's values (`is_valid` is the generated <Enum>_IsValid): proto3
 // keeps unknown numbers, which must not run as some other value.

@@ -152,23 +152,8 @@ absl::StatusOr<UnaryWork> PlanReduce(
       *curve);
 }
 
-Parameterization ToCore(v1::Parameterization parameterization) {
-  switch (parameterization) {
-    case v1::PARAMETERIZATION_UNIFORM:
-      return Parameterization::kUniform;
-    case v1::PARAMETERIZATION_CENTRIPETAL:
-      return Parameterization::kCentripetal;
-    case v1::PARAMETERIZATION_UNIVERSAL:
-      return Parameterization::kUniversal;
-    default:
-      return Parameterization::kChordLength;
-  }
-}
-
-KnotRule ToCore(v1::KnotRule rule) {
-  return rule == v1::KNOT_RULE_UNIFORM ? KnotRule::kUniform
-                                       : KnotRule::kAveraging;
-}
+// The interpolation enums' mappings (convert.h) beside this one.
+using ::freeform::server::ToCore;
 
 SplineEnd ToCore(v1::SplineEndCondition end) {
   switch (end) {

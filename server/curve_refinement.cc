@@ -48,8 +48,9 @@ absl::StatusOr<UnaryWork> PlanBezierSplit(const BezierCurve& bezier,
       .plan = AnswerPlan(values, 8 * values, limits),
       .run = [bezier, &request,
               &response](const ExecutionContext& execution) -> absl::Status {
-        absl::StatusOr<std::vector<BezierCurveData>> pieces = SplitBezierCurve(
-            bezier.view(), SpanOf(request.parameters()), execution.cancellation);
+        absl::StatusOr<std::vector<BezierCurveData>> pieces =
+            SplitBezierCurve(bezier.view(), SpanOf(request.parameters()),
+                             execution.cancellation);
         if (!pieces.ok()) return pieces.status();
         for (const BezierCurveData& piece : *pieces) {
           if (execution.cancellation != nullptr &&

@@ -190,20 +190,10 @@ absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,
       !status.ok()) {
     return status;
   }
-  const Parameterization parameterization =
-      request.parameterization() == v1::PARAMETERIZATION_UNIFORM
-          ? Parameterization::kUniform
-      : request.parameterization() == v1::PARAMETERIZATION_CENTRIPETAL
-          ? Parameterization::kCentripetal
-      : request.parameterization() == v1::PARAMETERIZATION_UNIVERSAL
-          ? Parameterization::kUniversal
-          : Parameterization::kChordLength;
   absl::StatusOr<SurfaceInterpolation> result = InterpolateSurface(
       *points, static_cast<int>(request.degree_u()),
-      static_cast<int>(request.degree_v()), parameterization,
-      request.knot_rule() == v1::KNOT_RULE_UNIFORM ? KnotRule::kUniform
-                                                   : KnotRule::kAveraging,
-      cancel);
+      static_cast<int>(request.degree_v()), ToCore(request.parameterization()),
+      ToCore(request.knot_rule()), cancel);
   if (!result.ok()) return result.status();
   ToProto(result->surface, *response.mutable_surface());
   response.mutable_parameters_u()->Add(result->parameters_u.begin(),
