@@ -315,7 +315,7 @@ absl::StatusOr<UnaryWork> PlanTessellate(
   using Tessellator = absl::AnyInvocable<absl::StatusOr<Polyline>(
       size_t, const CancellationToken*) const>;
   // The polyline's points are known to be at most `bound` before the work
-  // (SIZE_MAX when unknown: rational curves).
+  // (SIZE_MAX when unknown: a rational curve with a weight of 0).
   struct Tessellation {
     Tessellator tessellator;
     size_t bound = SIZE_MAX;

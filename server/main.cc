@@ -21,6 +21,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
+#include "memory_trimmer.h"
 #include "server.h"
 #include "spdlog/sinks/stdout_sinks.h"
 #include "spdlog/spdlog.h"
@@ -143,12 +144,18 @@ void WaitUntilQuiet(const freeform::server::FreeformServer& server,
 }
 
 int main(int argc, char** argv) {
+  // Before any thread exists (memory_trimmer.h says why).
+  const bool allocator_configured =
+      freeform::server::ConfigureAllocatorForTrimming();
   absl::SetProgramUsageMessage("freeform curve and surface gRPC server");
   absl::ParseCommandLine(argc, argv);
   // Abseil's mutex deadlock detection is a debugging aid that costs every
   // lock (gRPC's included) a graph update; the server runs without it.
   absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
   ConfigureLogging();
+  if (!allocator_configured) {
+    spdlog::info("malloc left as the environment set it");
+  }
 
   // Block the stop signals in every thread; this thread waits for them.
   sigset_t stop_signals;

@@ -2,7 +2,21 @@
 
 #include <malloc.h>
 
+#include <cstdlib>
+
 namespace freeform::server {
+
+bool ConfigureAllocatorForTrimming() {
+  for (const char* variable : {"MALLOC_ARENA_MAX", "MALLOC_TRIM_THRESHOLD_",
+                               "MALLOC_MMAP_THRESHOLD_", "GLIBC_TUNABLES"}) {
+    if (std::getenv(variable) != nullptr) return false;
+  }
+  constexpr int kMmapThreshold = 32 << 20;  // glibc's dynamic maximum
+  constexpr int kTrimThreshold = 512 << 20;
+  return mallopt(M_ARENA_MAX, 1) == 1 &&
+         mallopt(M_MMAP_THRESHOLD, kMmapThreshold) == 1 &&
+         mallopt(M_TRIM_THRESHOLD, kTrimThreshold) == 1;
+}
 
 MemoryTrimmer::MemoryTrimmer(const MemoryBudget* budget,
                              uint64_t threshold_bytes,
@@ -28,10 +42,15 @@ uint64_t MemoryTrimmer::trims() const {
 
 void MemoryTrimmer::Run() {
   uint64_t released_at_last_trim = budget_->released();
+  uint64_t released_at_last_check = released_at_last_trim;
   std::unique_lock<std::mutex> lock(mutex_);
   while (!wake_.wait_for(lock, period_, [this] { return stopping_; })) {
     const uint64_t released = budget_->released();
-    if (budget_->in_use() != 0 ||
+    // Quiet: no call released memory during the last period, so gRPC has
+    // also freed the answers it was still sending when their calls ended.
+    const bool quiet = released == released_at_last_check;
+    released_at_last_check = released;
+    if (!quiet || budget_->in_use() != 0 ||
         released - released_at_last_trim < threshold_bytes_) {
       continue;
     }

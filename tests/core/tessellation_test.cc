@@ -312,14 +312,103 @@ TEST(TessellationTest, UnresolvableToleranceIsRefusedAtOnce) {
   EXPECT_EQ(segment->parameters.size(), 2u);
 }
 
-TEST(TessellationTest, RationalCurvesHaveNoPointBound) {
+// The quarter circle (1,0), (1,1), (0,1) with weights 1, sqrt(2)/2, 1:
+// about the centre (1/2, 1/2) every |P_i - c| is sqrt(2)/2, the spatial
+// homogeneous points w_i (P_i - c) have the second difference
+// (-sqrt(2)/2, -sqrt(2)/2) of length 1 and the weights 2 - sqrt(2), so
+// D = (1 + (sqrt(2)/2)(2 - sqrt(2))) / (sqrt(2)/2) = 2, the deviation
+// bound n^2 D / 8 = 1, and 1 4^-d <= 0.0005 first at d = 6: 65 points.
+TEST(TessellationTest, PointBoundOfARationalQuarterCircle) {
   const std::vector<double> points = {1, 0, 1, 1, 0, 1};
-  const std::vector<double> weights = {1, 0.7, 1};
-  EXPECT_EQ(BezierCurvePointBound(
-                {.control_points = {.dimension = 2, .coordinates = points},
-                 .weights = weights},
-                1e-3),
-            SIZE_MAX);
+  const std::vector<double> weights = {1, std::sqrt(0.5), 1};
+  const BezierCurveView curve{
+      .control_points = {.dimension = 2, .coordinates = points},
+      .weights = weights};
+  EXPECT_EQ(BezierCurvePointBound(curve, 1e-3), 65u);
+  const absl::StatusOr<Polyline> polyline =
+      TessellateBezierCurve(curve, 1e-3, 1 << 10);
+  ASSERT_TRUE(polyline.ok()) << polyline.status();
+  EXPECT_LE(polyline->parameters.size(), 65u);
+  // Every point is on the circle.
+  for (size_t i = 0; i < polyline->parameters.size(); ++i) {
+    EXPECT_NEAR(
+        std::hypot(polyline->points[2 * i], polyline->points[2 * i + 1]), 1.0,
+        1e-12);
+  }
+}
+
+// Weights all equal change neither the curve nor its bound; a weight of 0
+// leaves no bound.
+TEST(TessellationTest, RationalPointBoundsOfEqualAndZeroWeights) {
+  const std::vector<double> points = {0, 0, 1, 2, 3, 2, 4, 0};
+  const std::vector<double> ones(4, 1.0), twos(4, 2.0);
+  const std::vector<double> zero = {1, 0, 0, 1};
+  const auto bound = [&](const std::vector<double>& weights) {
+    return BezierCurvePointBound(
+        {.control_points = {.dimension = 2, .coordinates = points},
+         .weights = weights},
+        1e-4);
+  };
+  const size_t polynomial = bound({});
+  EXPECT_EQ(bound(ones), polynomial);
+  EXPECT_EQ(bound(twos), polynomial);
+  EXPECT_EQ(bound(zero), SIZE_MAX);
+}
+
+// Random rational curves and NURBS, weights from 1/20 to 20.
+TEST(TessellationTest, RationalPointBoundsHoldForRandomCurves) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> log_weight(-3.0, 3.0);
+  const auto random_weights = [&](size_t count) {
+    std::vector<double> weights(count);
+    for (double& w : weights) w = std::exp(log_weight(rng));
+    return weights;
+  };
+  int splines_checked = 0;
+  for (int degree = 1; degree <= 7; ++degree) {
+    for (int dimension : {1, 2, 3}) {
+      for (double tolerance : {1e-1, 1e-3, 1e-5}) {
+        SCOPED_TRACE(testing::Message() << "degree " << degree << " dim "
+                                        << dimension << " tol " << tolerance);
+        const std::vector<double> points =
+            RandomValues(rng, static_cast<size_t>(degree + 1) * dimension);
+        const std::vector<double> weights =
+            random_weights(static_cast<size_t>(degree) + 1);
+        const BezierCurveView bezier{
+            .control_points = {.dimension = dimension, .coordinates = points},
+            .weights = weights};
+        const absl::StatusOr<Polyline> polyline =
+            TessellateBezierCurve(bezier, tolerance, 1 << 22);
+        ASSERT_TRUE(polyline.ok()) << polyline.status();
+        EXPECT_GE(BezierCurvePointBound(bezier, tolerance),
+                  polyline->parameters.size());
+
+        const int count = degree + 1 + static_cast<int>(rng() % 8);
+        std::vector<double> knots =
+            RandomValues(rng, static_cast<size_t>(count + degree + 1), 0, 4);
+        std::sort(knots.begin(), knots.end());
+        std::fill(knots.begin(), knots.begin() + degree + 1, knots[0]);
+        std::fill(knots.end() - degree - 1, knots.end(), knots.back());
+        const std::vector<double> control =
+            RandomValues(rng, static_cast<size_t>(count) * dimension);
+        const std::vector<double> spline_weights =
+            random_weights(static_cast<size_t>(count));
+        const BSplineCurveView bspline{
+            .degree = degree,
+            .control_points = {.dimension = dimension, .coordinates = control},
+            .knots = knots,
+            .weights = spline_weights};
+        if (!ValidateBSplineCurve(bspline).ok()) continue;
+        const absl::StatusOr<Polyline> spline_polyline =
+            TessellateBSplineCurve(bspline, tolerance, 1 << 22);
+        ASSERT_TRUE(spline_polyline.ok()) << spline_polyline.status();
+        EXPECT_GE(BSplineCurvePointBound(bspline, tolerance),
+                  spline_polyline->parameters.size());
+        ++splines_checked;
+      }
+    }
+  }
+  EXPECT_GT(splines_checked, 40);
 }
 
 TEST(TessellationTest, CurveErrors) {

@@ -53,9 +53,9 @@ TEST(Memory, ResidentMemoryReturnsToBaselineAfterABurstOfMaximalCalls) {
   // Warm-up: every RPC, then maximal calls from as many callers as the
   // burst, then idle long enough to be trimmed. This pages in the code of
   // both (most of freeformd's idle VmRSS is code, RssFile) and creates the
-  // threads the burst's concurrency needs, with their malloc arenas, whose
-  // few MB glibc keeps once they exist: the test asks that a burst leaves
-  // nothing behind beyond the server's steady state.
+  // threads the burst's concurrency needs, whose stacks and caches stay
+  // once they exist: the test asks that a burst leaves nothing behind
+  // beyond the server's steady state.
   const std::vector<RpcCase> every_rpc = AllCases();
   const std::vector<RpcCase> maximal = {LargeCurveEvaluation(kPoints, 10007)};
   for (const auto& [cases, callers] :

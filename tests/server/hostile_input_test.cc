@@ -187,6 +187,28 @@ TEST_F(HostileInputTest, CurveTessellationRefusesATinyToleranceAtOnce) {
 
 // 3. Answers too large are refused before they are built.
 
+// A rational curve's polyline is bounded before the work like a polynomial
+// one's: a quarter circle at 1e-3 needs 65 points at most, so a server with
+// a small memory budget tessellates it (it reserved the whole message
+// limit, 64 MiB, before and refused).
+TEST_F(HostileInputTest, RationalTessellationReservesOnlyItsBound) {
+  ServiceLimits limits;
+  limits.memory_budget_bytes = 16 << 20;
+  StartServer(limits);
+  auto result = client_->TessellateCurve(Parse<v1::TessellateCurveRequest>(
+      "curve { bezier { control_points { dimension: 2 coordinates: [1, 0, 1, "
+      "1, 0, 1] } weights: [1, 0.70710678118654752, 1] } } tolerance: 1e-3"));
+  ASSERT_TRUE(result.ok()) << result.status();
+  const int points = result->parameters_size();
+  EXPECT_GE(points, 17);
+  EXPECT_LE(points, 65);
+  for (int i = 0; i < points; ++i) {
+    EXPECT_NEAR(std::hypot(result->points().coordinates(2 * i),
+                           result->points().coordinates(2 * i + 1)),
+                1.0, 1e-12);
+  }
+}
+
 TEST_F(HostileInputTest, SurfaceStreamCutsInsideRows) {
   auto request = Parse<v1::EvaluateSurfaceRequest>(
       "surface { bezier { control_net { dimension: 3 count_u: 2 count_v: 2 "

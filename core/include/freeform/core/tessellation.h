@@ -106,8 +106,18 @@ absl::StatusOr<Polyline> TessellateBSplineCurve(
 // w is bounded through the control points Q of the curve's second
 // derivative (The NURBS Book, eq. 3.8): its Bezier form has second
 // differences at most w^2 max |Q_i| / (p (p - 1)) over the p - 1 points
-// active on the span. Rational curves have no such bound: these return
-// SIZE_MAX, as they do when the bound does not fit a size_t.
+// active on the span. A rational piece is subdivided in homogeneous form
+// (w P, w) and tested projected. About a centre c, its homogeneous points
+// (w_i (P_i - c), w_i) deviate from their evenly spaced chord by e_s in
+// the spatial part and e_w in the weight, each bounded as above from the
+// spatial and the weight second differences D_s and D_w. The chord
+// projects onto the piece's Euclidean chord, so a projected control point
+// lies within (e_s + R e_w) / w_min of it, where R bounds |P_i - c| and
+// w_min the weights (the hull property: both hold for every subpiece):
+// the polynomial bound with D = (D_s + R D_w) / w_min. A B-spline span uses
+// its p + 1 active control points for R and w_min. A rational curve with a
+// weight of 0 has no bound: these return SIZE_MAX, as they do when the
+// bound does not fit a size_t.
 
 // BezierCurvePointBound returns at least the number of points
 // TessellateBezierCurve(curve, tolerance, ...) returns. `curve` must be
