@@ -231,6 +231,42 @@ TEST(TessellationTest, PointBoundOfAParabola) {
             2u);
 }
 
+// Tessellates `curve` and expects at most BezierCurvePointBound points.
+void ExpectBoundHolds(const BezierCurveView& curve, double tolerance) {
+  const absl::StatusOr<Polyline> polyline =
+      TessellateBezierCurve(curve, tolerance, 1 << 22);
+  ASSERT_TRUE(polyline.ok()) << polyline.status();
+  EXPECT_GE(BezierCurvePointBound(curve, tolerance),
+            polyline->parameters.size());
+}
+
+// The same for a B-spline; returns false, checking nothing, when `curve`
+// is not valid.
+bool ExpectBoundHolds(const BSplineCurveView& curve, double tolerance) {
+  if (!ValidateBSplineCurve(curve).ok()) return false;
+  const absl::StatusOr<Polyline> polyline =
+      TessellateBSplineCurve(curve, tolerance, 1 << 22);
+  EXPECT_TRUE(polyline.ok()) << polyline.status();
+  if (!polyline.ok()) return false;
+  EXPECT_GE(BSplineCurvePointBound(curve, tolerance),
+            polyline->parameters.size());
+  return true;
+}
+
+// Random knots in [0, 4] for `count` control points of `degree`, with the
+// ends repeated degree + 1 times when `clamped`.
+std::vector<double> RandomKnots(std::mt19937_64& rng, int count, int degree,
+                                bool clamped) {
+  std::vector<double> knots =
+      RandomValues(rng, static_cast<size_t>(count + degree + 1), 0, 4);
+  std::sort(knots.begin(), knots.end());
+  if (clamped) {
+    std::fill(knots.begin(), knots.begin() + degree + 1, knots[0]);
+    std::fill(knots.end() - degree - 1, knots.end(), knots.back());
+  }
+  return knots;
+}
+
 TEST(TessellationTest, PointBoundsHoldForRandomCurves) {
   std::mt19937_64 rng(23);
   int splines_checked = 0;
@@ -244,24 +280,15 @@ TEST(TessellationTest, PointBoundsHoldForRandomCurves) {
         const BezierCurveView bezier{
             .control_points = {.dimension = dimension, .coordinates = points},
             .weights = {}};
-        const absl::StatusOr<Polyline> polyline =
-            TessellateBezierCurve(bezier, tolerance, 1 << 22);
-        ASSERT_TRUE(polyline.ok()) << polyline.status();
-        EXPECT_GE(BezierCurvePointBound(bezier, tolerance),
-                  polyline->parameters.size());
+        ExpectBoundHolds(bezier, tolerance);
 
         // A B-spline with random interior knots (some doubled), clamped or
         // not, with 3 to 12 control points more than its degree needs.
         const int count = degree + 1 + static_cast<int>(rng() % 10);
         std::vector<double> knots =
-            RandomValues(rng, static_cast<size_t>(count + degree + 1), 0, 4);
-        std::sort(knots.begin(), knots.end());
+            RandomKnots(rng, count, degree, /*clamped=*/rng() % 2 == 0);
         if (rng() % 2 == 0 && count > degree + 2 && degree > 1) {
           knots[degree + 2] = knots[degree + 1];
-        }
-        if (rng() % 2 == 0) {
-          std::fill(knots.begin(), knots.begin() + degree + 1, knots[0]);
-          std::fill(knots.end() - degree - 1, knots.end(), knots.back());
         }
         const std::vector<double> control =
             RandomValues(rng, static_cast<size_t>(count) * dimension);
@@ -270,13 +297,7 @@ TEST(TessellationTest, PointBoundsHoldForRandomCurves) {
             .control_points = {.dimension = dimension, .coordinates = control},
             .knots = knots,
             .weights = {}};
-        if (!ValidateBSplineCurve(bspline).ok()) continue;
-        const absl::StatusOr<Polyline> spline_polyline =
-            TessellateBSplineCurve(bspline, tolerance, 1 << 22);
-        ASSERT_TRUE(spline_polyline.ok()) << spline_polyline.status();
-        EXPECT_GE(BSplineCurvePointBound(bspline, tolerance),
-                  spline_polyline->parameters.size());
-        ++splines_checked;
+        if (ExpectBoundHolds(bspline, tolerance)) ++splines_checked;
       }
     }
   }
@@ -377,18 +398,11 @@ TEST(TessellationTest, RationalPointBoundsHoldForRandomCurves) {
         const BezierCurveView bezier{
             .control_points = {.dimension = dimension, .coordinates = points},
             .weights = weights};
-        const absl::StatusOr<Polyline> polyline =
-            TessellateBezierCurve(bezier, tolerance, 1 << 22);
-        ASSERT_TRUE(polyline.ok()) << polyline.status();
-        EXPECT_GE(BezierCurvePointBound(bezier, tolerance),
-                  polyline->parameters.size());
+        ExpectBoundHolds(bezier, tolerance);
 
         const int count = degree + 1 + static_cast<int>(rng() % 8);
-        std::vector<double> knots =
-            RandomValues(rng, static_cast<size_t>(count + degree + 1), 0, 4);
-        std::sort(knots.begin(), knots.end());
-        std::fill(knots.begin(), knots.begin() + degree + 1, knots[0]);
-        std::fill(knots.end() - degree - 1, knots.end(), knots.back());
+        const std::vector<double> knots =
+            RandomKnots(rng, count, degree, /*clamped=*/true);
         const std::vector<double> control =
             RandomValues(rng, static_cast<size_t>(count) * dimension);
         const std::vector<double> spline_weights =
@@ -398,13 +412,7 @@ TEST(TessellationTest, RationalPointBoundsHoldForRandomCurves) {
             .control_points = {.dimension = dimension, .coordinates = control},
             .knots = knots,
             .weights = spline_weights};
-        if (!ValidateBSplineCurve(bspline).ok()) continue;
-        const absl::StatusOr<Polyline> spline_polyline =
-            TessellateBSplineCurve(bspline, tolerance, 1 << 22);
-        ASSERT_TRUE(spline_polyline.ok()) << spline_polyline.status();
-        EXPECT_GE(BSplineCurvePointBound(bspline, tolerance),
-                  spline_polyline->parameters.size());
-        ++splines_checked;
+        if (ExpectBoundHolds(bspline, tolerance)) ++splines_checked;
       }
     }
   }
