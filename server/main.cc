@@ -18,6 +18,7 @@
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
 #include "absl/flags/usage.h"
+#include "absl/functional/function_ref.h"
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
@@ -103,24 +104,40 @@ void StopWithin(absl::Duration limit) {
   }).detach();
 }
 
+// PollUntilQuiet polls the server every `interval` until `checks` polls in
+// a row find no call in flight and none started since the poll before
+// (returns true), or until `give_up()` (returns false).
+bool PollUntilQuiet(const freeform::server::FreeformServer& server,
+                    absl::Duration interval, int checks,
+                    absl::FunctionRef<bool()> give_up) {
+  int64_t started = server.calls_started();
+  int quiet_checks = 0;
+  while (!give_up()) {
+    absl::SleepFor(interval);
+    const int64_t now_started = server.calls_started();
+    quiet_checks = server.calls_in_flight() == 0 && now_started == started
+                       ? quiet_checks + 1
+                       : 0;
+    started = now_started;
+    if (quiet_checks == checks) return true;
+  }
+  return false;
+}
+
 // ExitWhenDrained waits while gRPC drains. gRPC's shutdown also waits, up
 // to the whole grace period, for idle client connections to go away; once
 // the listener is closed and no call is in flight there is nothing left to
-// wait for, so the process exits 0 at once. Returns when the shutdown
-// ended by itself first.
+// wait for, so the process exits 0 at once. Two quiet polls 20 ms apart:
+// the first also lets Shutdown close the listener, after which no new call
+// can start. Returns when the shutdown ended by itself first.
 void ExitWhenDrained(const freeform::server::FreeformServer& server,
                      const std::atomic<bool>& stopped) {
-  // Two quiet checks 20 ms apart: the first also lets Shutdown close the
-  // listener, after which no new call can start.
-  int quiet_checks = 0;
-  while (!stopped) {
-    absl::SleepFor(absl::Milliseconds(20));
-    quiet_checks = server.calls_in_flight() == 0 ? quiet_checks + 1 : 0;
-    if (quiet_checks == 2 && !stopped) {
-      spdlog::info("drained: no call in flight; exiting");
-      spdlog::shutdown();
-      _exit(0);
-    }
+  if (PollUntilQuiet(server, absl::Milliseconds(20), 2,
+                     [&] { return stopped.load(); }) &&
+      !stopped) {
+    spdlog::info("drained: no call in flight; exiting");
+    spdlog::shutdown();
+    _exit(0);
   }
 }
 
@@ -131,16 +148,8 @@ void ExitWhenDrained(const freeform::server::FreeformServer& server,
 // quiet leaves it none.
 void WaitUntilQuiet(const freeform::server::FreeformServer& server,
                     absl::Time deadline) {
-  int64_t started = server.calls_started();
-  int quiet_checks = 0;
-  while (absl::Now() < deadline && quiet_checks < 5) {
-    absl::SleepFor(absl::Milliseconds(10));
-    const int64_t now_started = server.calls_started();
-    quiet_checks = server.calls_in_flight() == 0 && now_started == started
-                       ? quiet_checks + 1
-                       : 0;
-    started = now_started;
-  }
+  PollUntilQuiet(server, absl::Milliseconds(10), 5,
+                 [&] { return absl::Now() >= deadline; });
 }
 
 int main(int argc, char** argv) {
