@@ -1,0 +1,434 @@
+#include "bezier_net.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "freeform/core/bezier.h"
+#include "freeform/core/bezier_pieces.h"
+#include "freeform/core/rational.h"
+#include "freeform/core/status.h"
+#include "freeform/core/surface_output.h"
+#include "freeform/core/tensor_surface.h"
+
+namespace freeform::internal {
+namespace {
+
+Net Lifted(int dimension, int count_u, int count_v,
+           const std::vector<double>& coordinates,
+           const std::vector<double>& weights) {
+  Net net{.dimension = dimension,
+          .rational = !weights.empty(),
+          .count_u = count_u,
+          .count_v = count_v};
+  net.values = net.rational
+                   ? HomogeneousPoints({dimension, coordinates}, weights)
+                   : coordinates;
+  return net;
+}
+
+// BernsteinUpToSecond writes B(n,i,t) and its first and second derivatives
+// into out[k * (n + 1) + i], k = 0, 1, 2 (docs/references.md, 'Bernstein
+// polynomials': B'(n,i) = n (B(n-1,i-1) - B(n-1,i))).
+void BernsteinUpToSecond(int n, double t, std::vector<double>& lower,
+                         double* out) {
+  const size_t count = static_cast<size_t>(n) + 1;
+  std::fill(out, out + 3 * count, 0.0);
+  BernsteinBasis(n, t, absl::MakeSpan(out, count));
+  for (int k = 1; k <= std::min(n, 2); ++k) {
+    const int m = n - k;
+    lower.assign(static_cast<size_t>(m) + 1, 0.0);
+    BernsteinBasis(m, t, absl::MakeSpan(lower));
+    const double scale = k == 1 ? n : static_cast<double>(n) * (n - 1);
+    double* row = out + static_cast<size_t>(k) * count;
+    for (int j = 0; j <= m; ++j) {
+      const double b = scale * lower[static_cast<size_t>(j)];
+      if (k == 1) {
+        row[j + 1] += b;
+        row[j] -= b;
+      } else {
+        row[j + 2] += b;
+        row[j + 1] -= 2.0 * b;
+        row[j] += b;
+      }
+    }
+  }
+}
+
+// Cholesky solves the count x count system h d = -g in place when h is
+// positive definite; returns false otherwise.
+bool Cholesky(int count, double* h, const double* g, double* d) {
+  double l[9] = {0};
+  for (int i = 0; i < count; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      double sum = h[i * count + j];
+      for (int k = 0; k < j; ++k) sum -= l[i * 3 + k] * l[j * 3 + k];
+      if (i == j) {
+        if (!(sum > 0.0)) return false;
+        l[i * 3 + i] = std::sqrt(sum);
+      } else {
+        l[i * 3 + j] = sum / l[j * 3 + j];
+      }
+    }
+  }
+  double y[3];
+  for (int i = 0; i < count; ++i) {
+    double sum = -g[i];
+    for (int k = 0; k < i; ++k) sum -= l[i * 3 + k] * y[k];
+    y[i] = sum / l[i * 3 + i];
+  }
+  for (int i = count - 1; i >= 0; --i) {
+    double sum = y[i];
+    for (int k = i + 1; k < count; ++k) sum -= l[k * 3 + i] * d[k];
+    d[i] = sum / l[i * 3 + i];
+  }
+  return true;
+}
+
+// NewtonStep writes the step for the free variables (free[i]), the
+// Hessian shifted by multiples of its largest diagonal until positive
+// definite.
+void NewtonStep(int count, const LocalModel& model, const bool* free,
+                double* step) {
+  int index[3];
+  int m = 0;
+  for (int i = 0; i < count; ++i) {
+    step[i] = 0.0;
+    if (free[i]) index[m++] = i;
+  }
+  if (m == 0) return;
+  double scale = 0.0;
+  for (int a = 0; a < m; ++a) {
+    scale = std::max(scale, std::abs(model.hessian[index[a] * 3 + index[a]]));
+  }
+  if (scale == 0.0) scale = 1.0;
+  double g[3];
+  for (int a = 0; a < m; ++a) g[a] = model.gradient[index[a]];
+  for (double shift = 0.0;; shift = shift == 0.0 ? 1e-12 : shift * 100.0) {
+    double h[9];
+    for (int a = 0; a < m; ++a) {
+      for (int b = 0; b < m; ++b) {
+        h[a * m + b] = model.hessian[index[a] * 3 + index[b]] +
+                       (a == b ? shift * scale : 0.0);
+      }
+    }
+    double d[3];
+    if (Cholesky(m, h, g, d) || shift > 1e12) {
+      for (int a = 0; a < m; ++a) {
+        step[index[a]] = std::isfinite(d[a]) ? d[a] : 0.0;
+      }
+      return;
+    }
+  }
+}
+
+// Range returns the smallest and largest coordinate x of `points`.
+std::pair<double, double> Range(absl::Span<const double> points, int dimension,
+                                int x) {
+  double lo = std::numeric_limits<double>::infinity();
+  double hi = -lo;
+  for (size_t k = static_cast<size_t>(x); k < points.size();
+       k += static_cast<size_t>(dimension)) {
+    lo = std::min(lo, points[k]);
+    hi = std::max(hi, points[k]);
+  }
+  return {lo, hi};
+}
+
+// GradientNorm returns the norm of the projected gradient at x (parts
+// pointing out of the box at a bound left out).
+double GradientNorm(int count, const LocalModel& model, const double* x,
+                    const double* lower, const double* upper) {
+  double sum = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const double g = model.gradient[i];
+    if ((x[i] <= lower[i] && g > 0.0) || (x[i] >= upper[i] && g < 0.0)) {
+      continue;
+    }
+    sum += g * g;
+  }
+  return std::sqrt(sum);
+}
+
+}  // namespace
+
+Net LiftCurve(const BezierCurveData& curve) {
+  return Lifted(curve.dimension,
+                static_cast<int>(curve.coordinates.size()) / curve.dimension, 1,
+                curve.coordinates, curve.weights);
+}
+
+Net LiftSurface(const SurfaceData& surface) {
+  return Lifted(surface.dimension, surface.count_u, surface.count_v,
+                surface.coordinates, surface.weights);
+}
+
+absl::StatusOr<Pieces> LiftCurvePieces(const Curve& curve,
+                                       const CancellationToken* cancel) {
+  absl::StatusOr<BezierDecomposition> pieces = CurveBezierPieces(curve, cancel);
+  if (!pieces.ok()) return pieces.status();
+  Pieces result{.dimension = DimensionOf(curve), .parameter_count = 1};
+  for (const BezierCurveData& segment : pieces->segments) {
+    result.nets.push_back(LiftCurve(segment));
+  }
+  result.parameters = [breaks = std::move(pieces->breakpoints)](
+                          size_t k, double s, double, double* out) {
+    out[0] =
+        s >= 1.0 ? breaks[k + 1] : breaks[k] + s * (breaks[k + 1] - breaks[k]);
+  };
+  return result;
+}
+
+absl::StatusOr<Pieces> LiftSurfacePieces(const Surface& surface,
+                                         const CancellationToken* cancel) {
+  absl::StatusOr<SurfacePieces> pieces = SurfaceBezierPieces(surface, cancel);
+  if (!pieces.ok()) return pieces.status();
+  Pieces result{.dimension = DimensionOf(surface), .parameter_count = 2};
+  for (const SurfaceData& patch : pieces->patches) {
+    result.nets.push_back(LiftSurface(patch));
+  }
+  result.parameters = [shared = *std::move(pieces)](size_t k, double s,
+                                                    double t, double* out) {
+    const std::array<double, 2> uv = SurfacePieceParameters(shared, k, s, t);
+    out[0] = uv[0];
+    out[1] = uv[1];
+  };
+  return result;
+}
+
+void Halve(const Net& net, bool in_u, Net& low, Net& high) {
+  low = net;
+  high = net;
+  const int lines = in_u ? net.count_v : net.count_u;
+  const int n = (in_u ? net.count_u : net.count_v) - 1;
+  const int stride = net.stride();
+  std::vector<double> work(static_cast<size_t>(n + 1) * stride);
+  for (int line = 0; line < lines; ++line) {
+    auto source = [&](Net& target, int k) {
+      return in_u ? target.at(k, line) : target.at(line, k);
+    };
+    for (int k = 0; k <= n; ++k) {
+      std::copy_n(in_u ? net.at(k, line) : net.at(line, k), stride,
+                  work.data() + static_cast<size_t>(k) * stride);
+    }
+    for (int r = 1; r <= n; ++r) {
+      for (int k = 0; k <= n - r; ++k) {
+        double* a = work.data() + static_cast<size_t>(k) * stride;
+        const double* b = a + stride;
+        for (int x = 0; x < stride; ++x) a[x] = 0.5 * (a[x] + b[x]);
+      }
+      std::copy_n(work.data(), stride, source(low, r));
+      std::copy_n(work.data() + static_cast<size_t>(n - r) * stride, stride,
+                  source(high, n - r));
+    }
+  }
+}
+
+bool Point(const Net& net, int i, int j, double* point) {
+  const double* p = net.at(i, j);
+  if (!net.rational) {
+    std::copy_n(p, net.dimension, point);
+    return true;
+  }
+  const double w = p[net.dimension];
+  if (!(w > 0.0)) return false;
+  for (int x = 0; x < net.dimension; ++x) point[x] = p[x] / w;
+  return true;
+}
+
+bool Project(const Net& net, std::vector<double>& points) {
+  points.resize(static_cast<size_t>(net.count_u) * net.count_v * net.dimension);
+  bool positive = true;
+  for (int i = 0; i < net.count_u; ++i) {
+    for (int j = 0; j < net.count_v; ++j) {
+      positive &=
+          Point(net, i, j,
+                points.data() +
+                    (static_cast<size_t>(i) * net.count_v + j) * net.dimension);
+    }
+  }
+  return positive;
+}
+
+double Distance(const double* a, const double* b, int dimension) {
+  double sum = 0.0;
+  for (int x = 0; x < dimension; ++x) sum += (a[x] - b[x]) * (a[x] - b[x]);
+  return std::sqrt(sum);
+}
+
+absl::Status CheckTolerances(double tolerance, double separation) {
+  if (!std::isfinite(tolerance) || tolerance <= 0.0) {
+    return InvalidFieldError("tolerance", "must be positive and finite");
+  }
+  if (!std::isfinite(separation) || separation < 0.0) {
+    return InvalidFieldError("separation", "must be finite and >= 0");
+  }
+  return absl::OkStatus();
+}
+
+double BoxDistance(absl::Span<const double> points, int dimension,
+                   const double* query) {
+  double sum = 0.0;
+  for (int x = 0; x < dimension; ++x) {
+    const auto [lo, hi] = Range(points, dimension, x);
+    const double gap = std::max({lo - query[x], query[x] - hi, 0.0});
+    sum += gap * gap;
+  }
+  return std::sqrt(sum);
+}
+
+double BoxDiameter(absl::Span<const double> points, int dimension) {
+  double sum = 0.0;
+  for (int x = 0; x < dimension; ++x) {
+    const auto [lo, hi] = Range(points, dimension, x);
+    sum += (hi - lo) * (hi - lo);
+  }
+  return std::sqrt(sum);
+}
+
+double DirectionalBound(absl::Span<const double> points, int dimension,
+                        const double* query, const double* toward) {
+  const double length = Distance(query, toward, dimension);
+  if (!(length > 0.0)) return 0.0;
+  double bound = std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < points.size(); k += static_cast<size_t>(dimension)) {
+    double along = 0.0;
+    for (int x = 0; x < dimension; ++x) {
+      along += (query[x] - toward[x]) * (query[x] - points[k + x]);
+    }
+    bound = std::min(bound, along / length);
+  }
+  return std::max(bound, 0.0);
+}
+
+void PolygonLengths(absl::Span<const double> points, int dimension, int count_u,
+                    int count_v, double& along_u, double& along_v) {
+  auto distance = [&](int i0, int j0, int i1, int j1) {
+    const double* a =
+        points.data() + (static_cast<size_t>(i0) * count_v + j0) * dimension;
+    const double* b =
+        points.data() + (static_cast<size_t>(i1) * count_v + j1) * dimension;
+    double sum = 0.0;
+    for (int x = 0; x < dimension; ++x) sum += (a[x] - b[x]) * (a[x] - b[x]);
+    return std::sqrt(sum);
+  };
+  along_u = 0.0;
+  along_v = 0.0;
+  for (int j = 0; j < count_v; ++j) {
+    double length = 0.0;
+    for (int i = 0; i + 1 < count_u; ++i) length += distance(i, j, i + 1, j);
+    along_u = std::max(along_u, length);
+  }
+  for (int i = 0; i < count_u; ++i) {
+    double length = 0.0;
+    for (int j = 0; j + 1 < count_v; ++j) length += distance(i, j, i, j + 1);
+    along_v = std::max(along_v, length);
+  }
+}
+
+NetEvaluator::NetEvaluator(const Net& net)
+    : net_(net),
+      basis_u_(3 * static_cast<size_t>(net.count_u)),
+      basis_v_(3 * static_cast<size_t>(net.count_v)),
+      homogeneous_(PartialCount(2) * static_cast<size_t>(net.stride())) {}
+
+void NetEvaluator::Evaluate(double s, double t, double* partials) {
+  const int nu = net_.count_u;
+  const int nv = net_.count_v;
+  const int stride = net_.stride();
+  BernsteinUpToSecond(nu - 1, s, scratch_, basis_u_.data());
+  BernsteinUpToSecond(nv - 1, t, scratch_, basis_v_.data());
+  double* out = net_.rational ? homogeneous_.data() : partials;
+  std::fill(out, out + PartialCount(2) * stride, 0.0);
+  for (int k = 0; k <= 2; ++k) {
+    for (int l = 0; k + l <= 2; ++l) {
+      double* target = out + PartialIndex(k, l) * stride;
+      for (int i = 0; i < nu; ++i) {
+        const double bu = basis_u_[static_cast<size_t>(k) * nu + i];
+        if (bu == 0.0) continue;
+        for (int j = 0; j < nv; ++j) {
+          const double b = bu * basis_v_[static_cast<size_t>(l) * nv + j];
+          const double* p = net_.at(i, j);
+          for (int x = 0; x < stride; ++x) target[x] += b * p[x];
+        }
+      }
+    }
+  }
+  if (net_.rational) {
+    ProjectHomogeneousSurfaceDerivatives(out, net_.dimension, 2, partials);
+  }
+}
+
+void DistanceModel(NetEvaluator& evaluator, int parameter_count,
+                   const double* query, const double* x, double* partials,
+                   LocalModel& model) {
+  const int dim = evaluator.dimension();
+  evaluator.Evaluate(x[0], parameter_count == 2 ? x[1] : 0.0, partials);
+  const double* s = partials;
+  const double* su = s + dim;
+  const double* sv = s + 2 * dim;
+  double value = 0, g0 = 0, g1 = 0, h00 = 0, h01 = 0, h11 = 0;
+  for (int k = 0; k < dim; ++k) {
+    const double r = s[k] - query[k];
+    value += r * r;
+    g0 += r * su[k];
+    g1 += r * sv[k];
+    h00 += su[k] * su[k] + r * s[3 * dim + k];
+    h01 += su[k] * sv[k] + r * s[4 * dim + k];
+    h11 += sv[k] * sv[k] + r * s[5 * dim + k];
+  }
+  model = LocalModel{};
+  model.value = 0.5 * value;
+  model.gradient[0] = g0;
+  model.gradient[1] = g1;
+  model.hessian[0] = h00;
+  model.hessian[1] = model.hessian[3] = h01;
+  model.hessian[4] = h11;
+}
+
+double MinimizeInBox(int count, const double* lower, const double* upper,
+                     double* x,
+                     absl::FunctionRef<void(const double*, LocalModel&)> model,
+                     int max_iterations) {
+  LocalModel current;
+  model(x, current);
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    bool free[3];
+    for (int i = 0; i < count; ++i) {
+      const double g = current.gradient[i];
+      free[i] =
+          !((x[i] <= lower[i] && g > 0.0) || (x[i] >= upper[i] && g < 0.0));
+    }
+    double step[3];
+    NewtonStep(count, current, free, step);
+    bool moved = false;
+    for (double fraction = 1.0; fraction > 1e-12; fraction *= 0.5) {
+      double trial[3];
+      bool changed = false;
+      for (int i = 0; i < count; ++i) {
+        trial[i] = std::clamp(x[i] + fraction * step[i], lower[i], upper[i]);
+        changed |= trial[i] != x[i];
+      }
+      if (!changed) break;
+      LocalModel next;
+      model(trial, next);
+      // Near the minimum the value stops resolving the step (it changes
+      // by rounding only) while the gradient still does: a step that halves
+      // the projected gradient and keeps the value within rounding counts.
+      const bool flat = next.value <= current.value * (1.0 + 1e-10) &&
+                        GradientNorm(count, next, trial, lower, upper) <
+                            0.5 * GradientNorm(count, current, x, lower, upper);
+      if (next.value < current.value || flat) {
+        std::copy_n(trial, count, x);
+        current = next;
+        moved = true;
+        break;
+      }
+    }
+    if (!moved) break;
+  }
+  return current.value;
+}
+
+}  // namespace freeform::internal

@@ -1,0 +1,107 @@
+// Curves and surfaces with exactly known geometry for the query tests
+// (closest points, intersections, sections): the NURBS circle, sphere and
+// torus patches as rational surfaces of revolution; and the evaluation
+// helpers those tests share.
+#ifndef FREEFORM_TESTS_CORE_QUERY_SHAPES_H_
+#define FREEFORM_TESTS_CORE_QUERY_SHAPES_H_
+
+#include <cmath>
+#include <vector>
+
+#include "absl/types/span.h"
+#include "freeform/core/curve.h"
+#include "freeform/core/geometry_data.h"
+#include "freeform/core/surface.h"
+
+namespace freeform::testing_util {
+
+// The full circle of `radius` about (cx, cy): nine control points, weights
+// 1, sqrt(1/2), ..., knots 0,0,0, 1/4,1/4, 1/2,1/2, 3/4,3/4, 1,1,1 (The
+// NURBS Book, ex. 7.1).
+inline BSplineCurveData Circle(double radius, double cx, double cy) {
+  const double h = std::sqrt(0.5);
+  const double corners[9][2] = {{1, 0},   {1, 1},  {0, 1},  {-1, 1}, {-1, 0},
+                                {-1, -1}, {0, -1}, {1, -1}, {1, 0}};
+  BSplineCurveData circle{
+      .degree = 2,
+      .dimension = 2,
+      .coordinates = {},
+      .knots = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1},
+      .weights = {1, h, 1, h, 1, h, 1, h, 1}};
+  for (const auto& c : corners) {
+    circle.coordinates.push_back(cx + radius * c[0]);
+    circle.coordinates.push_back(cy + radius * c[1]);
+  }
+  return circle;
+}
+
+// Revolution returns the biquadratic rational Bezier patch swept by the
+// quarter circle profile (radial distance rho_i, height z_i, weights 1,
+// sqrt(1/2), 1) turned by a quarter about the z axis from the x axis to the
+// y axis: P_ij = (rho_i x_j, rho_i y_j, z_i), weights w_i w_j (The NURBS
+// Book, section 8.5).
+inline SurfaceData Revolution(const double rho[3], const double z[3]) {
+  const double h = std::sqrt(0.5);
+  const double x[3] = {1, 1, 0};
+  const double y[3] = {0, 1, 1};
+  const double w[3] = {1, h, 1};
+  SurfaceData patch{
+      .degree_u = 2, .degree_v = 2, .dimension = 3, .count_u = 3, .count_v = 3};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      patch.coordinates.insert(patch.coordinates.end(),
+                               {rho[i] * x[j], rho[i] * y[j], z[i]});
+      patch.weights.push_back(w[i] * w[j]);
+    }
+  }
+  return patch;
+}
+
+// The octant of the sphere of `radius` about the origin: u from the
+// equator to the north pole (a collapsed row), v from the x to the y axis.
+inline SurfaceData SphereOctant(double radius) {
+  const double rho[3] = {radius, radius, 0};
+  const double z[3] = {0, radius, radius};
+  return Revolution(rho, z);
+}
+
+// A quarter of a quarter of the torus with major radius R and minor radius
+// r: the tube's outer upper quarter (angle phi from 0 to pi/2 in u) turned
+// by a quarter about z. Point (theta, phi): ((R + r cos phi) cos theta,
+// (R + r cos phi) sin theta, r sin phi).
+inline SurfaceData TorusPatch(double major, double minor) {
+  const double rho[3] = {major + minor, major + minor, major};
+  const double z[3] = {0, minor, minor};
+  return Revolution(rho, z);
+}
+
+// CurvePoints returns the curve's points at `parameters`.
+inline std::vector<double> CurvePoints(const Curve& curve,
+                                       const std::vector<double>& parameters) {
+  std::vector<double> points(parameters.size() * DimensionOf(curve));
+  const absl::Span<double> output[] = {absl::MakeSpan(points)};
+  if (!EvaluateCurve(curve, parameters, output).ok()) return {};
+  return points;
+}
+
+// SurfacePoints returns the surface's points at the (u, v) pairs `uv`.
+inline std::vector<double> SurfacePoints(const Surface& surface,
+                                         const std::vector<double>& uv) {
+  std::vector<double> points(uv.size() / 2 * DimensionOf(surface));
+  const absl::Span<double> output[] = {absl::MakeSpan(points)};
+  if (!EvaluateSurface(surface, SurfaceSamples::Pairs(uv), output, {}).ok()) {
+    return {};
+  }
+  return points;
+}
+
+// PointDistance returns |a - b|.
+inline double PointDistance(const double* a, const double* b, int dimension) {
+  double sum = 0.0;
+  for (int x = 0; x < dimension; ++x) sum += (a[x] - b[x]) * (a[x] - b[x]);
+  return std::sqrt(sum);
+}
+
+}  // namespace freeform::testing_util
+
+#endif  // FREEFORM_TESTS_CORE_QUERY_SHAPES_H_
