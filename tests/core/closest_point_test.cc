@@ -1,0 +1,568 @@
+#include "freeform/core/closest_point.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "freeform/core/status.h"
+#include "query_shapes.h"
+#include "teapot.h"
+#include "test_util.h"
+
+namespace freeform {
+namespace {
+
+using testing_util::CurvePoints;
+using testing_util::RandomValues;
+using testing_util::SurfacePoints;
+constexpr auto Distance = testing_util::PointDistance;
+
+// Grid returns n + 1 parameters from lo to hi, both ends exact.
+std::vector<double> Grid(double lo, double hi, int n) {
+  return testing_util::EvenlySpaced(lo, hi, static_cast<size_t>(n) + 1);
+}
+
+// The reference distance of a curve to q: the best of 4001 samples, then
+// three rounds of 41 samples within a step of the best one.
+double CurveReference(const Curve& curve, const std::vector<double>& samples,
+                      const std::vector<double>& points, const double* q) {
+  const int dim = DimensionOf(curve);
+  const ParameterDomain domain = DomainOf(curve);
+  size_t best = 0;
+  double distance = INFINITY;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const double d = Distance(points.data() + k * dim, q, dim);
+    if (d < distance) distance = d, best = k;
+  }
+  double t = samples[best];
+  double step = samples[1] - samples[0];
+  for (int round = 0; round < 3; ++round) {
+    const std::vector<double> local = Grid(std::max(domain.start, t - step),
+                                           std::min(domain.end, t + step), 40);
+    const std::vector<double> near = CurvePoints(curve, local);
+    for (size_t k = 0; k < local.size(); ++k) {
+      const double d = Distance(near.data() + k * dim, q, dim);
+      if (d < distance) distance = d, t = local[k];
+    }
+    step = (local[1] - local[0]) * 1.01;
+  }
+  return distance;
+}
+
+// ParameterOf maps (s, t) of the unit square onto the surface's parameters
+// (a triangular patch by (s, (1 - s) t)).
+std::vector<double> SquareToSurface(const Surface& surface, double s,
+                                    double t) {
+  if (IsTriangular(surface)) return {s, (1.0 - s) * t};
+  const SurfaceDomain d = DomainOf(surface);
+  return {d.u_start + s * (d.u_end - d.u_start),
+          d.v_start + t * (d.v_end - d.v_start)};
+}
+
+// The reference distance of a surface to q: the best of a 41 x 41 grid of
+// the unit square, then six rounds of 9 x 9 samples within a step.
+struct SurfaceReference {
+  const Surface& surface;
+  std::vector<double> grid_points;
+  std::vector<double> square;
+
+  explicit SurfaceReference(const Surface& s) : surface(s) {
+    const std::vector<double> g = Grid(0.0, 1.0, 40);
+    std::vector<double> uv;
+    for (double a : g) {
+      for (double b : g) {
+        square.insert(square.end(), {a, b});
+        const std::vector<double> p = SquareToSurface(surface, a, b);
+        uv.insert(uv.end(), p.begin(), p.end());
+      }
+    }
+    grid_points = SurfacePoints(surface, uv);
+  }
+
+  double Nearest(const double* q) const {
+    const int dim = DimensionOf(surface);
+    double distance = INFINITY;
+    double s = 0.0, t = 0.0;
+    for (size_t k = 0; k < square.size() / 2; ++k) {
+      const double d = Distance(grid_points.data() + k * dim, q, dim);
+      if (d < distance) distance = d, s = square[2 * k], t = square[2 * k + 1];
+    }
+    double step = 1.0 / 40;
+    for (int round = 0; round < 6; ++round) {
+      const std::vector<double> gs =
+          Grid(std::max(0.0, s - step), std::min(1.0, s + step), 8);
+      const std::vector<double> gt =
+          Grid(std::max(0.0, t - step), std::min(1.0, t + step), 8);
+      std::vector<double> uv;
+      for (double a : gs) {
+        for (double b : gt) {
+          const std::vector<double> p = SquareToSurface(surface, a, b);
+          uv.insert(uv.end(), p.begin(), p.end());
+        }
+      }
+      const std::vector<double> near = SurfacePoints(surface, uv);
+      for (size_t k = 0; k < uv.size() / 2; ++k) {
+        const double d = Distance(near.data() + k * dim, q, dim);
+        if (d < distance) {
+          distance = d, s = gs[k / gt.size()], t = gt[k % gt.size()];
+        }
+      }
+      step *= 0.25 * 1.01;
+    }
+    return distance;
+  }
+};
+
+// CheckAnswer checks that every returned minimum is the geometry's point
+// at its parameters, at the returned distance from its query.
+void CheckCurveAnswer(const Curve& curve, const PointsView& queries,
+                      const ClosestPoints& answer) {
+  const int dim = DimensionOf(curve);
+  for (size_t r = 0; r < queries.size(); ++r) {
+    ASSERT_GE(answer.counts[r], 1);
+    for (int k = 0; k < answer.counts[r]; ++k) {
+      const size_t slot = r * answer.max_minima + k;
+      const std::vector<double> point =
+          CurvePoints(curve, {answer.parameters[slot]});
+      const double* returned = answer.points.data() + slot * dim;
+      ASSERT_LE(Distance(point.data(), returned, dim), 1e-12);
+      ASSERT_NEAR(Distance(returned, queries.point(r), dim),
+                  answer.distances[r], 1e-9);
+    }
+    ASSERT_LE(answer.lower_bounds[r], answer.distances[r]);
+  }
+}
+
+struct CurveCase {
+  std::string name;
+  absl::StatusOr<Curve> curve;
+};
+
+// Owned data of the curve cases.
+struct CurveData {
+  std::vector<std::vector<double>> arrays;
+  const std::vector<double>& Keep(std::vector<double> values) {
+    arrays.push_back(std::move(values));
+    return arrays.back();
+  }
+};
+
+std::vector<CurveCase> CurveCases(std::mt19937_64& rng, CurveData& data) {
+  data.arrays.reserve(64);
+  std::vector<CurveCase> cases;
+  auto points = [&](size_t count, int dim) -> const std::vector<double>& {
+    return data.Keep(RandomValues(rng, count * dim));
+  };
+  cases.push_back(
+      {"bezier cubic 2D", BezierCurve::Create({{2, points(4, 2)}, {}})});
+  cases.push_back(
+      {"bezier degree 6 3D", BezierCurve::Create({{3, points(7, 3)}, {}})});
+  cases.push_back(
+      {"rational bezier 2D",
+       BezierCurve::Create(
+           {{2, points(5, 2)}, data.Keep(RandomValues(rng, 5, 0.3, 3.0))})});
+  cases.push_back(
+      {"power form 2D", BezierCurve::FromPowerForm({2, points(4, 2)})});
+  cases.push_back(
+      {"lagrange 3D", LagrangeCurve::Create({{3, points(5, 3)}, {}})});
+  cases.push_back(
+      {"hermite 2D", HermiteCurve::Create({{2, points(4, 2)},
+                                           {2, points(4, 2)},
+                                           data.Keep({0.0, 0.5, 2.0, 3.0})})});
+  cases.push_back({"bspline cubic 2D",
+                   BSplineCurve::Create({3,
+                                         {2, points(10, 2)},
+                                         data.Keep({0, 0, 0, 0, 0.1, 0.3, 0.3,
+                                                    0.5, 0.8, 0.9, 1, 1, 1, 1}),
+                                         {}})});
+  cases.push_back({"nurbs unclamped 3D",
+                   BSplineCurve::Create(
+                       {2,
+                        {3, points(8, 3)},
+                        data.Keep(testing_util::RandomKnots(rng, 2, 7, false)),
+                        data.Keep(RandomValues(rng, 8, 0.3, 3.0))})});
+  cases.push_back(
+      {"bspline 1D",
+       BSplineCurve::Create({3,
+                             {1, points(6, 1)},
+                             data.Keep({0, 0, 0, 0, 0.4, 0.6, 1, 1, 1, 1}),
+                             {}})});
+  return cases;
+}
+
+TEST(ClosestPointTest, CurvesNeverFartherThanDenseReference) {
+  std::mt19937_64 rng(12);
+  CurveData data;
+  for (const CurveCase& c : CurveCases(rng, data)) {
+    ASSERT_TRUE(c.curve.ok()) << c.name << ": " << c.curve.status();
+    const Curve& curve = *c.curve;
+    const int dim = DimensionOf(curve);
+    const std::vector<double> queries =
+        RandomValues(rng, 1000 * dim, -1.5, 1.5);
+    const PointsView view{dim, queries};
+    const auto start = std::chrono::steady_clock::now();
+    const absl::StatusOr<ClosestPoints> answer =
+        CurveClosestPoints(curve, view);
+    const double ms = std::chrono::duration<double, std::milli>(
+                          std::chrono::steady_clock::now() - start)
+                          .count();
+    ASSERT_TRUE(answer.ok()) << c.name << ": " << answer.status();
+    CheckCurveAnswer(curve, view, *answer);
+    const ParameterDomain domain = DomainOf(curve);
+    const std::vector<double> samples = Grid(domain.start, domain.end, 4000);
+    const std::vector<double> points = CurvePoints(curve, samples);
+    double worst = -INFINITY;
+    int incomplete = 0;
+    for (size_t r = 0; r < view.size(); ++r) {
+      const double reference =
+          CurveReference(curve, samples, points, view.point(r));
+      worst = std::max(worst, answer->distances[r] - reference);
+      incomplete += answer->complete[r] ? 0 : 1;
+      EXPECT_LE(answer->distances[r], reference + 1e-9) << c.name << " " << r;
+    }
+    EXPECT_EQ(incomplete, 0) << c.name;
+    std::printf("%s: 1000 queries %.1f ms, worst excess over reference %.2e\n",
+                c.name.c_str(), ms, worst);
+  }
+}
+
+TEST(ClosestPointTest, PointsOnCurvesInvertToTheirParameter) {
+  std::mt19937_64 rng(7);
+  CurveData data;
+  for (const CurveCase& c : CurveCases(rng, data)) {
+    ASSERT_TRUE(c.curve.ok()) << c.name;
+    const Curve& curve = *c.curve;
+    const ParameterDomain domain = DomainOf(curve);
+    const std::vector<double> parameters =
+        RandomValues(rng, 200, domain.start, domain.end);
+    const std::vector<double> points = CurvePoints(curve, parameters);
+    const absl::StatusOr<ClosestPoints> answer =
+        CurveClosestPoints(curve, {DimensionOf(curve), points});
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    for (size_t r = 0; r < parameters.size(); ++r) {
+      EXPECT_LE(answer->distances[r], 1e-12) << c.name;
+      double nearest = INFINITY;
+      for (int k = 0; k < answer->counts[r]; ++k) {
+        nearest = std::min(
+            nearest, std::abs(answer->parameters[r * 8 + k] - parameters[r]));
+      }
+      EXPECT_LE(nearest, 1e-9 * (domain.end - domain.start))
+          << c.name << " t=" << parameters[r];
+    }
+  }
+}
+
+TEST(ClosestPointTest, EndPointsAreNearestBeyondTheEnds) {
+  // An arch: beyond each end along the tangent, the end point is nearest.
+  const std::vector<double> arch = {0, 0, 1, 1, 2, 1, 3, 0};
+  const absl::StatusOr<Curve> curve = BezierCurve::Create({{2, arch}, {}});
+  const double h = 0.5 / std::sqrt(2.0);
+  const std::vector<double> queries = {-h, -h, 3 + h, -h};
+  const absl::StatusOr<ClosestPoints> answer =
+      CurveClosestPoints(*curve, {2, queries});
+  ASSERT_TRUE(answer.ok());
+  EXPECT_EQ(answer->parameters[0], 0.0);
+  EXPECT_EQ(answer->parameters[8], 1.0);
+  EXPECT_NEAR(answer->distances[0], 0.5, 1e-15);
+  EXPECT_NEAR(answer->distances[1], 0.5, 1e-15);
+  // The same arch as a clamped B-spline on [2, 5].
+  const std::vector<double> knots = {2, 2, 2, 2, 5, 5, 5, 5};
+  const absl::StatusOr<Curve> spline =
+      BSplineCurve::Create({3, {2, arch}, knots, {}});
+  const absl::StatusOr<ClosestPoints> spline_answer =
+      CurveClosestPoints(*spline, {2, queries});
+  ASSERT_TRUE(spline_answer.ok());
+  EXPECT_EQ(spline_answer->parameters[0], 2.0);
+  EXPECT_EQ(spline_answer->parameters[8], 5.0);
+}
+
+TEST(ClosestPointTest, NurbsCircle) {
+  const double radius = 2.0;
+  const BSplineCurveData data = testing_util::Circle(radius, 1.0, -1.0);
+  const absl::StatusOr<Curve> curve = BSplineCurve::Create(data.view());
+  ASSERT_TRUE(curve.ok());
+  std::mt19937_64 rng(3);
+  std::vector<double> queries = RandomValues(rng, 2000, -3.0, 5.0);
+  queries.insert(queries.end(), {1.0, -1.0});  // the centre, last
+  const size_t count = queries.size() / 2;
+  const absl::StatusOr<ClosestPoints> answer =
+      CurveClosestPoints(*curve, {2, queries});
+  ASSERT_TRUE(answer.ok());
+  CheckCurveAnswer(*curve, {2, queries}, *answer);
+  for (size_t r = 0; r + 1 < count; ++r) {
+    const double dx = queries[2 * r] - 1.0;
+    const double dy = queries[2 * r + 1] + 1.0;
+    const double rho = std::hypot(dx, dy);
+    EXPECT_NEAR(answer->distances[r], std::abs(rho - radius), 1e-12);
+    EXPECT_EQ(answer->counts[r], 1);
+    EXPECT_TRUE(answer->complete[r]);
+    EXPECT_NEAR(answer->points[16 * r], 1.0 + radius * dx / rho, 1e-12);
+    EXPECT_NEAR(answer->points[16 * r + 1], -1.0 + radius * dy / rho, 1e-12);
+  }
+  // The centre: every parameter is a minimum. The answer is a bounded set
+  // of max_minima distinct points at distance r, flagged incomplete.
+  const size_t c = count - 1;
+  EXPECT_NEAR(answer->distances[c], radius, 1e-12);
+  EXPECT_FALSE(answer->complete[c]);
+  EXPECT_EQ(answer->counts[c], 8);
+  for (int k = 0; k < 8; ++k) {
+    const double* p = answer->points.data() + (c * 8 + k) * 2;
+    EXPECT_NEAR(std::hypot(p[0] - 1.0, p[1] + 1.0), radius, 1e-12);
+    for (int m = 0; m < k; ++m) {
+      EXPECT_NE(answer->parameters[c * 8 + k], answer->parameters[c * 8 + m]);
+    }
+  }
+}
+
+TEST(ClosestPointTest, SphereAndTorusPatches) {
+  const double radius = 1.5;
+  const SurfaceData sphere_data = testing_util::SphereOctant(radius);
+  const absl::StatusOr<Surface> sphere =
+      BezierSurface::Create(sphere_data.bezier_view());
+  ASSERT_TRUE(sphere.ok());
+  std::mt19937_64 rng(5);
+  std::vector<double> queries;
+  for (int r = 0; r < 1000; ++r) {
+    const std::vector<double> d = RandomValues(rng, 3, 0.05, 1.0);
+    const double scale = RandomValues(rng, 1, 0.5, 3.0)[0];
+    for (double x : d) queries.push_back(scale * x);
+  }
+  const absl::StatusOr<ClosestPoints> answer =
+      SurfaceClosestPoints(*sphere, {3, queries});
+  ASSERT_TRUE(answer.ok());
+  for (size_t r = 0; r < 1000; ++r) {
+    const double* q = queries.data() + 3 * r;
+    const double rho = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+    ASSERT_NEAR(answer->distances[r], std::abs(rho - radius), 1e-12);
+    for (int x = 0; x < 3; ++x) {
+      EXPECT_NEAR(answer->points[24 * r + x], radius * q[x] / rho, 1e-9);
+    }
+  }
+  const std::vector<double> centre = {0, 0, 0};
+  const absl::StatusOr<ClosestPoints> at_centre =
+      SurfaceClosestPoints(*sphere, {3, centre});
+  ASSERT_TRUE(at_centre.ok());
+  EXPECT_NEAR(at_centre->distances[0], radius, 1e-12);
+  EXPECT_FALSE(at_centre->complete[0]);
+  EXPECT_EQ(at_centre->counts[0], 8);
+
+  // The torus: points pushed off the patch along its normal by delta < r
+  // are delta from their foot point.
+  const double major = 2.0, minor = 0.5;
+  const SurfaceData torus_data = testing_util::TorusPatch(major, minor);
+  const absl::StatusOr<Surface> torus =
+      BezierSurface::Create(torus_data.bezier_view());
+  ASSERT_TRUE(torus.ok());
+  std::vector<double> offsets;
+  std::vector<double> deltas;
+  for (int r = 0; r < 1000; ++r) {
+    const std::vector<double> a = RandomValues(rng, 2, 0.0, M_PI / 2);
+    const double delta = RandomValues(rng, 1, -0.3, 1.0)[0];
+    const double rho = major + (minor + delta) * std::cos(a[1]);
+    offsets.insert(offsets.end(), {rho * std::cos(a[0]), rho * std::sin(a[0]),
+                                   (minor + delta) * std::sin(a[1])});
+    deltas.push_back(delta);
+  }
+  const absl::StatusOr<ClosestPoints> torus_answer =
+      SurfaceClosestPoints(*torus, {3, offsets});
+  ASSERT_TRUE(torus_answer.ok());
+  for (size_t r = 0; r < 1000; ++r) {
+    EXPECT_NEAR(torus_answer->distances[r], std::abs(deltas[r]), 1e-12);
+  }
+}
+
+// Owned surfaces of every kind.
+struct SurfaceCase {
+  std::string name;
+  absl::StatusOr<Surface> surface;
+};
+
+std::vector<SurfaceCase> SurfaceCases(std::mt19937_64& rng, CurveData& data) {
+  data.arrays.reserve(64);
+  std::vector<SurfaceCase> cases;
+  auto net = [&](size_t count) -> const std::vector<double>& {
+    return data.Keep(RandomValues(rng, count * 3));
+  };
+  cases.push_back(
+      {"bezier bicubic", BezierSurface::Create({{3, 4, 4, net(16)}, {}})});
+  cases.push_back(
+      {"rational bezier 3x4",
+       BezierSurface::Create(
+           {{3, 3, 4, net(12)}, data.Keep(RandomValues(rng, 12, 0.3, 3.0))})});
+  cases.push_back(
+      {"bspline bicubic 6x5",
+       BSplineSurface::Create({3,
+                               3,
+                               {3, 6, 5, net(30)},
+                               data.Keep({0, 0, 0, 0, 0.3, 0.6, 1, 1, 1, 1}),
+                               data.Keep({0, 0, 0, 0, 0.5, 1, 1, 1, 1}),
+                               {}})});
+  cases.push_back({"nurbs unclamped 5x5",
+                   BSplineSurface::Create(
+                       {2,
+                        2,
+                        {3, 5, 5, net(25)},
+                        data.Keep(testing_util::RandomKnots(rng, 2, 4, false)),
+                        data.Keep(testing_util::RandomKnots(rng, 2, 4, false)),
+                        data.Keep(RandomValues(rng, 25, 0.3, 3.0))})});
+  cases.push_back({"interpolating patch",
+                   BezierSurface::FromInterpolatingPatch({3, 4, 4, net(16)})});
+  cases.push_back({"hermite patch", BezierSurface::FromHermitePatch(
+                                        {3, 2, 2, net(4)}, {3, 2, 2, net(4)},
+                                        {3, 2, 2, net(4)}, {3, 2, 2, net(4)})});
+  cases.push_back(
+      {"triangular cubic", TriangularPatch::Create({3, {3, net(10)}, {}, {}})});
+  cases.push_back(
+      {"rational triangular quadratic",
+       TriangularPatch::Create(
+           {2, {3, net(6)}, data.Keep(RandomValues(rng, 6, 0.3, 3.0)), {}})});
+  return cases;
+}
+
+TEST(ClosestPointTest, SurfacesNeverFartherThanDenseReference) {
+  std::mt19937_64 rng(21);
+  CurveData data;
+  for (const SurfaceCase& c : SurfaceCases(rng, data)) {
+    ASSERT_TRUE(c.surface.ok()) << c.name << ": " << c.surface.status();
+    const Surface& surface = *c.surface;
+    const std::vector<double> queries = RandomValues(rng, 3000, -1.5, 1.5);
+    const auto start = std::chrono::steady_clock::now();
+    const absl::StatusOr<ClosestPoints> answer =
+        SurfaceClosestPoints(surface, {3, queries});
+    const double ms = std::chrono::duration<double, std::milli>(
+                          std::chrono::steady_clock::now() - start)
+                          .count();
+    ASSERT_TRUE(answer.ok()) << c.name << ": " << answer.status();
+    const SurfaceReference reference(surface);
+    double worst = -INFINITY;
+    for (size_t r = 0; r < 1000; ++r) {
+      const double* q = queries.data() + 3 * r;
+      const double expected = reference.Nearest(q);
+      worst = std::max(worst, answer->distances[r] - expected);
+      EXPECT_LE(answer->distances[r], expected + 1e-9) << c.name << " " << r;
+      EXPECT_TRUE(answer->complete[r]) << c.name << " " << r;
+      // The returned point is the surface's point at the returned (u, v).
+      const std::vector<double> uv(answer->parameters.begin() + 16 * r,
+                                   answer->parameters.begin() + 16 * r + 2);
+      const std::vector<double> point = SurfacePoints(surface, uv);
+      EXPECT_LE(Distance(point.data(), answer->points.data() + 24 * r, 3),
+                1e-12);
+      EXPECT_NEAR(Distance(point.data(), q, 3), answer->distances[r], 1e-12);
+    }
+    std::printf("%s: 1000 queries %.1f ms, worst excess over reference %.2e\n",
+                c.name.c_str(), ms, worst);
+  }
+}
+
+TEST(ClosestPointTest, PatchBoundaryAndCorner) {
+  // A planar bicubic patch over the unit square, unevenly parameterized.
+  const double x[4] = {0, 0.2, 0.7, 1};
+  std::vector<double> net;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) net.insert(net.end(), {x[i], x[j], 0.0});
+  }
+  const absl::StatusOr<Surface> patch =
+      BezierSurface::Create({{3, 4, 4, net}, {}});
+  const std::vector<double> queries = {0.4,  -0.3, 0.1,   // below edge v = 0
+                                       1.2,  0.6,  -0.2,  // beyond edge u = 1
+                                       -0.2, -0.3, 0.0,   // beyond corner 0, 0
+                                       0.3,  0.8,  0.5};  // above the inside
+  const absl::StatusOr<ClosestPoints> answer =
+      SurfaceClosestPoints(*patch, {3, queries});
+  ASSERT_TRUE(answer.ok());
+  const double expected[4][3] = {
+      {0.4, 0, 0}, {1, 0.6, 0}, {0, 0, 0}, {0.3, 0.8, 0}};
+  const double distances[4] = {std::hypot(0.3, 0.1), std::hypot(0.2, 0.2),
+                               std::hypot(0.2, 0.3), 0.5};
+  for (int r = 0; r < 4; ++r) {
+    EXPECT_NEAR(answer->distances[r], distances[r], 1e-14) << r;
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_NEAR(answer->points[24 * r + k], expected[r][k], 1e-14) << r;
+    }
+  }
+  EXPECT_EQ(answer->parameters[16 * 0 + 1], 0.0);  // on v = 0
+  EXPECT_EQ(answer->parameters[16 * 1 + 0], 1.0);  // on u = 1
+  EXPECT_EQ(answer->parameters[16 * 2 + 0], 0.0);
+  EXPECT_EQ(answer->parameters[16 * 2 + 1], 0.0);
+}
+
+TEST(ClosestPointTest, UtahTeapot) {
+  const testing_util::Patches teapot = testing_util::ReadTeapot();
+  const std::vector<BezierSurfaceView> views = teapot.Views();
+  std::mt19937_64 rng(8);
+  std::vector<double> queries;
+  for (int r = 0; r < 100; ++r) {
+    const std::vector<double> q = RandomValues(rng, 3, -3.5, 3.5);
+    queries.insert(queries.end(), {q[0], q[1], 0.5 * (q[2] + 3.5)});
+  }
+  std::vector<double> best(100, INFINITY);
+  std::vector<double> reference(100, INFINITY);
+  for (const BezierSurfaceView& view : views) {
+    const absl::StatusOr<Surface> patch = BezierSurface::Create(view);
+    ASSERT_TRUE(patch.ok());
+    const absl::StatusOr<ClosestPoints> answer =
+        SurfaceClosestPoints(*patch, {3, queries});
+    ASSERT_TRUE(answer.ok());
+    const SurfaceReference dense(*patch);
+    for (size_t r = 0; r < 100; ++r) {
+      best[r] = std::min(best[r], answer->distances[r]);
+      reference[r] = std::min(reference[r], dense.Nearest(&queries[3 * r]));
+    }
+  }
+  for (size_t r = 0; r < 100; ++r) {
+    EXPECT_LE(best[r], reference[r] + 1e-9) << r;
+    EXPECT_GE(best[r], reference[r] - 1e-6) << r;  // the reference is close
+  }
+}
+
+TEST(ClosestPointTest, BatchOnThePoolMatchesSerial) {
+  std::mt19937_64 rng(4);
+  const std::vector<double> net = RandomValues(rng, 48);
+  const absl::StatusOr<Surface> patch =
+      BezierSurface::Create({{3, 4, 4, net}, {}});
+  const std::vector<double> queries = RandomValues(rng, 3 * 500, -2, 2);
+  ThreadPool pool(2);
+  const absl::StatusOr<ClosestPoints> serial =
+      SurfaceClosestPoints(*patch, {3, queries});
+  const absl::StatusOr<ClosestPoints> parallel = SurfaceClosestPoints(
+      *patch, {3, queries}, {}, {.pool = &pool, .grain = 4});
+  ASSERT_TRUE(serial.ok() && parallel.ok());
+  EXPECT_EQ(serial->distances, parallel->distances);
+  EXPECT_EQ(serial->parameters, parallel->parameters);
+}
+
+TEST(ClosestPointTest, ErrorsNameTheirField) {
+  const std::vector<double> arch = {0, 0, 1, 1, 2, 1, 3, 0};
+  const absl::StatusOr<Curve> curve = BezierCurve::Create({{2, arch}, {}});
+  const std::vector<double> queries3 = {0, 0, 0};
+  EXPECT_EQ(FieldPathOf(CurveClosestPoints(*curve, {3, queries3}).status()),
+            "queries.dimension");
+  const std::vector<double> bad = {0, 0, NAN, 1};
+  EXPECT_EQ(FieldPathOf(CurveClosestPoints(*curve, {2, bad}).status()),
+            "queries.coordinates[2]");
+  const std::vector<double> good = {0, 0};
+  EXPECT_EQ(
+      FieldPathOf(
+          CurveClosestPoints(*curve, {2, good}, {.tolerance = 0}).status()),
+      "tolerance");
+  EXPECT_EQ(
+      FieldPathOf(
+          CurveClosestPoints(*curve, {2, good}, {.max_minima = 0}).status()),
+      "max_minima");
+  CancellationToken token;
+  token.Cancel();
+  EXPECT_EQ(CurveClosestPoints(*curve, {2, good}, {}, {.cancellation = &token})
+                .status()
+                .code(),
+            absl::StatusCode::kCancelled);
+  EXPECT_EQ(ClosestPointsValues(10, 3, 2, 8), 10u * (2 + 8 * 5));
+}
+
+}  // namespace
+}  // namespace freeform
