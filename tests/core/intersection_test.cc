@@ -1,0 +1,270 @@
+#include "freeform/core/intersection.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <vector>
+
+#include "freeform/core/status.h"
+#include "freeform/core/subdivision.h"
+#include "query_shapes.h"
+#include "test_util.h"
+
+namespace freeform {
+namespace {
+
+std::vector<double> CurvePoint(const Curve& curve, double t) {
+  return testing_util::CurvePoints(curve, {t});
+}
+
+std::vector<double> SurfacePoint(const Surface& surface, double u, double v) {
+  return testing_util::SurfacePoints(surface, {u, v});
+}
+
+double Distance(const std::vector<double>& a, const std::vector<double>& b) {
+  return testing_util::PointDistance(a.data(), b.data(),
+                                     static_cast<int>(a.size()));
+}
+
+// Graph returns the power-form curve (t, f(t)[, h(t)]) for the cubic f with
+// coefficients f[0..3] (and h, when given).
+absl::StatusOr<Curve> Graph(const std::vector<double>& f,
+                            const std::vector<double>& h,
+                            std::vector<double>& storage) {
+  const int dim = h.empty() ? 2 : 3;
+  storage.clear();
+  for (int k = 0; k < 4; ++k) {
+    storage.push_back(k == 1 ? 1.0 : 0.0);
+    storage.push_back(f[k]);
+    if (dim == 3) storage.push_back(h[k]);
+  }
+  return BezierCurve::FromPowerForm({dim, storage});
+}
+
+// Cubic returns the coefficients of c (t - r0)(t - r1)(t - r2).
+std::vector<double> Cubic(double c, double r0, double r1, double r2) {
+  return {-c * r0 * r1 * r2, c * (r0 * r1 + r0 * r2 + r1 * r2),
+          -c * (r0 + r1 + r2), c};
+}
+
+// CheckCrossings checks that f and f - d cross exactly at `roots` (found
+// once each, to 1e-10), in 2D and in 3D.
+void CheckCrossings(const std::vector<double>& f, const std::vector<double>& d,
+                    const std::vector<double>& roots, const char* name) {
+  std::vector<double> g(4);
+  for (int k = 0; k < 4; ++k) g[k] = f[k] - d[k];
+  for (const std::vector<double>& h :
+       {std::vector<double>{}, std::vector<double>{0.3, -1.0, 0.5, 0.7}}) {
+    std::vector<double> sa, sb;
+    const absl::StatusOr<Curve> a = Graph(f, h, sa);
+    const absl::StatusOr<Curve> b = Graph(g, h, sb);
+    const auto start = std::chrono::steady_clock::now();
+    const absl::StatusOr<CurveIntersections> hits =
+        IntersectCurves(*a, *b, {.tolerance = 1e-12});
+    const double ms = std::chrono::duration<double, std::milli>(
+                          std::chrono::steady_clock::now() - start)
+                          .count();
+    ASSERT_TRUE(hits.ok()) << name << ": " << hits.status();
+    ASSERT_EQ(hits->first_parameters.size(), roots.size())
+        << name << " in " << (h.empty() ? 2 : 3) << "D";
+    EXPECT_TRUE(hits->first_intervals.empty()) << name;
+    for (size_t k = 0; k < roots.size(); ++k) {
+      EXPECT_NEAR(hits->first_parameters[k], roots[k], 1e-10) << name;
+      EXPECT_NEAR(hits->second_parameters[k], roots[k], 1e-10) << name;
+    }
+    std::printf("%s (%dD): %zu crossings in %.2f ms\n", name, h.empty() ? 2 : 3,
+                roots.size(), ms);
+  }
+}
+
+TEST(IntersectionTest, CurvesCrossingAtKnownParameters) {
+  const std::vector<double> f = {0.1, 0.8, -1.5, 0.9};
+  CheckCrossings(f, Cubic(2.0, 0.15, 0.5, 0.85), {0.15, 0.5, 0.85},
+                 "three crossings");
+  CheckCrossings(f, Cubic(1.0, 0.0, 0.5, 1.0), {0.0, 0.5, 1.0},
+                 "crossings at the end points");
+  CheckCrossings(f, {-0.37e-6, 1e-6, 0.0, 0.0}, {0.37},
+                 "near-tangential crossing at 1e-6");
+  CheckCrossings(f, {-0.14e-6, 0.9e-6, -1e-6, 0.0}, {0.2, 0.7},
+                 "two crossings at 5e-7 angles");
+  CheckCrossings(f, {3.5e-7, -1e-6, 1e-6, 0.0}, {}, "no crossing, 1e-7 apart");
+}
+
+TEST(IntersectionTest, NonIntersectingPairsGiveNothing) {
+  std::vector<double> sa, sb;
+  const std::vector<double> f = {0.1, 0.8, -1.5, 0.9};
+  const absl::StatusOr<Curve> a = Graph(f, {}, sa);
+  const absl::StatusOr<Curve> b = Graph({0.2, 0.8, -0.5, 0.9}, {}, sb);
+  const absl::StatusOr<CurveIntersections> hits = IntersectCurves(*a, *b);
+  ASSERT_TRUE(hits.ok());
+  EXPECT_TRUE(hits->first_parameters.empty());
+  EXPECT_TRUE(hits->first_intervals.empty());
+  const BSplineCurveData c1 = testing_util::Circle(1.0, 0.0, 0.0);
+  const BSplineCurveData c2 = testing_util::Circle(0.9, 2.0, 0.1);
+  const absl::StatusOr<CurveIntersections> circles = IntersectCurves(
+      *BSplineCurve::Create(c1.view()), *BSplineCurve::Create(c2.view()));
+  ASSERT_TRUE(circles.ok());
+  EXPECT_TRUE(circles->first_parameters.empty());
+}
+
+TEST(IntersectionTest, CircleAndLine) {
+  const BSplineCurveData circle = testing_util::Circle(1.0, 0.0, 0.0);
+  const std::vector<double> line = {-2, 0.3, 2, 0.3};
+  const absl::StatusOr<Curve> a = BSplineCurve::Create(circle.view());
+  const absl::StatusOr<Curve> b = BezierCurve::Create({{2, line}, {}});
+  const absl::StatusOr<CurveIntersections> hits = IntersectCurves(*a, *b);
+  ASSERT_TRUE(hits.ok());
+  ASSERT_EQ(hits->first_parameters.size(), 2u);
+  const double x = std::sqrt(1 - 0.09);
+  const std::vector<double> expected[2] = {{x, 0.3}, {-x, 0.3}};
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LE(Distance(CurvePoint(*a, hits->first_parameters[k]), expected[k]),
+              1e-12);
+    EXPECT_LE(Distance(CurvePoint(*b, hits->second_parameters[k]), expected[k]),
+              1e-12);
+  }
+}
+
+TEST(IntersectionTest, OverlapsComeBackAsOneInterval) {
+  std::mt19937_64 rng(9);
+  const std::vector<double> net = testing_util::RandomValues(rng, 8);
+  const BezierCurveView view{{2, net}, {}};
+  const absl::StatusOr<Curve> a = BezierCurve::Create(view);
+  const std::vector<double> cuts = {0.2, 0.7};
+  const std::vector<BezierCurveData> pieces = *SplitBezierCurve(view, cuts);
+  const BezierCurveData& middle = pieces[1];
+  // The piece itself, its reverse, and a B-spline copy on [0, 5].
+  std::vector<double> reversed;
+  for (int k = 3; k >= 0; --k) {
+    reversed.insert(reversed.end(), middle.coordinates.begin() + 2 * k,
+                    middle.coordinates.begin() + 2 * k + 2);
+  }
+  const std::vector<double> knots = {0, 0, 0, 0, 5, 5, 5, 5};
+  struct Copy {
+    absl::StatusOr<Curve> curve;
+    double start, end;
+  };
+  const Copy copies[] = {
+      {BezierCurve::Create(middle.view()), 0.0, 1.0},
+      {BezierCurve::Create({{2, reversed}, {}}), 1.0, 0.0},
+      {BSplineCurve::Create({3, {2, middle.coordinates}, knots, {}}), 0.0,
+       5.0}};
+  for (const Copy& copy : copies) {
+    const absl::StatusOr<CurveIntersections> hits =
+        IntersectCurves(*a, *copy.curve);
+    ASSERT_TRUE(hits.ok()) << hits.status();
+    EXPECT_TRUE(hits->first_parameters.empty());
+    ASSERT_EQ(hits->first_intervals.size(), 2u);
+    EXPECT_NEAR(hits->first_intervals[0], 0.2, 1e-9);
+    EXPECT_NEAR(hits->first_intervals[1], 0.7, 1e-9);
+    EXPECT_NEAR(hits->second_intervals[0], copy.start, 1e-9);
+    EXPECT_NEAR(hits->second_intervals[1], copy.end, 1e-9);
+  }
+}
+
+TEST(IntersectionTest, CurveSurfaceTriplesLandOnBoth) {
+  // A line through the sphere octant's point (1, 1, 1) / sqrt(3).
+  const SurfaceData sphere = testing_util::SphereOctant(1.0);
+  const absl::StatusOr<Surface> surface =
+      BezierSurface::Create(sphere.bezier_view());
+  const std::vector<double> line = {0, 0, 0, 1.5, 1.5, 1.5};
+  const absl::StatusOr<Curve> curve = BezierCurve::Create({{3, line}, {}});
+  const absl::StatusOr<CurveSurfaceIntersections> hits =
+      IntersectCurveSurface(*curve, *surface);
+  ASSERT_TRUE(hits.ok()) << hits.status();
+  ASSERT_EQ(hits->curve_parameters.size(), 1u);
+  EXPECT_NEAR(hits->curve_parameters[0], 1.0 / (1.5 * std::sqrt(3.0)), 1e-12);
+  const double c = 1.0 / std::sqrt(3.0);
+  EXPECT_LE(Distance(SurfacePoint(*surface, hits->surface_parameters[0],
+                                  hits->surface_parameters[1]),
+                     {c, c, c}),
+            1e-12);
+
+  // A cubic crossing a bicubic graph surface z = F(x, y): the crossings are
+  // the sign changes of z(t) - F(x(t), y(t)), bracketed on a dense grid.
+  std::mt19937_64 rng(2);
+  std::vector<double> net;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      net.insert(net.end(), {i / 3.0, j / 3.0,
+                             testing_util::RandomValues(rng, 1, -0.3, 0.3)[0]});
+    }
+  }
+  const absl::StatusOr<Surface> graph =
+      BezierSurface::Create({{3, 4, 4, net}, {}});
+  // A cubic B-spline whose height swings between -1 and 1 over the patch.
+  std::vector<double> path;
+  for (int k = 0; k < 8; ++k) {
+    path.insert(path.end(), {0.05 + 0.9 * k / 7.0, 0.1 + 0.1 * (k % 3),
+                             k % 2 == 0 ? -1.0 : 1.0});
+  }
+  const std::vector<double> path_knots = {0,   0,   0,   0,   0.2, 0.4,
+                                          0.6, 0.8, 1.0, 1.0, 1.0, 1.0};
+  const absl::StatusOr<Curve> cubic =
+      BSplineCurve::Create({3, {3, path}, path_knots, {}});
+  const absl::StatusOr<CurveSurfaceIntersections> crossings =
+      IntersectCurveSurface(*cubic, *graph, {.tolerance = 1e-12});
+  ASSERT_TRUE(crossings.ok()) << crossings.status();
+  auto gap = [&](double t) {
+    const std::vector<double> p = CurvePoint(*cubic, t);
+    return p[2] - SurfacePoint(*graph, p[0], p[1])[2];
+  };
+  std::vector<double> roots;
+  const int n = 2000;
+  for (int k = 0; k < n; ++k) {
+    double lo = static_cast<double>(k) / n, hi = static_cast<double>(k + 1) / n;
+    if ((gap(lo) < 0) == (gap(hi) < 0)) continue;
+    for (int i = 0; i < 60; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      ((gap(mid) < 0) == (gap(lo) < 0) ? lo : hi) = mid;
+    }
+    roots.push_back(0.5 * (lo + hi));
+  }
+  ASSERT_GE(roots.size(), 3u);
+  ASSERT_EQ(crossings->curve_parameters.size(), roots.size());
+  for (size_t k = 0; k < roots.size(); ++k) {
+    EXPECT_NEAR(crossings->curve_parameters[k], roots[k], 1e-10);
+    const std::vector<double> on_curve =
+        CurvePoint(*cubic, crossings->curve_parameters[k]);
+    const std::vector<double> on_surface =
+        SurfacePoint(*graph, crossings->surface_parameters[2 * k],
+                     crossings->surface_parameters[2 * k + 1]);
+    EXPECT_LE(Distance(on_curve, on_surface), 1e-12);
+  }
+}
+
+TEST(IntersectionTest, ErrorsNameTheirField) {
+  const std::vector<double> line2 = {0, 0, 1, 1};
+  const std::vector<double> line3 = {0, 0, 0, 1, 1, 1};
+  const absl::StatusOr<Curve> a = BezierCurve::Create({{2, line2}, {}});
+  const absl::StatusOr<Curve> b = BezierCurve::Create({{3, line3}, {}});
+  EXPECT_EQ(FieldPathOf(IntersectCurves(*a, *b).status()), "second.dimension");
+  EXPECT_EQ(FieldPathOf(IntersectCurves(*a, *a, {.tolerance = -1}).status()),
+            "tolerance");
+  // A zigzag crossing a line 5 times, with room for 3.
+  const std::vector<double> zigzag = {0, -1, 1, 1, 2, -1, 3, 1, 4, -1, 5, 1};
+  const std::vector<double> knots = {0, 0, 1, 2, 3, 4, 5, 5};
+  const std::vector<double> axis = {-1, 0, 6, 0};
+  const absl::StatusOr<Curve> polyline =
+      BSplineCurve::Create({1, {2, zigzag}, knots, {}});
+  const absl::StatusOr<Curve> x_axis = BezierCurve::Create({{2, axis}, {}});
+  const absl::StatusOr<CurveIntersections> all =
+      IntersectCurves(*polyline, *x_axis);
+  ASSERT_TRUE(all.ok());
+  EXPECT_EQ(all->first_parameters.size(), 5u);
+  const absl::Status over =
+      IntersectCurves(*polyline, *x_axis, {.max_results = 3}).status();
+  EXPECT_EQ(over.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_EQ(FieldPathOf(over), "max_results");
+  CancellationToken token;
+  token.Cancel();
+  EXPECT_EQ(IntersectCurves(*polyline, *x_axis, {}, &token).status().code(),
+            absl::StatusCode::kCancelled);
+}
+
+}  // namespace
+}  // namespace freeform
