@@ -69,12 +69,17 @@ struct Node {
   size_t piece = 0;
   double lo[2] = {0.0, 0.0};
   double hi[2] = {1.0, 1.0};
-  Net net;
+  const Net* shared = nullptr;  // a whole piece's net, else `owned`
+  Net owned;
   double bound = 0.0;
   double diameter = kInfinity;   // of its control points' box
   Candidate corner;              // its best corner (a point of the geometry)
   double guess[2] = {0.0, 0.0};  // where its control point nearest q sits
 };
+
+const Net& NetOf(const Node& node) {
+  return node.shared != nullptr ? *node.shared : node.owned;
+}
 
 bool LaterBound(const Node& a, const Node& b) { return a.bound > b.bound; }
 
@@ -86,6 +91,13 @@ class Search {
     evaluators_.reserve(pieces.nets.size());
     for (const Net& net : pieces.nets) evaluators_.emplace_back(net);
     partials_.resize(6 * static_cast<size_t>(pieces.dimension));
+    corner_point_.resize(static_cast<size_t>(pieces.dimension));
+    // The pieces' projected control points, shared by every query.
+    projected_pieces_.resize(pieces.nets.size());
+    hull_pieces_.resize(pieces.nets.size());
+    for (size_t k = 0; k < pieces.nets.size(); ++k) {
+      hull_pieces_[k] = internal::Project(pieces.nets[k], projected_pieces_[k]);
+    }
     double start[2], end[2];
     pieces.parameters(0, 0.0, 0.0, start);
     pieces.parameters(pieces.nets.size() - 1, 1.0, 1.0, end);
@@ -98,7 +110,8 @@ class Search {
                    ClosestPoints& answer);
 
  private:
-  Node MakeNode(size_t piece, const double* lo, const double* hi, Net net);
+  Node MakeNode(size_t piece, const double* lo, const double* hi,
+                const Net* shared, Net owned);
   Candidate Newton(const Candidate& start, const double* lo, const double* hi,
                    int iterations);
   void Model(size_t piece, const double* x, LocalModel& model);
@@ -111,6 +124,9 @@ class Search {
   std::vector<NetEvaluator> evaluators_;
   std::vector<double> partials_;
   std::vector<double> projected_;
+  std::vector<std::vector<double>> projected_pieces_;
+  std::vector<bool> hull_pieces_;
+  std::vector<double> corner_point_;
   const double* query_ = nullptr;
   std::vector<Node> heap_;
   std::vector<Candidate> candidates_;
@@ -143,21 +159,26 @@ double* Search::PointOf(const Candidate& candidate) {
 }
 
 Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
-                      Net net) {
+                      const Net* shared, Net owned) {
   const int dim = pieces_.dimension;
   Node node{.piece = piece,
             .lo = {lo[0], lo[1]},
             .hi = {hi[0], hi[1]},
-            .net = std::move(net)};
-  const bool hull = internal::Project(node.net, projected_);
-  const int nu = node.net.count_u;
-  const int nv = node.net.count_v;
-  std::vector<double> point(static_cast<size_t>(dim));
+            .shared = shared,
+            .owned = std::move(owned)};
+  const Net& net = NetOf(node);
+  const bool hull = shared != nullptr ? hull_pieces_[piece]
+                                      : internal::Project(net, projected_);
+  const std::vector<double>& projected =
+      shared != nullptr ? projected_pieces_[piece] : projected_;
+  const int nu = net.count_u;
+  const int nv = net.count_v;
+  double* point = corner_point_.data();
   node.corner.piece = piece;
   for (int i : {0, nu - 1}) {
     for (int j : {0, nv - 1}) {
-      if (!internal::Point(node.net, i, j, point.data())) continue;
-      const double d = Distance(point.data(), query_, dim);
+      if (!internal::Point(net, i, j, point)) continue;
+      const double d = Distance(point, query_, dim);
       if (d < node.corner.distance) {
         node.corner.distance = d;
         node.corner.x[0] = i == 0 ? lo[0] : hi[0];
@@ -170,12 +191,12 @@ Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
   for (int i = 0; hull && i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
       const double d =
-          Distance(projected_.data() + (static_cast<size_t>(i) * nv + j) * dim,
+          Distance(projected.data() + (static_cast<size_t>(i) * nv + j) * dim,
                    query_, dim);
       if (d >= nearest) continue;
       nearest = d;
       nearest_point =
-          projected_.data() + (static_cast<size_t>(i) * nv + j) * dim;
+          projected.data() + (static_cast<size_t>(i) * nv + j) * dim;
       node.guess[0] = lo[0] + (nu > 1 ? i / (nu - 1.0) : 0.0) * (hi[0] - lo[0]);
       node.guess[1] = lo[1] + (nv > 1 ? j / (nv - 1.0) : 0.0) * (hi[1] - lo[1]);
     }
@@ -184,10 +205,10 @@ Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
     node.guess[0] = 0.5 * (lo[0] + hi[0]);
     node.guess[1] = 0.5 * (lo[1] + hi[1]);
   } else {
-    node.diameter = internal::BoxDiameter(projected_, dim);
+    node.diameter = internal::BoxDiameter(projected, dim);
     node.bound = std::max(
-        internal::BoxDistance(projected_, dim, query_),
-        internal::DirectionalBound(projected_, dim, query_, nearest_point));
+        internal::BoxDistance(projected, dim, query_),
+        internal::DirectionalBound(projected, dim, query_, nearest_point));
   }
   if (node.corner.distance < best_) {
     best_ = node.corner.distance;
@@ -204,7 +225,8 @@ bool Search::Branch(CancellationPoll& poll, absl::Status& status) {
   Node node = std::move(heap_.back());
   heap_.pop_back();
   if (node.bound > best_ + options_.tolerance) return false;
-  status = poll.Done(node.net.values.size() * 16);
+  const Net& net = NetOf(node);
+  status = poll.Done(net.values.size() * 16);
   if (!status.ok()) return false;
   Candidate start = node.corner;
   start.x[0] = node.guess[0];
@@ -224,24 +246,25 @@ bool Search::Branch(CancellationPoll& poll, absl::Status& status) {
     lower_ = std::min(lower_, node.bound);
     return true;
   }
-  internal::Project(node.net, projected_);
+  internal::Project(net, projected_);
   double along_u = 1.0;
   double along_v = 0.0;
-  if (node.net.count_v > 1) {
-    internal::PolygonLengths(projected_, pieces_.dimension, node.net.count_u,
-                             node.net.count_v, along_u, along_v);
+  if (net.count_v > 1) {
+    internal::PolygonLengths(projected_, pieces_.dimension, net.count_u,
+                             net.count_v, along_u, along_v);
   }
-  const bool in_u = node.net.count_v == 1 || along_u >= along_v;
+  const bool in_u = net.count_v == 1 || along_u >= along_v;
   Net low, high;
-  internal::Halve(node.net, in_u, low, high);
+  internal::Halve(net, in_u, low, high);
   const int axis = in_u ? 0 : 1;
   const double middle = 0.5 * (node.lo[axis] + node.hi[axis]);
   double lo_high[2] = {node.lo[0], node.lo[1]};
   double hi_low[2] = {node.hi[0], node.hi[1]};
   lo_high[axis] = middle;
   hi_low[axis] = middle;
-  for (Node child : {MakeNode(node.piece, node.lo, hi_low, std::move(low)),
-                     MakeNode(node.piece, lo_high, node.hi, std::move(high))}) {
+  for (Node child :
+       {MakeNode(node.piece, node.lo, hi_low, nullptr, std::move(low)),
+        MakeNode(node.piece, lo_high, node.hi, nullptr, std::move(high))}) {
     if (child.bound > best_ + options_.tolerance) continue;
     heap_.push_back(std::move(child));
     std::push_heap(heap_.begin(), heap_.end(), LaterBound);
@@ -259,7 +282,7 @@ absl::Status Search::Run(const double* query, size_t r, CancellationPoll& poll,
   const double zero[2] = {0.0, 0.0};
   const double one[2] = {1.0, 1.0};
   for (size_t k = 0; k < pieces_.nets.size(); ++k) {
-    heap_.push_back(MakeNode(k, zero, one, pieces_.nets[k]));
+    heap_.push_back(MakeNode(k, zero, one, &pieces_.nets[k], Net{}));
   }
   std::make_heap(heap_.begin(), heap_.end(), LaterBound);
   size_t examined = 0;
