@@ -160,13 +160,14 @@ absl::StatusOr<BoundingBox> BoxOf(const std::vector<Net>& nets,
     for (const double c : net.coordinates) scale = std::max(scale, std::abs(c));
   }
   const double margin = kMargin * scale;
+  const double reachable = std::max(tolerance, margin);
   BoundingBox box{.lower = std::vector<double>(dimension),
                   .upper = std::vector<double>(dimension)};
   CancellationPoll poll(cancel);
   for (int j = 0; j < dimension; ++j) {
-    absl::StatusOr<double> upper = Extreme(nets, j, 1.0, tolerance, poll);
+    absl::StatusOr<double> upper = Extreme(nets, j, 1.0, reachable, poll);
     if (!upper.ok()) return upper.status();
-    absl::StatusOr<double> lower = Extreme(nets, j, -1.0, tolerance, poll);
+    absl::StatusOr<double> lower = Extreme(nets, j, -1.0, reachable, poll);
     if (!lower.ok()) return lower.status();
     box.upper[j] = *upper + margin;
     box.lower[j] = -*lower - margin;

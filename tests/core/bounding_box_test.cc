@@ -151,6 +151,21 @@ TEST(CurveBoundingBox, NurbsCircleIsItsSquare) {
   EXPECT_GE(box->lower[1], -5.0 - kTolerance - 1e-12);
 }
 
+// A tolerance below rounding is met as the rounding margin, without
+// splitting forever.
+TEST(CurveBoundingBox, ToleranceBelowRoundingEnds) {
+  const BSplineCurveData data = NurbsCircle(1.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  absl::StatusOr<BoundingBox> box = CurveBoundingBox(circle, 1e-300);
+  ASSERT_TRUE(box.ok());
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_GE(box->upper[j], 1.0);
+    EXPECT_LE(box->upper[j], 1.0 + 1e-12);
+    EXPECT_LE(box->lower[j], -1.0);
+    EXPECT_GE(box->lower[j], -1.0 - 1e-12);
+  }
+}
+
 TEST(CurveBoundingBox, EveryKindContainsDenseSamplesAndIsTight) {
   std::mt19937_64 rng(21);
   const std::vector<double> bezier_points = RandomValues(rng, 7 * 3);

@@ -18,15 +18,16 @@
 // triangle), so a smooth extreme needs about log4(size / tolerance)
 // halvings.
 //
-// Accuracy contract: each side of the box lies outside the geometry's true
-// extreme in its coordinate by at most `tolerance` plus rounding: the box
-// contains every point of the geometry (as far as double arithmetic can
-// tell: it is widened by 2^-44 of the control points' largest coordinate,
-// about 6e-14 of it, which covers the rounding of the subdivision and of the
-// evaluators), and no side is farther than `tolerance` plus that margin from
-// a point of the geometry. A piece is not halved more than
-// kMaxBoxDepth times, which a tolerance resolvable in double precision
-// never reaches.
+// Accuracy contract: the box contains every point of the geometry (as far
+// as double arithmetic can tell: it is widened by the margin 2^-44 of the
+// control points' largest coordinate, about 6e-14 of it, which covers the
+// rounding of the subdivision and of the evaluators), and no side is
+// farther than `tolerance` plus twice that margin from a point of the
+// geometry. A tolerance below the margin is met as the margin: hull bounds
+// cannot come closer than rounding, and chasing them would split without
+// end. A piece is not halved more than kMaxBoxDepth times, which a
+// tolerance of at least the margin never reaches on pieces of a sensible
+// size.
 //
 // Thread-safe; allocates per call.
 #ifndef FREEFORM_CORE_BOUNDING_BOX_H_
