@@ -301,6 +301,21 @@ TEST(ArcLength, ErrorsNameTheirField) {
             absl::StatusCode::kInvalidArgument);
 }
 
+// A spline of 200 spans needs far more quadrature steps than one poll's
+// worth, so a cancelled token stops the integration.
+TEST(ArcLength, StopsWhenCancelled) {
+  std::mt19937_64 rng(9);
+  const std::vector<double> points = RandomValues(rng, 202 * 2);
+  const std::vector<double> knots = RandomKnots(rng, 2, 201, true);
+  const Curve curve = *BSplineCurve::Create(
+      {.degree = 2, .control_points = {2, points}, .knots = knots});
+  CancellationToken token;
+  token.Cancel();
+  EXPECT_EQ(ArcLength(curve, 0.0, 1.0, 1e-9, &token).status().code(),
+            absl::StatusCode::kCancelled);
+  EXPECT_TRUE(ArcLength(curve, 0.0, 1.0, 1e-9).ok());
+}
+
 TEST(ParametersAtArcLengths, StopsWhenCancelled) {
   const BSplineCurveData data = NurbsCircle(1.0);
   const Curve circle = *BSplineCurve::Create(data.view());
