@@ -32,6 +32,19 @@ inline constexpr bool kThreadSanitizer = true;
 inline constexpr bool kThreadSanitizer = false;
 #endif
 
+// True in an AddressSanitizer build.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 // TimeScale is the factor by which the tests stretch the allowances of
 // their timing checks (a call's deadline, the time a cancelled call may take
 // to stop): FREEFORM_TEST_TIME_SCALE, default 1. The sanitizer presets set
