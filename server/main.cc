@@ -89,6 +89,32 @@ freeform::server::ServerOptions OptionsFromFlags() {
   return options;
 }
 
+// The drain (ExitWhenDrained), the watchdog (StopWithin) and the normal
+// stop at the end of main may each end the process, and two of them can
+// get there at the same moment. ClaimExit returns true for the first caller
+// only: it alone logs why the process ends. The default logger stays alive
+// to the end (flushed, never shut down): a thread that still logs, such as
+// a call answered UNAVAILABLE while draining, must not find it destroyed.
+std::atomic<bool> exit_claimed{false};
+
+bool ClaimExit() { return !exit_claimed.exchange(true); }
+
+// WaitForTheEnd blocks a caller that lost ClaimExit until the winner ends
+// the process.
+[[noreturn]] void WaitForTheEnd() {
+  while (true) absl::SleepFor(absl::Hours(1));
+}
+
+// ExitNow logs `message` and exits 0 at once, unless another thread already
+// claimed the exit.
+[[noreturn]] void ExitNow(spdlog::level::level_enum level,
+                          const std::string& message) {
+  if (!ClaimExit()) WaitForTheEnd();
+  spdlog::log(level, "{}", message);
+  spdlog::default_logger()->flush();
+  _exit(0);
+}
+
 }  // namespace
 
 // StopWithin makes sure the process is gone `limit` after the signal even
@@ -97,10 +123,9 @@ freeform::server::ServerOptions OptionsFromFlags() {
 void StopWithin(absl::Duration limit) {
   std::thread([limit] {
     absl::SleepFor(limit);
-    spdlog::warn("drain did not end within {}; exiting",
-                 absl::FormatDuration(limit));
-    spdlog::shutdown();
-    _exit(0);
+    ExitNow(spdlog::level::warn,
+            absl::StrCat("drain did not end within ",
+                         absl::FormatDuration(limit), "; exiting"));
   }).detach();
 }
 
@@ -135,9 +160,7 @@ void ExitWhenDrained(const freeform::server::FreeformServer& server,
   if (PollUntilQuiet(server, absl::Milliseconds(20), 2,
                      [&] { return stopped.load(); }) &&
       !stopped) {
-    spdlog::info("drained: no call in flight; exiting");
-    spdlog::shutdown();
-    _exit(0);
+    ExitNow(spdlog::level::info, "drained: no call in flight; exiting");
   }
 }
 
@@ -203,6 +226,8 @@ int main(int argc, char** argv) {
   });
   ExitWhenDrained(**server, stopped);
   drain.join();
+  if (!ClaimExit()) WaitForTheEnd();
   spdlog::info("stopped");
+  spdlog::default_logger()->flush();
   return 0;
 }

@@ -7,6 +7,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
+#include "grpc_handoff.h"
 #include "spdlog/spdlog.h"
 
 namespace freeform::server {
@@ -26,15 +27,21 @@ std::string ShortMethodName(const std::string& method) {
 class ParseErrorInterceptor : public grpc::experimental::Interceptor {
  public:
   explicit ParseErrorInterceptor(grpc::experimental::ServerRpcInfo* info)
-      : info_(info) {}
+      : info_(info) {
+    HandOffToGrpc(this);  // to the first Intercept
+  }
 
+  // gRPC calls Intercept for each batch of the call, on any of its threads,
+  // one batch after another.
   void Intercept(
       grpc::experimental::InterceptorBatchMethods* methods) override {
+    TakeBackFromGrpc(this);
     if (methods->QueryInterceptionHookPoint(
             grpc::experimental::InterceptionHookPoints::PRE_SEND_STATUS)) {
       const grpc::Status status = methods->GetSendStatus();
       if (IsParseFailure(status, info_->method())) Rewrite(methods);
     }
+    HandOffToGrpc(this);  // to the next Intercept
     methods->Proceed();
   }
 
@@ -60,6 +67,7 @@ class ParseErrorInterceptor : public grpc::experimental::Interceptor {
 grpc::experimental::Interceptor*
 ParseErrorInterceptorFactory::CreateServerInterceptor(
     grpc::experimental::ServerRpcInfo* info) {
+  TakeBackFromGrpc(this);  // FreeformServer::Start handed the server over
   return new ParseErrorInterceptor(info);
 }
 

@@ -13,6 +13,7 @@
 #include "absl/strings/str_cat.h"
 #include "errors.h"
 #include "freeform/core/status.h"
+#include "grpc_handoff.h"
 #include "spdlog/spdlog.h"
 
 namespace freeform::server {
@@ -82,8 +83,12 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
     PlanAndRun(/*on_pool=*/false);
   }
 
-  void OnCancel() override { record_.Cancel(); }
+  void OnCancel() override {
+    TakeBackFromGrpc(this);
+    record_.Cancel();
+  }
   void OnDone() override {
+    TakeBackFromGrpc(this);
     record_.Done(status_, response_bytes_);
     // gRPC frees the response only after OnDone; free a large one now, so
     // its memory is gone before the reservation is (with this call).
@@ -113,6 +118,7 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
     if (status.ok()) status = record_.CheckAnswer(*response_);
     if (status.ok()) response_bytes_ = response_->ByteSizeLong();
     status_ = status;
+    HandOffToGrpc(this);  // to OnDone
     Finish(AnswerStatus(status));
   }
 
@@ -273,6 +279,7 @@ grpc::ServerUnaryReactor* RpcFrame::Unary(
     google::protobuf::Message* response, UnaryPlanner planner) {
   auto* call = new UnaryCall(this, method, context, request, response,
                              std::move(planner));
+  HandOffToGrpc(call);  // to OnCancel
   call->Start();
   return call;
 }

@@ -44,6 +44,7 @@
 #include "admission.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/thread_pool.h"
+#include "grpc_handoff.h"
 #include "service_limits.h"
 
 namespace freeform::server {
@@ -256,8 +257,12 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
     Plan();
   }
 
-  void OnCancel() override { record_.Cancel(); }
+  void OnCancel() override {
+    TakeBackFromGrpc(this);
+    record_.Cancel();
+  }
   void OnWriteDone(bool ok) override {
+    TakeBackFromGrpc(this);
     std::vector<Action> actions;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -272,6 +277,7 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
     if (!actions.empty()) Execute(std::move(actions));
   }
   void OnDone() override {
+    TakeBackFromGrpc(this);
     record_.Done(final_status_, streamed_bytes_);
     delete this;
   }
@@ -373,9 +379,11 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
           break;
         case Action::kWrite:
           streamed_bytes_ += slots_[action.slot].message.ByteSizeLong();
+          HandOffToGrpc(this);  // to OnWriteDone
           this->StartWrite(&slots_[action.slot].message);
           break;
         case Action::kFinish:
+          HandOffToGrpc(this);  // to OnDone
           this->Finish(AnswerStatus(final_status_));
           break;
       }
@@ -427,6 +435,7 @@ grpc::ServerWriteReactor<Response>* RpcFrame::Stream(
     const google::protobuf::Message* request, StreamPlanner<Response> planner) {
   auto* call = new StreamCall<Response>(this, method, context, request,
                                         std::move(planner));
+  HandOffToGrpc(call);  // to OnCancel
   call->Start();
   return call;
 }

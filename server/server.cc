@@ -12,6 +12,7 @@
 #include "absl/strings/str_cat.h"
 #include "curve_service.h"
 #include "freeform/core/file.h"
+#include "grpc_handoff.h"
 #include "parse_errors.h"
 #include "surface_service.h"
 
@@ -83,6 +84,9 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
       std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>>
       interceptors;
   interceptors.push_back(std::make_unique<ParseErrorInterceptorFactory>());
+  // Every call starts with the factory making its interceptor: from then on
+  // the call's thread sees the server built here (grpc_handoff.h).
+  HandOffToGrpc(interceptors.back().get());
   builder.experimental().SetInterceptorCreators(std::move(interceptors));
   builder.RegisterService(server->curve_service_.get());
   builder.RegisterService(server->surface_service_.get());

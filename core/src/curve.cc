@@ -1,6 +1,7 @@
 #include "freeform/core/curve.h"
 
 #include <utility>
+#include <vector>
 
 #include "validated.h"
 #include "variant_dispatch.h"
@@ -105,6 +106,73 @@ absl::Status EvaluateCurve(const Curve& curve,
                            CurveOutput output,
                            const ExecutionContext& context) {
   return internal::EvaluateKind(curve, parameters, output, context);
+}
+
+namespace {
+
+// The distinct values of the sorted `values` that lie in [start, end].
+std::vector<double> DistinctWithin(absl::Span<const double> values,
+                                   double start, double end) {
+  std::vector<double> distinct;
+  for (const double value : values) {
+    if (value < start || value > end) continue;
+    if (distinct.empty() || distinct.back() != value) distinct.push_back(value);
+  }
+  return distinct;
+}
+
+// A single Bezier piece on [start, end].
+BezierDecomposition SinglePiece(BezierCurveData piece, double start,
+                                double end) {
+  BezierDecomposition single;
+  single.segments.push_back(std::move(piece));
+  single.breakpoints = {start, end};
+  return single;
+}
+
+}  // namespace
+
+std::vector<double> CurveBreakpoints(const Curve& curve) {
+  const ParameterDomain domain = DomainOf(curve);
+  if (const auto* bspline = std::get_if<BSplineCurve>(&curve)) {
+    return DistinctWithin(bspline->view().knots, domain.start, domain.end);
+  }
+  if (const auto* hermite = std::get_if<HermiteCurve>(&curve)) {
+    return HermiteNodes(hermite->view());
+  }
+  return {domain.start, domain.end};
+}
+
+absl::StatusOr<BezierDecomposition> DecomposeCurve(
+    const Curve& curve, const CancellationToken* cancel) {
+  return std::visit(
+      internal::Overloaded{
+          [](const BezierCurve& bezier) -> absl::StatusOr<BezierDecomposition> {
+            const BezierCurveView& view = bezier.view();
+            return SinglePiece(
+                {.dimension = view.control_points.dimension,
+                 .coordinates = {view.control_points.coordinates.begin(),
+                                 view.control_points.coordinates.end()},
+                 .weights = {view.weights.begin(), view.weights.end()}},
+                0.0, 1.0);
+          },
+          [cancel](const BSplineCurve& bspline) {
+            return DecomposeBSplineCurve(bspline.view(), cancel);
+          },
+          [](const LagrangeCurve& lagrange)
+              -> absl::StatusOr<BezierDecomposition> {
+            const ParameterDomain domain = lagrange.domain();
+            return SinglePiece(
+                {.dimension = lagrange.dimension(),
+                 .coordinates = LagrangeToBezier(lagrange.view()),
+                 .weights = {}},
+                domain.start, domain.end);
+          },
+          [](const HermiteCurve& hermite)
+              -> absl::StatusOr<BezierDecomposition> {
+            return DecomposeHermiteCurve(hermite.view());
+          }},
+      curve);
 }
 
 }  // namespace freeform

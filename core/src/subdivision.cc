@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <vector>
@@ -418,6 +419,106 @@ Polygon SubPatch(const std::vector<Polygon>& levels, int n, int vertex) {
   return out;
 }
 
+// SplitPieces returns the pieces of SplitTriangularPatch at the point
+// (u, v, 1 - u - v) of the closed triangle for the given vertices, in their
+// order: piece `vertex` has the point in place of that vertex.
+std::vector<TriangularPatchData> SplitPieces(
+    const TriangularPatchView& patch, double u, double v,
+    std::initializer_list<int> vertices) {
+  const int n = patch.degree;
+  const std::vector<Polygon> levels =
+      Pyramid(Lift(patch.control_points, patch.weights), n, u, v);
+  const double barycentric[3] = {u, v, 1.0 - u - v};
+  std::vector<TriangularPatchData> result;
+  for (const int vertex : vertices) {
+    TriangularPatchData& piece = result.emplace_back();
+    piece.degree = n;
+    piece.dimension = patch.control_points.dimension;
+    Project(SubPatch(levels, n, vertex), patch.rational(), piece.coordinates,
+            piece.weights);
+    if (patch.domain_triangle.empty()) continue;
+    piece.domain_triangle.assign(patch.domain_triangle.begin(),
+                                 patch.domain_triangle.end());
+    for (int x = 0; x < 2; ++x) {
+      double point = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        point += barycentric[c] * patch.domain_triangle[2 * c + x];
+      }
+      piece.domain_triangle[static_cast<size_t>(2 * vertex + x)] = point;
+    }
+  }
+  return result;
+}
+
+// KnotsToDecompose returns the knots that raise every distinct value of
+// the sorted `knots` inside the domain [u_p, u_{n+1}] to multiplicity p (at
+// least), after which the p + 1 control points of each non-empty span are
+// its Bezier points (The NURBS Book A5.6). Each value's multiplicity is its
+// run.
+std::vector<double> KnotsToDecompose(absl::Span<const double> knots, int p) {
+  const double lo = knots[static_cast<size_t>(p)];
+  const double hi = knots[knots.size() - static_cast<size_t>(p) - 1];
+  std::vector<double> insert;
+  for (size_t i = 0; i < knots.size();) {
+    const double u = knots[i];
+    size_t run = i + 1;
+    while (run < knots.size() && knots[run] == u) ++run;
+    const int have = static_cast<int>(run - i);
+    i = run;
+    if (u < lo || u > hi) continue;
+    for (int c = have; c < p; ++c) insert.push_back(u);
+  }
+  return insert;
+}
+
+// NonEmptySpans returns the spans s in [p, count - 1] with u_s < u_{s+1}.
+std::vector<int> NonEmptySpans(absl::Span<const double> knots, int p,
+                               int count) {
+  std::vector<int> spans;
+  for (int s = p; s < count; ++s) {
+    if (knots[static_cast<size_t>(s)] < knots[static_cast<size_t>(s) + 1]) {
+      spans.push_back(s);
+    }
+  }
+  return spans;
+}
+
+// SpanBreakpoints returns the start of the first span and the end of every
+// span.
+std::vector<double> SpanBreakpoints(absl::Span<const double> knots,
+                                    const std::vector<int>& spans) {
+  std::vector<double> breakpoints = {knots[static_cast<size_t>(spans[0])]};
+  for (const int s : spans)
+    breakpoints.push_back(knots[static_cast<size_t>(s) + 1]);
+  return breakpoints;
+}
+
+// PatchOfSpans returns the Bezier patch of the span rectangle (s, t) of a
+// surface refined by KnotsToDecompose in both directions: its
+// (p + 1) x (q + 1) active control points and weights.
+SurfaceData PatchOfSpans(const SurfaceData& refined, int s, int t) {
+  const int p = refined.degree_u;
+  const int q = refined.degree_v;
+  const size_t dim = static_cast<size_t>(refined.dimension);
+  SurfaceData patch{.degree_u = p,
+                    .degree_v = q,
+                    .dimension = refined.dimension,
+                    .count_u = p + 1,
+                    .count_v = q + 1};
+  for (int i = s - p; i <= s; ++i) {
+    for (int j = t - q; j <= t; ++j) {
+      const size_t k =
+          static_cast<size_t>(i) * static_cast<size_t>(refined.count_v) +
+          static_cast<size_t>(j);
+      patch.coordinates.insert(patch.coordinates.end(),
+                               refined.coordinates.begin() + k * dim,
+                               refined.coordinates.begin() + (k + 1) * dim);
+      if (!refined.weights.empty()) patch.weights.push_back(refined.weights[k]);
+    }
+  }
+  return patch;
+}
+
 }  // namespace
 
 absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
@@ -461,41 +562,49 @@ absl::StatusOr<BSplineCurveData> InsertKnots(const BSplineCurveView& curve,
   return result;
 }
 
+absl::StatusOr<BezierPatchDecomposition> DecomposeBSplineSurface(
+    const BSplineSurfaceView& surface, const CancellationToken* cancel) {
+  absl::StatusOr<SurfaceData> in_u = InsertSurfaceKnots(
+      surface, true, KnotsToDecompose(surface.knots_u, surface.degree_u),
+      cancel);
+  if (!in_u.ok()) return in_u.status();
+  absl::StatusOr<SurfaceData> refined = InsertSurfaceKnots(
+      in_u->bspline_view(), false,
+      KnotsToDecompose(surface.knots_v, surface.degree_v), cancel);
+  if (!refined.ok()) return refined.status();
+  const std::vector<int> spans_u =
+      NonEmptySpans(refined->knots_u, refined->degree_u, refined->count_u);
+  const std::vector<int> spans_v =
+      NonEmptySpans(refined->knots_v, refined->degree_v, refined->count_v);
+  BezierPatchDecomposition result;
+  result.breakpoints_u = SpanBreakpoints(refined->knots_u, spans_u);
+  result.breakpoints_v = SpanBreakpoints(refined->knots_v, spans_v);
+  for (const int s : spans_u) {
+    for (const int t : spans_v) {
+      result.patches.push_back(PatchOfSpans(*refined, s, t));
+    }
+  }
+  return result;
+}
+
 absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
     const BSplineCurveView& curve, const CancellationToken* cancel) {
   const int p = curve.degree;
-  const std::vector<double> knots(curve.knots.begin(), curve.knots.end());
-  const int n = static_cast<int>(curve.control_points.size()) - 1;
-  const double lo = knots[static_cast<size_t>(p)];
-  const double hi = knots[static_cast<size_t>(n) + 1];
-  // Every distinct value in the domain to multiplicity p (at least).
-  // The knots are sorted, so each value's multiplicity is its run.
-  std::vector<double> insert;
-  for (size_t i = 0; i < knots.size();) {
-    const double u = knots[i];
-    size_t run = i + 1;
-    while (run < knots.size() && knots[run] == u) ++run;
-    const int have = static_cast<int>(run - i);
-    i = run;
-    if (u < lo || u > hi) continue;
-    for (int c = have; c < p; ++c) insert.push_back(u);
-  }
-  absl::StatusOr<Spline> refined = Refine(LiftCurve(curve), insert, cancel);
+  absl::StatusOr<Spline> refined =
+      Refine(LiftCurve(curve), KnotsToDecompose(curve.knots, p), cancel);
   if (!refined.ok()) return refined.status();
-  const std::vector<double>& ubar = refined->knots;
-  const int last = refined->points.count() - 1;
+  const std::vector<int> spans =
+      NonEmptySpans(refined->knots, p, refined->points.count());
   const int dim = refined->points.dim;
   BezierDecomposition result;
-  result.breakpoints.push_back(lo);
-  for (int s = p; s <= last; ++s) {
-    if (!(ubar[s] < ubar[s + 1])) continue;
+  result.breakpoints = SpanBreakpoints(refined->knots, spans);
+  for (const int s : spans) {
     const auto first = refined->points.values.begin() +
                        static_cast<std::ptrdiff_t>(s - p) * dim;
     Polygon segment{
         dim, std::vector<double>(
                  first, first + static_cast<std::ptrdiff_t>(p + 1) * dim)};
     result.segments.push_back(ToBezierCurve(segment, curve.rational()));
-    result.breakpoints.push_back(ubar[s + 1]);
   }
   return result;
 }
@@ -574,29 +683,20 @@ absl::StatusOr<std::vector<TriangularPatchData>> SplitTriangularPatch(
   if (absl::Status status = CheckTrianglePoint(u, v); !status.ok()) {
     return status;
   }
-  const int n = patch.degree;
-  const std::vector<Polygon> levels =
-      Pyramid(Lift(patch.control_points, patch.weights), n, u, v);
-  const double barycentric[3] = {u, v, 1.0 - u - v};
-  std::vector<TriangularPatchData> result(3);
-  for (int vertex = 0; vertex < 3; ++vertex) {
-    TriangularPatchData& piece = result[static_cast<size_t>(vertex)];
-    piece.degree = n;
-    piece.dimension = patch.control_points.dimension;
-    Project(SubPatch(levels, n, vertex), patch.rational(), piece.coordinates,
-            piece.weights);
-    if (patch.domain_triangle.empty()) continue;
-    piece.domain_triangle.assign(patch.domain_triangle.begin(),
-                                 patch.domain_triangle.end());
-    for (int x = 0; x < 2; ++x) {
-      double point = 0.0;
-      for (int c = 0; c < 3; ++c) {
-        point += barycentric[c] * patch.domain_triangle[2 * c + x];
-      }
-      piece.domain_triangle[static_cast<size_t>(2 * vertex + x)] = point;
-    }
+  return SplitPieces(patch, u, v, {0, 1, 2});
+}
+
+absl::StatusOr<std::vector<TriangularPatchData>> BisectTriangularPatch(
+    const TriangularPatchView& patch, int edge) {
+  if (edge < 0 || edge > 2) {
+    return InvalidFieldError("edge", "must be 0, 1 or 2");
   }
-  return result;
+  constexpr double kMidpoints[3][2] = {{0.0, 0.5}, {0.5, 0.0}, {0.5, 0.5}};
+  const double u = kMidpoints[edge][0];
+  const double v = kMidpoints[edge][1];
+  if (edge == 0) return SplitPieces(patch, u, v, {1, 2});
+  if (edge == 1) return SplitPieces(patch, u, v, {0, 2});
+  return SplitPieces(patch, u, v, {0, 1});
 }
 
 BezierDecomposition DecomposeHermiteCurve(const HermiteCurveView& curve) {

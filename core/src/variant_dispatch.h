@@ -1,7 +1,8 @@
 // The forwarding the core's geometry variants share (Curve, CurveBasis and
 // Surface): every kind has domain() and Evaluate(...), so the free
-// functions of curve.h, basis.h and surface.h visit with one generic call.
-// Internal to the core.
+// functions of curve.h, basis.h and surface.h visit with one generic call;
+// and Overloaded, for visits that handle each kind on its own. Internal to
+// the core.
 #ifndef FREEFORM_CORE_SRC_VARIANT_DISPATCH_H_
 #define FREEFORM_CORE_SRC_VARIANT_DISPATCH_H_
 
@@ -25,6 +26,15 @@ absl::Status EvaluateKind(const Variant& geometry,
   return std::visit(
       [&](const auto& kind) { return kind.Evaluate(arguments...); }, geometry);
 }
+
+// Overloaded{handler...}: one visitor from a handler per kind.
+template <typename... Handlers>
+struct Overloaded : Handlers... {
+  using Handlers::operator()...;
+};
+// Needed by clang 14, which does not deduce an aggregate's arguments.
+template <typename... Handlers>
+Overloaded(Handlers...) -> Overloaded<Handlers...>;
 
 }  // namespace freeform::internal
 

@@ -354,6 +354,58 @@ TEST(KnotInsertion, SurfaceUnchangedOnGrid) {
   }
 }
 
+// Every Bezier patch of the decomposition is the surface on its span
+// rectangle, clamped in u and unclamped in v.
+TEST(DecomposeBSplineSurface, PatchesAreTheSurfaceOnTheirSpans) {
+  std::mt19937_64 rng(6);
+  for (bool rational : {false, true}) {
+    SurfaceData surface{.degree_u = 3,
+                        .degree_v = 2,
+                        .dimension = 3,
+                        .count_u = 6,
+                        .count_v = 5,
+                        .coordinates = RandomValues(rng, 6 * 5 * 3),
+                        .knots_u = {0, 0, 0, 0, 0.3, 0.3, 1, 1, 1, 1},
+                        .knots_v = {-1, -0.5, 0, 0.2, 0.7, 1, 1.5, 2}};
+    if (rational) surface.weights = RandomValues(rng, 30, 0.5, 2.0);
+    auto pieces = DecomposeBSplineSurface(surface.bspline_view());
+    ASSERT_TRUE(pieces.ok()) << pieces.status();
+    EXPECT_EQ(pieces->breakpoints_u, (std::vector<double>{0, 0.3, 1}));
+    EXPECT_EQ(pieces->breakpoints_v, (std::vector<double>{0, 0.2, 0.7, 1}));
+    ASSERT_EQ(pieces->patches.size(), 2u * 3u);
+    const std::vector<double> st = EvenlySpaced(0, 1, 7);
+    for (size_t i = 0; i < 2; ++i) {
+      for (size_t j = 0; j < 3; ++j) {
+        const SurfaceData& patch = pieces->patches[i * 3 + j];
+        EXPECT_EQ(patch.count_u, 4);
+        EXPECT_EQ(patch.count_v, 3);
+        std::vector<double> us, vs;
+        for (const double x : st) {
+          us.push_back(
+              pieces->breakpoints_u[i] +
+              x * (pieces->breakpoints_u[i + 1] - pieces->breakpoints_u[i]));
+          vs.push_back(
+              pieces->breakpoints_v[j] +
+              x * (pieces->breakpoints_v[j + 1] - pieces->breakpoints_v[j]));
+        }
+        std::vector<double> expected(st.size() * st.size() * 3);
+        std::vector<double> got(expected.size());
+        const std::vector<absl::Span<double>> out_expected = {
+            absl::MakeSpan(expected)};
+        const std::vector<absl::Span<double>> out_got = {absl::MakeSpan(got)};
+        ASSERT_TRUE(EvaluateBSplineSurface(surface.bspline_view(),
+                                           SurfaceSamples::Grid(us, vs),
+                                           out_expected)
+                        .ok());
+        ASSERT_TRUE(EvaluateBezierSurface(patch.bezier_view(),
+                                          SurfaceSamples::Grid(st, st), out_got)
+                        .ok());
+        EXPECT_LT(MaxDifference(expected, got), kTolerance);
+      }
+    }
+  }
+}
+
 TEST(KnotInsertion, SurfaceRejectsOverflowInThatDirection) {
   const std::vector<double> net(2 * 3 * 3, 0.0);
   const std::vector<double> knots_u = {0, 0, 1, 1};
@@ -666,6 +718,50 @@ TEST(PatchSplit, TriangularPiecesMatchOriginalAtMappedPoints) {
       (void)w;
     }
   }
+}
+
+// Bisection at an edge midpoint X: half h is the piece of the vertex
+// kOthers[edge][h], with X in that vertex's place.
+TEST(PatchSplit, TriangularBisectionHalvesMatchOriginal) {
+  std::mt19937_64 rng(31);
+  constexpr double kMidpoints[3][2] = {{0.0, 0.5}, {0.5, 0.0}, {0.5, 0.5}};
+  constexpr int kOthers[3][2] = {{1, 2}, {0, 2}, {0, 1}};
+  for (int n = 1; n <= 6; ++n) {
+    const size_t count = TriangularPointCount(n);
+    const std::vector<double> points = RandomValues(rng, 3 * count);
+    const std::vector<double> weights = RandomValues(rng, count, 0.5, 2.0);
+    const TriangularPatchView patch{
+        .degree = n, .control_points = {3, points}, .weights = weights};
+    std::vector<double> ab;
+    while (ab.size() < 400) {
+      const std::vector<double> pair = RandomValues(rng, 2, 0, 1);
+      if (pair[0] + pair[1] <= 1) ab.insert(ab.end(), pair.begin(), pair.end());
+    }
+    for (int edge = 0; edge < 3; ++edge) {
+      auto halves = BisectTriangularPatch(patch, edge);
+      ASSERT_TRUE(halves.ok()) << halves.status();
+      ASSERT_EQ(halves->size(), 2u);
+      for (int h = 0; h < 2; ++h) {
+        const int vertex = kOthers[edge][h];
+        std::vector<double> mapped(ab.size());
+        for (size_t r = 0; r < ab.size(); r += 2) {
+          double bary[3] = {ab[r], ab[r + 1], 1 - ab[r] - ab[r + 1]};
+          const double x = bary[vertex];
+          bary[vertex] = 0;
+          mapped[r] = bary[0] + x * kMidpoints[edge][0];
+          mapped[r + 1] = bary[1] + x * kMidpoints[edge][1];
+        }
+        EXPECT_LT(MaxDifference(EvaluateTriangle((*halves)[h].view(), ab),
+                                EvaluateTriangle(patch, mapped)),
+                  kTolerance)
+            << "degree " << n << " edge " << edge << " half " << h;
+      }
+    }
+  }
+  ExpectFieldError(BisectTriangularPatch(
+                       {.degree = 0, .control_points = {3, {0.0, 0.0, 0.0}}}, 3)
+                       .status(),
+                   "edge");
 }
 
 TEST(PatchSplit, TriangularPiecesKeepCartesianDomain) {

@@ -66,6 +66,22 @@ void CheckSamples(absl::Span<const v1::EvaluateCurveResponse> messages,
   check.True(next == parameters.size(), "one sample per parameter");
 }
 
+// EvaluateAndCheck sends `request` to CurveService.Evaluate and checks its
+// unary answer against `reference` at every one of `parameters`.
+CallResult EvaluateAndCheck(Client& client,
+                            const v1::EvaluateCurveRequest& request,
+                            const Values& parameters, int dimension, int orders,
+                            const CurveReference& reference) {
+  auto answer =
+      client.Unary(client.curves(), &v1::CurveService::Stub::Evaluate, request);
+  Checker check(request);
+  if (answer.ok()) {
+    CheckSamples(absl::MakeConstSpan(&*answer, 1), parameters, dimension,
+                 orders, reference, check);
+  }
+  return check.Result(answer.status());
+}
+
 // Parameters inside [start, end] as a list (with both ends) or a range
 // (with or without explicit ends); `values` receives them.
 v1::Parameters RandomParameters(Rng& rng, double start, double end,
@@ -199,14 +215,8 @@ CallResult EvaluateLine(Client& client, Rng& rng) {
     }
     return expected;
   };
-  auto answer =
-      client.Unary(client.curves(), &v1::CurveService::Stub::Evaluate, request);
-  Checker check(request);
-  if (answer.ok()) {
-    CheckSamples(absl::MakeConstSpan(&*answer, 1), parameters, dimension,
-                 orders, reference, check);
-  }
-  return check.Result(answer.status());
+  return EvaluateAndCheck(client, request, parameters, dimension, orders,
+                          reference);
 }
 
 // docs/references.md, 'Worked example: the cubic Bezier curve (0,0), (1,2),
@@ -224,16 +234,9 @@ CallResult EvaluateWorkedCubic(Client& client, Rng& rng) {
       {{0, 0}, {3, 6}, {6, -12}},
       {{2, 1.5}, {4.5, 0}, {0, -12}},
       {{4, 0}, {3, -6}, {-6, -12}}};
-  auto answer =
-      client.Unary(client.curves(), &v1::CurveService::Stub::Evaluate, request);
-  Checker check(request);
-  if (answer.ok()) {
-    const Values parameters = {0.0, 0.5, 1.0};
-    CheckSamples(
-        absl::MakeConstSpan(&*answer, 1), parameters, 2, 2,
-        [&](double t) { return expected[static_cast<size_t>(t * 2)]; }, check);
-  }
-  return check.Result(answer.status());
+  return EvaluateAndCheck(
+      client, request, {0.0, 0.5, 1.0}, 2, 2,
+      [&](double t) { return expected[static_cast<size_t>(t * 2)]; });
 }
 
 // The quarter circle (docs/references.md, 'Worked example: the rational
@@ -321,14 +324,8 @@ CallResult EvaluateRandomCurve(Client& client, Rng& rng) {
   *request.mutable_parameters() =
       RandomParameters(rng, start, end, &parameters);
   request.set_derivative_order(static_cast<uint32_t>(orders));
-  auto answer =
-      client.Unary(client.curves(), &v1::CurveService::Stub::Evaluate, request);
-  Checker check(request);
-  if (answer.ok()) {
-    CheckSamples(absl::MakeConstSpan(&*answer, 1), parameters, dimension,
-                 orders, reference, check);
-  }
-  return check.Result(answer.status());
+  return EvaluateAndCheck(client, request, parameters, dimension, orders,
+                          reference);
 }
 
 CallResult Evaluate(Client& client, Rng& rng) {

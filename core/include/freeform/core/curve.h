@@ -35,6 +35,7 @@
 #include "freeform/core/hermite.h"
 #include "freeform/core/lagrange.h"
 #include "freeform/core/points.h"
+#include "freeform/core/subdivision.h"
 #include "freeform/core/thread_pool.h"
 
 namespace freeform {
@@ -150,6 +151,24 @@ absl::Status EvaluateCurve(const Curve& curve,
                            absl::Span<const double> parameters,
                            CurveOutput output,
                            const ExecutionContext& context = {});
+
+// CurveBreakpoints returns, in increasing order, the domain's ends and the
+// parameters inside it where a derivative of the curve may jump: the
+// distinct knot values of a B-spline curve and the nodes of a Hermite
+// curve. Between two consecutive breakpoints the curve is one polynomial
+// (rational) piece. A Lagrange curve with a single given node gives that
+// node twice.
+std::vector<double> CurveBreakpoints(const Curve& curve);
+
+// DecomposeCurve returns the curve as (rational when it is) Bezier pieces,
+// piece k being the curve on [breakpoints[k], breakpoints[k + 1]]
+// reparameterized to [0, 1] (the breakpoints are CurveBreakpoints): a
+// Bezier or power-form curve is its own piece, a B-spline curve is
+// DecomposeBSplineCurve, a Hermite curve DecomposeHermiteCurve and a
+// Lagrange curve LagrangeToBezier. Fails only with the token's CANCELLED /
+// DEADLINE_EXCEEDED.
+absl::StatusOr<BezierDecomposition> DecomposeCurve(
+    const Curve& curve, const CancellationToken* cancel = nullptr);
 
 }  // namespace freeform
 

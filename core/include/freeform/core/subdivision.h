@@ -86,6 +86,26 @@ struct BezierDecomposition {
 absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
     const BSplineCurveView& curve, const CancellationToken* cancel = nullptr);
 
+// The Bezier patches of a B-spline surface: patches[i * (breakpoints_v.size()
+// - 1) + j] is the surface on [breakpoints_u[i], breakpoints_u[i + 1]] x
+// [breakpoints_v[j], breakpoints_v[j + 1]], reparameterized to [0, 1]^2
+// (empty knot vectors, degree_u = count_u - 1, degree_v = count_v - 1).
+struct BezierPatchDecomposition {
+  std::vector<SurfaceData> patches;
+  std::vector<double> breakpoints_u;
+  std::vector<double> breakpoints_v;
+};
+
+// DecomposeBSplineSurface returns one (rational when `surface` is) Bezier
+// patch per non-empty span rectangle of the domain: DecomposeBSplineCurve's
+// refinement applied in u and then in v (InsertSurfaceKnots), after which the
+// (p + 1) x (q + 1) active control points of every span rectangle are its
+// Bezier net. Fails only with the token's CANCELLED / DEADLINE_EXCEEDED for
+// a valid surface.
+absl::StatusOr<BezierPatchDecomposition> DecomposeBSplineSurface(
+    const BSplineSurfaceView& surface,
+    const CancellationToken* cancel = nullptr);
+
 // DecomposeHermiteCurve returns the cubic Bezier segment of every piece of
 // a valid Hermite curve (HermiteSegmentBezier) with its nodes as
 // breakpoints.
@@ -159,6 +179,17 @@ absl::StatusOr<std::vector<SurfaceData>> SplitBezierSurface(
 // <= 0, or u + v >= 1).
 absl::StatusOr<std::vector<TriangularPatchData>> SplitTriangularPatch(
     const TriangularPatchView& patch, double u, double v);
+
+// BisectTriangularPatch cuts `patch` at the midpoint X of the edge opposite
+// vertex `edge` (0, 1, 2: the vertices u = 1, v = 1, w = 1) into two
+// patches: those SplitTriangularPatch's rule gives at X for the other two
+// vertices (the third would be flat), in increasing vertex order, each with
+// X in place of its vertex. Halving an edge this way, always the one
+// opposite the newest vertex, keeps the pieces' shapes bounded while their
+// size halves every two steps (newest vertex bisection). Fails with
+// INVALID_ARGUMENT "edge" outside 0..2.
+absl::StatusOr<std::vector<TriangularPatchData>> BisectTriangularPatch(
+    const TriangularPatchView& patch, int edge);
 
 }  // namespace freeform
 

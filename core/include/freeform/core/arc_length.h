@@ -1,0 +1,97 @@
+// Arc length of curves: the length over a parameter interval, its inverse
+// (the parameter at a given length) and samples at equal arc-length
+// spacing, for every curve kind of curve.h in any dimension.
+//
+// The length of C over [a, b] is the integral of the speed |C'(t)|. It is
+// integrated piece by piece between the curve's breakpoints
+// (CurveBreakpoints: knot spans, Hermite pieces), where the speed is smooth,
+// by adaptive Gauss-Legendre quadrature (docs/references.md, 'Arc length by
+// adaptive Gauss-Legendre quadrature'): an interval's 16-point rule is
+// compared with the sum of the rules on its two halves; when they differ by
+// at most the interval's share of the tolerance (tolerance times its width
+// over the whole interval's) the halves' sum is kept, otherwise each half is
+// refined the same way. The difference estimates the error of the coarser
+// rule, so the kept sums are far more accurate than the tolerance for smooth
+// speeds; an interval is not split beyond kMaxArcLengthDepth halvings, so a
+// tolerance below what double precision resolves (about 1e-15 of the
+// length) ends there with the best sum found.
+//
+// The inverse solves L(start, t) = s for t by Newton's method, whose
+// derivative is the speed, safeguarded by bisection on the interval of the
+// quadrature table that holds s (the length is monotone in t). Where the
+// curve stands still (zero speed over an interval) every parameter of that
+// interval has the same length; the one returned lies inside it.
+//
+// Errors name their field: "start", "end", "tolerance", "lengths[i]",
+// "count". Output buffers have a size known before any work (the number of
+// lengths, or `count`); a wrongly sized buffer is INVALID_ARGUMENT.
+//
+// All functions are thread-safe and allocate per call or per chunk.
+#ifndef FREEFORM_CORE_ARC_LENGTH_H_
+#define FREEFORM_CORE_ARC_LENGTH_H_
+
+#include <cstddef>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "absl/types/span.h"
+#include "freeform/core/cancellation.h"
+#include "freeform/core/curve.h"
+#include "freeform/core/thread_pool.h"
+
+namespace freeform {
+
+// The largest number of halvings of a piece of the curve between two
+// breakpoints.
+inline constexpr int kMaxArcLengthDepth = 40;
+
+// ArcLength returns the length of `curve` over [start, end] within
+// `tolerance` (absolute, in the curve's units; see the file comment).
+// start <= end, both in the domain. Fails with INVALID_ARGUMENT "start" or
+// "end" (not finite, outside the domain, end < start) or "tolerance" (not
+// positive and finite), and with the token's CANCELLED / DEADLINE_EXCEEDED.
+absl::StatusOr<double> ArcLength(const Curve& curve, double start, double end,
+                                 double tolerance,
+                                 const CancellationToken* cancel = nullptr);
+
+// ParametersAtArcLengths writes into parameters[i] the parameter t >= start
+// with |L(start, t) - lengths[i]| <= tolerance. Every length must lie in
+// [0, L(start, domain end)] (one within the tolerance above that gives the
+// end of the domain). The lengths are integrated once from `start` to the
+// end of the domain, then the parameters are solved in chunks on the
+// context's pool. `parameters` holds lengths.size() values. Fails like
+// ArcLength ("start", "tolerance"), with "lengths[i]" for a length not
+// finite, negative or beyond the curve, and with the context token's
+// CANCELLED / DEADLINE_EXCEEDED.
+absl::Status ParametersAtArcLengths(const Curve& curve, double start,
+                                    absl::Span<const double> lengths,
+                                    double tolerance,
+                                    absl::Span<double> parameters,
+                                    const ExecutionContext& context = {});
+
+// EqualArcLengthParameters writes `count` >= 2 parameters t_0 = start,
+// ..., t_{count-1} = end such that L(start, t_k) = k L(start, end) /
+// (count - 1) within `tolerance`, so consecutive samples are equally far
+// apart along the curve (each arc between them is L / (count - 1) within
+// 2 tolerance; the parameters increase whenever that spacing exceeds
+// 2 tolerance). A curve of zero length over [start, end] gets evenly
+// spaced parameters. `parameters` holds `count` values. Fails like
+// ArcLength, with "count" when count < 2.
+absl::Status EqualArcLengthParameters(const Curve& curve, double start,
+                                      double end, size_t count,
+                                      double tolerance,
+                                      absl::Span<double> parameters,
+                                      const ExecutionContext& context = {});
+
+// GaussLegendreRule returns the `points` >= 1 nodes (ascending) and weights
+// of the Gauss-Legendre rule on [-1, 1], which integrates polynomials of
+// degree up to 2 points - 1 exactly: the nodes are the roots of the
+// Legendre polynomial P_points, found by Newton's method from
+// cos(pi (i + 3/4) / (points + 1/2)), and w_i = 2 / ((1 - x_i^2)
+// P'_points(x_i)^2).
+void GaussLegendreRule(int points, absl::Span<double> nodes,
+                       absl::Span<double> weights);
+
+}  // namespace freeform
+
+#endif  // FREEFORM_CORE_ARC_LENGTH_H_

@@ -1,0 +1,76 @@
+// Tight axis-aligned bounding boxes of curves and surfaces: the box of the
+// geometry itself, not of its control points.
+//
+// The geometry is cut into (rational) Bezier pieces (DecomposeCurve,
+// DecomposeBSplineSurface) and each side of the box is found by branch and
+// bound with the convex hull property (docs/references.md, 'Tight bounding
+// boxes by subdivision'): for the largest value of coordinate j, every
+// piece's largest control coordinate is an upper bound of the piece (a
+// rational piece needs positive weights; one with a zero weight has no
+// bound and is split first), and its end points (curves) or corners
+// (patches) lie on the geometry, so they are lower bounds. The piece of
+// largest upper bound is halved by de Casteljau until its upper bound is
+// within `tolerance` of the best value found on the geometry: a tensor
+// patch alternately in u and v (SplitBezierSurface; a curve is a patch of
+// one column), a triangular patch at the midpoint of the edge opposite its
+// newest vertex (BisectTriangularPatch). Halving a piece divides the gap
+// between its hull and the geometry by about four (two halvings for a
+// triangle), so a smooth extreme needs about log4(size / tolerance)
+// halvings.
+//
+// Accuracy contract: the box contains every point of the geometry (as far
+// as double arithmetic can tell: it is widened by the margin 2^-44 of the
+// control points' largest coordinate, about 6e-14 of it, which covers the
+// rounding of the subdivision and of the evaluators), and no side is
+// farther than `tolerance` plus twice that margin from a point of the
+// geometry. A tolerance below the margin is met as the margin: hull bounds
+// cannot come closer than rounding, and chasing them would split without
+// end. A piece is not halved more than kMaxBoxDepth times, which a
+// tolerance of at least the margin never reaches on pieces of a sensible
+// size.
+//
+// Thread-safe; allocates per call.
+#ifndef FREEFORM_CORE_BOUNDING_BOX_H_
+#define FREEFORM_CORE_BOUNDING_BOX_H_
+
+#include <cstddef>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "freeform/core/cancellation.h"
+#include "freeform/core/curve.h"
+#include "freeform/core/surface.h"
+
+namespace freeform {
+
+// The most halvings of one piece (in u and v together for a patch).
+inline constexpr int kMaxBoxDepth = 120;
+
+// An axis-aligned box: lower[j] <= x_j <= upper[j] for every point x.
+struct BoundingBox {
+  std::vector<double> lower;
+  std::vector<double> upper;
+};
+
+// BoundingBoxValues returns the number of values of the box of geometry of
+// `dimension`: lower and upper per coordinate.
+constexpr size_t BoundingBoxValues(int dimension) {
+  return 2 * static_cast<size_t>(dimension);
+}
+
+// CurveBoundingBox returns the box of `curve` over its domain (see the file
+// comment). Fails with INVALID_ARGUMENT "tolerance" (not positive and
+// finite) and with the token's CANCELLED / DEADLINE_EXCEEDED.
+absl::StatusOr<BoundingBox> CurveBoundingBox(
+    const Curve& curve, double tolerance,
+    const CancellationToken* cancel = nullptr);
+
+// SurfaceBoundingBox returns the box of `surface` over its domain (its
+// triangle for a triangular patch). Fails like CurveBoundingBox.
+absl::StatusOr<BoundingBox> SurfaceBoundingBox(
+    const Surface& surface, double tolerance,
+    const CancellationToken* cancel = nullptr);
+
+}  // namespace freeform
+
+#endif  // FREEFORM_CORE_BOUNDING_BOX_H_

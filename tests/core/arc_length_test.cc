@@ -1,0 +1,334 @@
+#include "freeform/core/arc_length.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "freeform/core/elevation.h"
+#include "freeform/core/status.h"
+#include "shapes.h"
+#include "test_util.h"
+
+namespace freeform {
+namespace {
+
+using testing_util::EvenlySpaced;
+using testing_util::NurbsCircle;
+using testing_util::RandomKnots;
+using testing_util::RandomValues;
+
+std::vector<double> Points(const Curve& curve,
+                           const std::vector<double>& parameters) {
+  std::vector<double> points(parameters.size() * DimensionOf(curve));
+  const absl::Span<double> output[] = {absl::MakeSpan(points)};
+  EXPECT_TRUE(EvaluateCurve(curve, parameters, output).ok());
+  return points;
+}
+
+double Distance(const double* a, const double* b, int dimension) {
+  double sum = 0.0;
+  for (int j = 0; j < dimension; ++j) sum += (a[j] - b[j]) * (a[j] - b[j]);
+  return std::sqrt(sum);
+}
+
+// PolylineLength returns the length of the polyline through `segments` + 1
+// evenly spaced parameters of every piece between consecutive `cuts`.
+double PolylineLength(const Curve& curve, const std::vector<double>& cuts,
+                      int segments) {
+  const int d = DimensionOf(curve);
+  double length = 0.0;
+  for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const std::vector<double> points =
+        Points(curve, EvenlySpaced(cuts[k], cuts[k + 1], segments + 1));
+    for (int i = 0; i < segments; ++i) {
+      length += Distance(&points[i * d], &points[(i + 1) * d], d);
+    }
+  }
+  return length;
+}
+
+// ReferenceLength is the polyline length with Richardson extrapolation: a
+// chord of a smooth piece falls short of its arc by O(h^2), so
+// (4 L(2N) - L(N)) / 3 removes the leading term.
+double ReferenceLength(const Curve& curve, const std::vector<double>& cuts) {
+  const double coarse = PolylineLength(curve, cuts, 2048);
+  const double fine = PolylineLength(curve, cuts, 4096);
+  return (4.0 * fine - coarse) / 3.0;
+}
+
+TEST(GaussLegendreRule, IntegratesPolynomialsOfDegreeBelowTwiceItsPoints) {
+  for (const int n : {1, 2, 5, 16}) {
+    std::vector<double> nodes(n), weights(n);
+    GaussLegendreRule(n, absl::MakeSpan(nodes), absl::MakeSpan(weights));
+    for (int k = 0; k < 2 * n; ++k) {
+      double sum = 0.0;
+      for (int i = 0; i < n; ++i) sum += weights[i] * std::pow(nodes[i], k);
+      EXPECT_NEAR(sum, k % 2 == 1 ? 0.0 : 2.0 / (k + 1), 1e-14)
+          << "n = " << n << ", x^" << k;
+    }
+  }
+  std::vector<double> nodes(2), weights(2);
+  GaussLegendreRule(2, absl::MakeSpan(nodes), absl::MakeSpan(weights));
+  EXPECT_NEAR(nodes[0], -1.0 / std::sqrt(3.0), 2e-16);
+  EXPECT_NEAR(nodes[1], 1.0 / std::sqrt(3.0), 2e-16);
+  EXPECT_NEAR(weights[0], 1.0, 1e-15);
+}
+
+TEST(ArcLength, NurbsCircleHasLengthTwoPiR) {
+  for (const double radius : {1.0, 2.5}) {
+    const BSplineCurveData data = NurbsCircle(radius, 3.0, -1.0);
+    const Curve circle = *BSplineCurve::Create(data.view());
+    absl::StatusOr<double> length = ArcLength(circle, 0.0, 1.0, 1e-13);
+    ASSERT_TRUE(length.ok()) << length.status();
+    EXPECT_NEAR(*length, 2.0 * std::numbers::pi * radius, 1e-12 * radius);
+    // Half the domain is half the circle (the quarters are symmetric).
+    EXPECT_NEAR(*ArcLength(circle, 0.0, 0.5, 1e-13), std::numbers::pi * radius,
+                1e-12 * radius);
+    EXPECT_EQ(*ArcLength(circle, 0.3, 0.3, 1e-13), 0.0);
+  }
+}
+
+TEST(ArcLength, StraightLineElevatedToDegreeSevenHasItsChordsLength) {
+  // A quadratic along a line with uneven control points (so the speed
+  // varies), raised to degree 7.
+  const BezierCurveData quadratic{
+      .dimension = 3, .coordinates = {1, 2, 3, 3.7, -1.6, 12.9, 4, -2, 14}};
+  absl::StatusOr<BezierCurveData> line =
+      ElevateBezierCurve(quadratic.view(), 5);
+  ASSERT_TRUE(line.ok());
+  ASSERT_EQ(line->coordinates.size(), 8u * 3);
+  const Curve curve = *BezierCurve::Create(line->view());
+  const double chord = std::sqrt(9.0 + 16.0 + 121.0);
+  EXPECT_NEAR(*ArcLength(curve, 0.0, 1.0, 1e-12), chord, 1e-12 * chord);
+  const std::vector<double> ends = Points(curve, {0.2, 0.7});
+  EXPECT_NEAR(*ArcLength(curve, 0.2, 0.7, 1e-12),
+              Distance(&ends[0], &ends[3], 3), 1e-12 * chord);
+}
+
+// Every curve kind against the extrapolated polyline, over the whole domain
+// and over an interval that starts and ends inside pieces.
+TEST(ArcLength, EveryKindMatchesExtrapolatedPolyline) {
+  std::mt19937_64 rng(12);
+  const std::vector<double> bezier_points = RandomValues(rng, 6 * 4);
+  const std::vector<double> weights = RandomValues(rng, 6, 0.5, 2.0);
+  const std::vector<double> spline_points = RandomValues(rng, 9 * 3);
+  const std::vector<double> knots = RandomKnots(rng, 3, 8, false);
+  const std::vector<double> lagrange_points = RandomValues(rng, 5 * 2);
+  const std::vector<double> hermite_points = RandomValues(rng, 4 * 2);
+  const std::vector<double> tangents = RandomValues(rng, 4 * 2);
+  const std::vector<double> nodes = {0.0, 0.5, 1.75, 2.0};
+  const std::vector<double> power = RandomValues(rng, 4 * 2);
+  struct Case {
+    const char* name;
+    Curve curve;
+    std::vector<double> cuts;
+  };
+  std::vector<Case> cases = {
+      {"rational Bezier",
+       *BezierCurve::Create(
+           {.control_points = {4, bezier_points}, .weights = weights}),
+       {0.0, 1.0}},
+      {"B-spline",
+       *BSplineCurve::Create(
+           {.degree = 3, .control_points = {3, spline_points}, .knots = knots}),
+       {}},
+      {"Lagrange",
+       *LagrangeCurve::Create({.points = {2, lagrange_points}}),
+       {0.0, 1.0}},
+      {"Hermite",
+       *HermiteCurve::Create({.points = {2, hermite_points},
+                              .tangents = {2, tangents},
+                              .nodes = nodes}),
+       nodes},
+      {"power form", *BezierCurve::FromPowerForm({2, power}), {0.0, 1.0}}};
+  for (int s = 3; s <= 9; ++s) {
+    if (cases[1].cuts.empty() || knots[s] != cases[1].cuts.back()) {
+      cases[1].cuts.push_back(knots[s]);
+    }
+  }
+  for (const Case& c : cases) {
+    const double start = c.cuts.front();
+    const double end = c.cuts.back();
+    const double reference = ReferenceLength(c.curve, c.cuts);
+    absl::StatusOr<double> length = ArcLength(c.curve, start, end, 1e-12);
+    ASSERT_TRUE(length.ok()) << c.name << ": " << length.status();
+    EXPECT_NEAR(*length, reference, 1e-10 * reference) << c.name;
+    // An interval inside: the cuts clipped to it.
+    const double a = start + 0.13 * (end - start);
+    const double b = start + 0.81 * (end - start);
+    std::vector<double> inner = {a};
+    for (const double cut : c.cuts) {
+      if (cut > a && cut < b) inner.push_back(cut);
+    }
+    inner.push_back(b);
+    const double inner_reference = ReferenceLength(c.curve, inner);
+    EXPECT_NEAR(*ArcLength(c.curve, a, b, 1e-12), inner_reference,
+                1e-10 * reference)
+        << c.name;
+  }
+}
+
+// On a circle of radius r the point at length s from angle 0 is at angle
+// s / r.
+TEST(ParametersAtArcLengths, CirclePointsAtTheirAngle) {
+  const double radius = 2.0;
+  const BSplineCurveData data = NurbsCircle(radius);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  const std::vector<double> lengths = {
+      0.0, 0.1, 1.0, 3.0, 7.5, 12.0, 4.0 * std::numbers::pi};
+  std::vector<double> parameters(lengths.size());
+  ThreadPool pool(2);
+  const absl::Status status = ParametersAtArcLengths(
+      circle, 0.0, lengths, 1e-12, absl::MakeSpan(parameters),
+      {.pool = &pool, .cancellation = nullptr, .grain = 2});
+  ASSERT_TRUE(status.ok()) << status;
+  const std::vector<double> points = Points(circle, parameters);
+  for (size_t i = 0; i < lengths.size(); ++i) {
+    const double angle = lengths[i] / radius;
+    EXPECT_NEAR(points[2 * i], radius * std::cos(angle), 1e-11) << i;
+    EXPECT_NEAR(points[2 * i + 1], radius * std::sin(angle), 1e-11) << i;
+  }
+  EXPECT_EQ(parameters.front(), 0.0);
+  EXPECT_NEAR(parameters.back(), 1.0, 1e-12);
+}
+
+TEST(ParametersAtArcLengths, FromAStartInsideTheDomain) {
+  const BSplineCurveData data = NurbsCircle(1.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  // The circle's parameter 0.25 is the angle pi / 2.
+  const std::vector<double> lengths = {1.0};
+  std::vector<double> parameter(1);
+  ASSERT_TRUE(ParametersAtArcLengths(circle, 0.25, lengths, 1e-12,
+                                     absl::MakeSpan(parameter))
+                  .ok());
+  const std::vector<double> point = Points(circle, parameter);
+  EXPECT_NEAR(point[0], std::cos(std::numbers::pi / 2 + 1.0), 1e-11);
+  EXPECT_NEAR(point[1], std::sin(std::numbers::pi / 2 + 1.0), 1e-11);
+}
+
+// Equal arc-length samples of the circle have equal chords
+// 2 r sin(pi / (n - 1)).
+TEST(EqualArcLengthParameters, CircleSamplesHaveEqualChords) {
+  const double radius = 1.5;
+  const BSplineCurveData data = NurbsCircle(radius, -1.0, 2.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  constexpr size_t kCount = 13;
+  std::vector<double> parameters(kCount);
+  ASSERT_TRUE(EqualArcLengthParameters(circle, 0.0, 1.0, kCount, 1e-12,
+                                       absl::MakeSpan(parameters))
+                  .ok());
+  const std::vector<double> points = Points(circle, parameters);
+  const double chord = 2.0 * radius * std::sin(std::numbers::pi / (kCount - 1));
+  for (size_t k = 0; k + 1 < kCount; ++k) {
+    EXPECT_LT(parameters[k], parameters[k + 1]);
+    EXPECT_NEAR(Distance(&points[2 * k], &points[2 * k + 2], 2), chord, 1e-11);
+  }
+}
+
+// On a free-form B-spline each arc between consecutive samples, measured
+// by the extrapolated polyline, is the total over count - 1.
+TEST(EqualArcLengthParameters, ArcsAreEqualOnAFreeFormSpline) {
+  std::mt19937_64 rng(5);
+  const std::vector<double> points = RandomValues(rng, 7 * 2);
+  const std::vector<double> knots = RandomKnots(rng, 3, 6, true);
+  const Curve curve = *BSplineCurve::Create(
+      {.degree = 3, .control_points = {2, points}, .knots = knots});
+  constexpr size_t kCount = 6;
+  constexpr double kTolerance = 1e-9;
+  std::vector<double> parameters(kCount);
+  ASSERT_TRUE(EqualArcLengthParameters(curve, 0.0, 1.0, kCount, kTolerance,
+                                       absl::MakeSpan(parameters))
+                  .ok());
+  EXPECT_EQ(parameters.front(), 0.0);
+  EXPECT_EQ(parameters.back(), 1.0);
+  std::vector<double> arcs;
+  double total = 0.0;
+  for (size_t k = 0; k + 1 < kCount; ++k) {
+    std::vector<double> cuts = {parameters[k]};
+    for (const double knot : knots) {
+      if (knot > parameters[k] && knot < parameters[k + 1] &&
+          knot != cuts.back()) {
+        cuts.push_back(knot);
+      }
+    }
+    cuts.push_back(parameters[k + 1]);
+    arcs.push_back(ReferenceLength(curve, cuts));
+    total += arcs.back();
+  }
+  for (const double arc : arcs) {
+    EXPECT_NEAR(arc, total / (kCount - 1), 2 * kTolerance + 1e-11);
+  }
+}
+
+TEST(EqualArcLengthParameters, ZeroLengthGivesEvenlySpacedParameters) {
+  const std::vector<double> point = {1.0, 2.0, 1.0, 2.0, 1.0, 2.0};
+  const Curve curve = *BezierCurve::Create({.control_points = {2, point}});
+  std::vector<double> parameters(5);
+  ASSERT_TRUE(EqualArcLengthParameters(curve, 0.0, 1.0, 5, 1e-9,
+                                       absl::MakeSpan(parameters))
+                  .ok());
+  EXPECT_EQ(parameters, (std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0}));
+}
+
+TEST(ArcLength, ErrorsNameTheirField) {
+  const BSplineCurveData data = NurbsCircle(1.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  EXPECT_EQ(FieldPathOf(ArcLength(circle, 0.0, 1.0, 0.0).status()),
+            "tolerance");
+  EXPECT_EQ(FieldPathOf(ArcLength(circle, 0.0, 1.0, NAN).status()),
+            "tolerance");
+  EXPECT_EQ(FieldPathOf(ArcLength(circle, -0.1, 1.0, 1e-9).status()), "start");
+  EXPECT_EQ(FieldPathOf(ArcLength(circle, 0.0, 1.5, 1e-9).status()), "end");
+  EXPECT_EQ(FieldPathOf(ArcLength(circle, 0.6, 0.5, 1e-9).status()), "end");
+  std::vector<double> parameters(2);
+  const std::vector<double> too_long = {1.0, 7.0};
+  EXPECT_EQ(FieldPathOf(ParametersAtArcLengths(circle, 0.0, too_long, 1e-9,
+                                               absl::MakeSpan(parameters))),
+            "lengths[1]");
+  const std::vector<double> negative = {-1.0, 1.0};
+  EXPECT_EQ(FieldPathOf(ParametersAtArcLengths(circle, 0.0, negative, 1e-9,
+                                               absl::MakeSpan(parameters))),
+            "lengths[0]");
+  EXPECT_EQ(FieldPathOf(EqualArcLengthParameters(circle, 0.0, 1.0, 1, 1e-9,
+                                                 absl::MakeSpan(parameters))),
+            "count");
+  EXPECT_EQ(EqualArcLengthParameters(circle, 0.0, 1.0, 3, 1e-9,
+                                     absl::MakeSpan(parameters))
+                .code(),
+            absl::StatusCode::kInvalidArgument);
+}
+
+// A spline of 200 spans needs far more quadrature steps than one poll's
+// worth, so a cancelled token stops the integration.
+TEST(ArcLength, StopsWhenCancelled) {
+  std::mt19937_64 rng(9);
+  const std::vector<double> points = RandomValues(rng, 202 * 2);
+  const std::vector<double> knots = RandomKnots(rng, 2, 201, true);
+  const Curve curve = *BSplineCurve::Create(
+      {.degree = 2, .control_points = {2, points}, .knots = knots});
+  CancellationToken token;
+  token.Cancel();
+  EXPECT_EQ(ArcLength(curve, 0.0, 1.0, 1e-9, &token).status().code(),
+            absl::StatusCode::kCancelled);
+  EXPECT_TRUE(ArcLength(curve, 0.0, 1.0, 1e-9).ok());
+}
+
+TEST(ParametersAtArcLengths, StopsWhenCancelled) {
+  const BSplineCurveData data = NurbsCircle(1.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  CancellationToken token;
+  token.Cancel();
+  const std::vector<double> lengths(100, 1.0);
+  std::vector<double> parameters(lengths.size());
+  EXPECT_EQ(ParametersAtArcLengths(circle, 0.0, lengths, 1e-9,
+                                   absl::MakeSpan(parameters),
+                                   {.pool = nullptr, .cancellation = &token})
+                .code(),
+            absl::StatusCode::kCancelled);
+}
+
+}  // namespace
+}  // namespace freeform

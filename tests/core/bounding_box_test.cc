@@ -1,0 +1,341 @@
+#include "freeform/core/bounding_box.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "freeform/core/status.h"
+#include "shapes.h"
+#include "test_util.h"
+
+namespace freeform {
+namespace {
+
+using testing_util::EvenlySpaced;
+using testing_util::NurbsCircle;
+using testing_util::RandomKnots;
+using testing_util::RandomValues;
+using testing_util::SpherePatch;
+
+constexpr double kTolerance = 1e-10;
+
+std::vector<double> CurvePoints(const Curve& curve,
+                                const std::vector<double>& parameters) {
+  std::vector<double> points(parameters.size() * DimensionOf(curve));
+  const absl::Span<double> output[] = {absl::MakeSpan(points)};
+  EXPECT_TRUE(EvaluateCurve(curve, parameters, output).ok());
+  return points;
+}
+
+std::vector<double> SurfacePoints(const Surface& surface,
+                                  const SurfaceSamples& samples) {
+  std::vector<double> points(samples.size() * DimensionOf(surface));
+  const absl::Span<double> output[] = {absl::MakeSpan(points)};
+  EXPECT_TRUE(EvaluateSurface(surface, samples, output, {}).ok());
+  return points;
+}
+
+// GoldenMaximum returns the largest value of f on [a, b] near its single
+// local maximum there, by golden-section search.
+double GoldenMaximum(const std::function<double(double)>& f, double a,
+                     double b) {
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double best = std::max(f(a), f(b));
+  for (int step = 0; step < 80; ++step) {
+    const double x1 = b - g * (b - a), x2 = a + g * (b - a);
+    const double f1 = f(x1), f2 = f(x2);
+    best = std::max({best, f1, f2});
+    (f1 < f2 ? a : b) = (f1 < f2 ? x1 : x2);
+  }
+  return best;
+}
+
+// PatternMaximum climbs from (u, v) by a shrinking compass search over the
+// points `inside` accepts and returns the largest value of f met.
+double PatternMaximum(const std::function<double(double, double)>& f,
+                      const std::function<bool(double, double)>& inside,
+                      double u, double v, double step) {
+  double best = f(u, v);
+  while (step > 1e-13) {
+    bool moved = false;
+    // Along the axes, and along the hypotenuse of a triangle.
+    for (const auto& [du, dv] :
+         {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}, {1, -1}, {-1, 1}}) {
+      const double nu = u + du * step, nv = v + dv * step;
+      if (!inside(nu, nv)) continue;
+      const double value = f(nu, nv);
+      if (value > best) {
+        best = value, u = nu, v = nv, moved = true;
+      }
+    }
+    if (!moved) step *= 0.5;
+  }
+  return best;
+}
+
+// A local search from sample `best` for the largest value of `sign` times
+// coordinate j.
+using Refine = std::function<double(int j, double sign, size_t best)>;
+
+// CheckSides checks `box` against the sampled `points` of dimension d:
+// every sample lies in the box, and each side is within 1e-9 of the sampled
+// extreme refined by `refine` (and not inside it).
+void CheckSides(const BoundingBox& box, const std::vector<double>& points,
+                int d, const Refine& refine, const std::string& name) {
+  const size_t count = points.size() / d;
+  for (int j = 0; j < d; ++j) {
+    for (const double sign : {1.0, -1.0}) {
+      const double side = sign > 0 ? box.upper[j] : -box.lower[j];
+      size_t best = 0;
+      for (size_t r = 0; r < count; ++r) {
+        ASSERT_LE(sign * points[r * d + j], side) << name << " sample " << r;
+        if (sign * points[r * d + j] > sign * points[best * d + j]) best = r;
+      }
+      const double refined = refine(j, sign, best);
+      EXPECT_LE(side - refined, 1e-9) << name << " coordinate " << j;
+      EXPECT_GE(side - refined, -1e-13) << name << " coordinate " << j;
+    }
+  }
+}
+
+// CheckCurveBox samples the curve at 10^5 parameters and refines the
+// extremes by golden-section search between the neighbours of the best
+// sample.
+void CheckCurveBox(const Curve& curve, const std::string& name) {
+  absl::StatusOr<BoundingBox> box = CurveBoundingBox(curve, kTolerance);
+  ASSERT_TRUE(box.ok()) << name << ": " << box.status();
+  const ParameterDomain domain = DomainOf(curve);
+  const std::vector<double> t = EvenlySpaced(domain.start, domain.end, 100000);
+  CheckSides(
+      *box, CurvePoints(curve, t), DimensionOf(curve),
+      [&](int j, double sign, size_t best) {
+        return GoldenMaximum(
+            [&](double s) { return sign * CurvePoints(curve, {s})[j]; },
+            t[best == 0 ? 0 : best - 1], t[std::min(best + 1, t.size() - 1)]);
+      },
+      name);
+}
+
+TEST(CurveBoundingBox, WorkedCubicIsTighterThanItsHull) {
+  // (0,0), (1,2), (3,2), (4,0): y peaks at C(1/2) = (2, 1.5), the control
+  // points reach 2.
+  const std::vector<double> net = {0, 0, 1, 2, 3, 2, 4, 0};
+  const Curve cubic = *BezierCurve::Create({.control_points = {2, net}});
+  absl::StatusOr<BoundingBox> box = CurveBoundingBox(cubic, kTolerance);
+  ASSERT_TRUE(box.ok());
+  // Within the rounding margin, 2^-44 of the largest coordinate 4.
+  EXPECT_NEAR(box->lower[0], 0.0, 1e-12);
+  EXPECT_NEAR(box->upper[0], 4.0, 1e-12);
+  EXPECT_NEAR(box->lower[1], 0.0, 1e-12);
+  EXPECT_GE(box->upper[1], 1.5);
+  EXPECT_LE(box->upper[1], 1.5 + kTolerance + 1e-12);
+}
+
+TEST(CurveBoundingBox, NurbsCircleIsItsSquare) {
+  const BSplineCurveData data = NurbsCircle(2.0, 1.0, -3.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  absl::StatusOr<BoundingBox> box = CurveBoundingBox(circle, kTolerance);
+  ASSERT_TRUE(box.ok());
+  EXPECT_GE(box->upper[0], 3.0);
+  EXPECT_LE(box->upper[0], 3.0 + kTolerance + 1e-12);
+  EXPECT_LE(box->lower[0], -1.0);
+  EXPECT_GE(box->lower[0], -1.0 - kTolerance - 1e-12);
+  EXPECT_GE(box->upper[1], -1.0);
+  EXPECT_LE(box->upper[1], -1.0 + kTolerance + 1e-12);
+  EXPECT_LE(box->lower[1], -5.0);
+  EXPECT_GE(box->lower[1], -5.0 - kTolerance - 1e-12);
+}
+
+// A tolerance below rounding is met as the rounding margin, without
+// splitting forever.
+TEST(CurveBoundingBox, ToleranceBelowRoundingEnds) {
+  const BSplineCurveData data = NurbsCircle(1.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  absl::StatusOr<BoundingBox> box = CurveBoundingBox(circle, 1e-300);
+  ASSERT_TRUE(box.ok());
+  for (int j = 0; j < 2; ++j) {
+    EXPECT_GE(box->upper[j], 1.0);
+    EXPECT_LE(box->upper[j], 1.0 + 1e-12);
+    EXPECT_LE(box->lower[j], -1.0);
+    EXPECT_GE(box->lower[j], -1.0 - 1e-12);
+  }
+}
+
+TEST(CurveBoundingBox, EveryKindContainsDenseSamplesAndIsTight) {
+  std::mt19937_64 rng(21);
+  const std::vector<double> bezier_points = RandomValues(rng, 7 * 3);
+  std::vector<double> weights = RandomValues(rng, 7, 0.3, 3.0);
+  weights[3] = 0.0;  // a point at infinity inside
+  const std::vector<double> spline_points = RandomValues(rng, 12 * 3, -5, 5);
+  const std::vector<double> spline_weights = RandomValues(rng, 12, 0.2, 4.0);
+  const std::vector<double> knots = RandomKnots(rng, 3, 11, false);
+  const std::vector<double> lagrange_points = RandomValues(rng, 6 * 2);
+  const std::vector<double> hermite_points = RandomValues(rng, 5 * 4);
+  const std::vector<double> tangents = RandomValues(rng, 5 * 4, -3, 3);
+  const std::vector<double> power = RandomValues(rng, 5 * 2);
+  CheckCurveBox(*BezierCurve::Create(
+                    {.control_points = {3, bezier_points}, .weights = weights}),
+                "rational Bezier");
+  CheckCurveBox(*BSplineCurve::Create({.degree = 3,
+                                       .control_points = {3, spline_points},
+                                       .knots = knots,
+                                       .weights = spline_weights}),
+                "NURBS");
+  CheckCurveBox(*LagrangeCurve::Create({.points = {2, lagrange_points}}),
+                "Lagrange");
+  CheckCurveBox(*HermiteCurve::Create(
+                    {.points = {4, hermite_points}, .tangents = {4, tangents}}),
+                "Hermite");
+  CheckCurveBox(*BezierCurve::FromPowerForm({2, power}), "power form");
+}
+
+// CheckSurfaceBox is CheckCurveBox on about 10^5 (u, v) points of the
+// domain (a 317 x 317 grid, or the points (i, j) / 446 of the triangle),
+// refined by compass search from the best sample.
+void CheckSurfaceBox(const Surface& surface, const std::string& name) {
+  absl::StatusOr<BoundingBox> box = SurfaceBoundingBox(surface, kTolerance);
+  ASSERT_TRUE(box.ok()) << name << ": " << box.status();
+  const SurfaceDomain domain = DomainOf(surface);
+  const bool triangle = IsTriangular(surface);
+  const int steps = triangle ? 446 : 316;
+  const auto inside = [&](double u, double v) {
+    return u >= domain.u_start && u <= domain.u_end && v >= domain.v_start &&
+           v <= domain.v_end && (!triangle || u + v <= 1.0);
+  };
+  std::vector<double> uv;
+  for (int i = 0; i <= steps; ++i) {
+    for (int j = 0; j <= steps; ++j) {
+      const double u =
+          domain.u_start + (domain.u_end - domain.u_start) * i / steps;
+      const double v =
+          domain.v_start + (domain.v_end - domain.v_start) * j / steps;
+      if (inside(u, v)) uv.insert(uv.end(), {u, v});
+    }
+  }
+  CheckSides(
+      *box, SurfacePoints(surface, SurfaceSamples::Pairs(uv)),
+      DimensionOf(surface),
+      [&](int j, double sign, size_t best) {
+        return PatternMaximum(
+            [&](double a, double b) {
+              const std::vector<double> point = {a, b};
+              return sign *
+                     SurfacePoints(surface, SurfaceSamples::Pairs(point))[j];
+            },
+            inside, uv[2 * best], uv[2 * best + 1],
+            (domain.u_end - domain.u_start) / steps);
+      },
+      name);
+}
+
+TEST(SurfaceBoundingBox, SpherePatchIsItsOctantCube) {
+  const SurfaceData data = SpherePatch(1.5);
+  const Surface sphere = *BezierSurface::Create(data.bezier_view());
+  absl::StatusOr<BoundingBox> box = SurfaceBoundingBox(sphere, kTolerance);
+  ASSERT_TRUE(box.ok());
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(box->lower[j], 0.0, 1e-12);
+    EXPECT_GE(box->upper[j], 1.5);
+    EXPECT_LE(box->upper[j], 1.5 + kTolerance + 1e-12);
+  }
+  CheckSurfaceBox(sphere, "sphere patch");
+}
+
+TEST(SurfaceBoundingBox, NurbsSurfaceContainsDenseSamplesAndIsTight) {
+  std::mt19937_64 rng(8);
+  const std::vector<double> net = RandomValues(rng, 6 * 5 * 3);
+  const std::vector<double> weights = RandomValues(rng, 6 * 5, 0.5, 2.0);
+  const std::vector<double> knots_u = RandomKnots(rng, 3, 5, true);
+  const std::vector<double> knots_v = RandomKnots(rng, 2, 4, false);
+  const Surface surface =
+      *BSplineSurface::Create({.degree_u = 3,
+                               .degree_v = 2,
+                               .control_net = {.dimension = 3,
+                                               .count_u = 6,
+                                               .count_v = 5,
+                                               .coordinates = net},
+                               .knots_u = knots_u,
+                               .knots_v = knots_v,
+                               .weights = weights});
+  CheckSurfaceBox(surface, "NURBS surface");
+}
+
+// A rational cubic triangular patch with random positive weights, and the
+// flat triangle, whose box is its vertices' box.
+TEST(SurfaceBoundingBox, TriangularPatches) {
+  std::mt19937_64 rng(30);
+  const std::vector<double> points = RandomValues(rng, 10 * 3);
+  const std::vector<double> weights = RandomValues(rng, 10, 0.3, 3.0);
+  CheckSurfaceBox(
+      *TriangularPatch::Create(
+          {.degree = 3, .control_points = {3, points}, .weights = weights}),
+      "triangular patch");
+  const std::vector<double> flat = {1, 5, 0, -2, 1, 3, 0, -1, 2};
+  absl::StatusOr<BoundingBox> box = SurfaceBoundingBox(
+      *TriangularPatch::Create({.degree = 1, .control_points = {3, flat}}),
+      kTolerance);
+  ASSERT_TRUE(box.ok());
+  const double lower[3] = {-2, -1, 0}, upper[3] = {1, 5, 3};
+  for (int j = 0; j < 3; ++j) {
+    EXPECT_NEAR(box->lower[j], lower[j], 1e-12);
+    EXPECT_NEAR(box->upper[j], upper[j], 1e-12);
+  }
+}
+
+TEST(BoundingBox, Errors) {
+  const BSplineCurveData data = NurbsCircle(1.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  EXPECT_EQ(FieldPathOf(CurveBoundingBox(circle, 0.0).status()), "tolerance");
+  const SurfaceData sphere = SpherePatch(1.0);
+  EXPECT_EQ(FieldPathOf(SurfaceBoundingBox(
+                            *BezierSurface::Create(sphere.bezier_view()), -1.0)
+                            .status()),
+            "tolerance");
+  CancellationToken token;
+  token.Cancel();
+  std::vector<double> wiggle;
+  for (int i = 0; i < 200; ++i) {
+    // The ends at y = 1/2, so the hull's 0 and 1 are far from the curve.
+    const double y = i == 0 || i == 199 ? 0.5 : (i % 2) * 1.0;
+    wiggle.insert(wiggle.end(), {i * 0.01, y});
+  }
+  const Curve curve = *BezierCurve::Create({.control_points = {2, wiggle}});
+  EXPECT_EQ(CurveBoundingBox(curve, 1e-12, &token).status().code(),
+            absl::StatusCode::kCancelled);
+}
+
+// The pieces of DecomposeCurve evaluate to the curve on their intervals.
+TEST(DecomposeCurve, PiecesAreTheCurveOnTheirIntervals) {
+  std::mt19937_64 rng(4);
+  const std::vector<double> points = RandomValues(rng, 6 * 2);
+  const std::vector<double> tangents = RandomValues(rng, 6 * 2);
+  const std::vector<double> nodes = {0.0, 0.5, 0.7, 1.5, 2.0, 4.0};
+  const Curve hermite = *HermiteCurve::Create(
+      {.points = {2, points}, .tangents = {2, tangents}, .nodes = nodes});
+  const Curve lagrange =
+      *LagrangeCurve::Create({.points = {2, points}, .nodes = nodes});
+  for (const Curve& curve : {hermite, lagrange}) {
+    absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve);
+    ASSERT_TRUE(pieces.ok());
+    EXPECT_EQ(pieces->breakpoints, CurveBreakpoints(curve));
+    for (size_t k = 0; k < pieces->segments.size(); ++k) {
+      const double a = pieces->breakpoints[k], b = pieces->breakpoints[k + 1];
+      const Curve piece = *BezierCurve::Create(pieces->segments[k].view());
+      for (const double s : {0.0, 0.3, 1.0}) {
+        const std::vector<double> expected =
+            CurvePoints(curve, {a + s * (b - a)});
+        const std::vector<double> got = CurvePoints(piece, {s});
+        EXPECT_NEAR(got[0], expected[0], 1e-10);
+        EXPECT_NEAR(got[1], expected[1], 1e-10);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace freeform
