@@ -1,9 +1,11 @@
 // CurveServiceImpl: freeform.v1.CurveService on top of the core.
 //
-// Each handler converts the request to core views (no copies), checks the
-// server's limits, runs the core on the shared thread pool under the RPC's
-// cancellation token and writes results straight into the response.
-// Thread-safe: one instance serves all calls.
+// Evaluation, refinement and construction (curve_service.cc,
+// curve_operations.cc, curve_refinement.cc) and the queries
+// (curve_queries.cc, curve_measures.cc). Each handler converts the request to
+// core views (no copies), checks the server's limits, runs the core on the
+// shared thread pool under the RPC's cancellation token and writes results
+// straight into the response. Thread-safe: one instance serves all calls.
 #ifndef FREEFORM_SERVER_CURVE_SERVICE_H_
 #define FREEFORM_SERVER_CURVE_SERVICE_H_
 
@@ -58,6 +60,38 @@ class CurveServiceImpl final : public v1::CurveService::CallbackService {
       grpc::CallbackServerContext* context,
       const v1::InterpolateCurveRequest* request,
       v1::InterpolateCurveResponse* response) override;
+
+  grpc::ServerUnaryReactor* ClosestPoint(
+      grpc::CallbackServerContext* context,
+      const v1::CurveClosestPointRequest* request,
+      v1::ClosestPointResponse* response) override;
+  grpc::ServerUnaryReactor* Intersect(
+      grpc::CallbackServerContext* context,
+      const v1::IntersectCurvesRequest* request,
+      v1::IntersectCurvesResponse* response) override;
+  grpc::ServerUnaryReactor* ArcLength(grpc::CallbackServerContext* context,
+                                      const v1::ArcLengthRequest* request,
+                                      v1::ArcLengthResponse* response) override;
+  grpc::ServerUnaryReactor* ParametersAtArcLength(
+      grpc::CallbackServerContext* context,
+      const v1::ParametersAtArcLengthRequest* request,
+      v1::ParametersAtArcLengthResponse* response) override;
+  grpc::ServerUnaryReactor* SampleByArcLength(
+      grpc::CallbackServerContext* context,
+      const v1::SampleByArcLengthRequest* request,
+      v1::SampleByArcLengthResponse* response) override;
+  grpc::ServerUnaryReactor* Curvature(
+      grpc::CallbackServerContext* context,
+      const v1::CurveCurvatureRequest* request,
+      v1::CurveCurvatureResponse* response) override;
+  grpc::ServerUnaryReactor* RotationMinimizingFrames(
+      grpc::CallbackServerContext* context,
+      const v1::RotationMinimizingFramesRequest* request,
+      v1::RotationMinimizingFramesResponse* response) override;
+  grpc::ServerUnaryReactor* BoundingBox(
+      grpc::CallbackServerContext* context,
+      const v1::CurveBoundingBoxRequest* request,
+      v1::BoundingBoxResponse* response) override;
 
  private:
   RpcFrame* const frame_;

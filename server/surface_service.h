@@ -3,7 +3,7 @@
 // Evaluation converts the request to core views (no copies), checks the
 // server's limits, runs the core on the shared thread pool under the RPC's
 // cancellation token and writes partials and normals straight into the
-// response. RPCs of later issues answer UNIMPLEMENTED, naming the issue.
+// response; the queries are in surface_queries.cc.
 // Thread-safe: one instance serves all calls.
 #ifndef FREEFORM_SERVER_SURFACE_SERVICE_H_
 #define FREEFORM_SERVER_SURFACE_SERVICE_H_
@@ -51,6 +51,27 @@ class SurfaceServiceImpl final : public v1::SurfaceService::CallbackService {
       grpc::CallbackServerContext* context,
       const v1::InterpolateSurfaceRequest* request,
       v1::InterpolateSurfaceResponse* response) override;
+
+  grpc::ServerUnaryReactor* ClosestPoint(
+      grpc::CallbackServerContext* context,
+      const v1::SurfaceClosestPointRequest* request,
+      v1::ClosestPointResponse* response) override;
+  grpc::ServerUnaryReactor* IntersectCurve(
+      grpc::CallbackServerContext* context,
+      const v1::IntersectCurveSurfaceRequest* request,
+      v1::IntersectCurveSurfaceResponse* response) override;
+  grpc::ServerUnaryReactor* Section(
+      grpc::CallbackServerContext* context,
+      const v1::SectionSurfaceRequest* request,
+      v1::SectionSurfaceResponse* response) override;
+  grpc::ServerUnaryReactor* Curvature(
+      grpc::CallbackServerContext* context,
+      const v1::SurfaceCurvatureRequest* request,
+      v1::SurfaceCurvatureResponse* response) override;
+  grpc::ServerUnaryReactor* BoundingBox(
+      grpc::CallbackServerContext* context,
+      const v1::SurfaceBoundingBoxRequest* request,
+      v1::BoundingBoxResponse* response) override;
 
  private:
   RpcFrame* const frame_;

@@ -340,6 +340,46 @@ absl::StatusOr<double> ArcLength(const Curve& curve, double start, double end,
   return table->total();
 }
 
+absl::Status ArcLengths(const Curve& curve, absl::Span<const double> intervals,
+                        double tolerance, absl::Span<double> lengths,
+                        const ExecutionContext& context) {
+  if (intervals.size() % 2 != 0) {
+    return InvalidFieldError("intervals", "must hold (start, end) pairs");
+  }
+  const size_t count = intervals.size() / 2;
+  if (absl::Status status = CheckOutputSize(lengths, count); !status.ok()) {
+    return status;
+  }
+  if (absl::Status status = CheckTolerance(tolerance); !status.ok()) {
+    return status;
+  }
+  for (size_t i = 0; i < count; ++i) {
+    if (absl::Status status = CheckInterval(curve, intervals[2 * i],
+                                            intervals[2 * i + 1], tolerance);
+        !status.ok()) {
+      return PrefixFieldPath(status, absl::StrCat("intervals[", i, "]"));
+    }
+  }
+  ExecutionContext chunks = context;
+  chunks.grain = std::min(context.grain, kSolveGrain);
+  std::mutex mutex;
+  absl::Status failure;
+  absl::Status status = ParallelFor(count, chunks, [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      absl::StatusOr<LengthTable> table =
+          BuildTable(curve, intervals[2 * i], intervals[2 * i + 1], tolerance,
+                     context.cancellation);
+      if (!table.ok()) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        failure.Update(table.status());
+        return;
+      }
+      lengths[i] = table->total();
+    }
+  });
+  return status.ok() ? failure : status;
+}
+
 absl::Status ParametersAtArcLengths(const Curve& curve, double start,
                                     absl::Span<const double> lengths,
                                     double tolerance,

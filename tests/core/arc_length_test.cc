@@ -9,6 +9,7 @@
 
 #include "freeform/core/elevation.h"
 #include "freeform/core/status.h"
+#include "freeform/core/thread_pool.h"
 #include "shapes.h"
 #include "test_util.h"
 
@@ -89,6 +90,46 @@ TEST(ArcLength, NurbsCircleHasLengthTwoPiR) {
                 1e-12 * radius);
     EXPECT_EQ(*ArcLength(circle, 0.3, 0.3, 1e-13), 0.0);
   }
+}
+
+// Arcs of the circle of radius 2: length 2 pi r times the fraction of the
+// turn, in a batch large enough to run in chunks on a pool.
+TEST(ArcLengths, BatchOfCircleArcs) {
+  const BSplineCurveData data = NurbsCircle(2.0, 1.0, 1.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  std::vector<double> intervals;
+  const int count = 300;
+  for (int i = 0; i < count; ++i) {
+    // Quarter-turn pieces are exact in the NURBS parameter: [k/4, m/4].
+    const int k = i % 4, m = k + 1 + (i / 4) % (4 - k);
+    intervals.push_back(k / 4.0);
+    intervals.push_back(m / 4.0);
+  }
+  ThreadPool pool(2);
+  std::vector<double> lengths(count);
+  ASSERT_TRUE(ArcLengths(circle, intervals, 1e-12, absl::MakeSpan(lengths),
+                         {.pool = &pool, .grain = 16})
+                  .ok());
+  for (int i = 0; i < count; ++i) {
+    const double turns = intervals[2 * i + 1] - intervals[2 * i];
+    EXPECT_NEAR(lengths[i], 2.0 * std::numbers::pi * 2.0 * turns, 1e-11)
+        << "interval " << i;
+  }
+  const std::vector<double> odd = {0.0, 0.5, 0.2};
+  EXPECT_EQ(FieldPathOf(ArcLengths(circle, odd, 1e-9,
+                                   absl::MakeSpan(lengths).subspan(0, 1))),
+            "intervals");
+  const std::vector<double> reversed = {0.0, 0.5, 0.7, 0.6};
+  EXPECT_EQ(FieldPathOf(ArcLengths(circle, reversed, 1e-9,
+                                   absl::MakeSpan(lengths).subspan(0, 2))),
+            "intervals[1].end");
+  const std::vector<double> outside = {-0.5, 0.5};
+  EXPECT_EQ(FieldPathOf(ArcLengths(circle, outside, 1e-9,
+                                   absl::MakeSpan(lengths).subspan(0, 1))),
+            "intervals[0].start");
+  EXPECT_EQ(FieldPathOf(ArcLengths(circle, outside, -1.0,
+                                   absl::MakeSpan(lengths).subspan(0, 1))),
+            "tolerance");
 }
 
 TEST(ArcLength, StraightLineElevatedToDegreeSevenHasItsChordsLength) {

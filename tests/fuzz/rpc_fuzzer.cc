@@ -1,6 +1,6 @@
 // The libFuzzer harness of every RPC fuzzer: it sends the input bytes, as
-// they are, as the serialized request of one method (kFuzzMethod, named by
-// rpc_method.cc) to an in-process FreeformServer with small limits, reads
+// they are, as the serialized request of one method to an in-process
+// FreeformServer with small limits, reads
 // the whole answer (every message of a stream) and aborts, so libFuzzer
 // records the input, when the answer breaks a promise of the service:
 // - the status is OK, INVALID_ARGUMENT or RESOURCE_EXHAUSTED, never
@@ -13,6 +13,10 @@
 //   type holding only finite numbers.
 // One server serves the whole process; calls run one at a time and each
 // ends (on the server too) before the next input.
+//
+// One binary, rpc_fuzzer, serves every RPC: it is run through a link named
+// rpc_<Service>_<Method>_fuzzer (tests/fuzz/CMakeLists.txt makes one per
+// RPC), and the name says which method it calls.
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 #include <spdlog/spdlog.h>
@@ -32,9 +36,6 @@
 #include "freeform/client.h"
 #include "rpc.h"
 #include "server.h"
-
-// The full method name, e.g. "/freeform.v1.CurveService/Evaluate".
-extern const char kFuzzMethod[];
 
 namespace freeform::server {
 namespace {
@@ -69,9 +70,38 @@ ServiceLimits FuzzLimits() {
   return limits;
 }
 
+// The full method name, e.g. "/freeform.v1.CurveService/Evaluate".
+std::string& FuzzMethod() {
+  static std::string* const method = new std::string();
+  return *method;
+}
+
 [[noreturn]] void Fail(absl::string_view what) {
-  std::fprintf(stderr, "\n%s: %s\n", kFuzzMethod, std::string(what).c_str());
+  std::fprintf(stderr, "\n%s: %s\n", FuzzMethod().c_str(),
+               std::string(what).c_str());
   std::abort();
+}
+
+// MethodOfProgram returns the method a program named
+// ".../rpc_<Service>_<Method>_fuzzer" fuzzes.
+std::string MethodOfProgram(absl::string_view program) {
+  const size_t slash = program.rfind('/');
+  if (slash != absl::string_view::npos) program.remove_prefix(slash + 1);
+  const absl::string_view prefix = "rpc_", suffix = "_fuzzer";
+  const size_t separator = program.find('_', prefix.size());
+  if (!absl::StartsWith(program, prefix) ||
+      !absl::EndsWith(program, suffix) ||
+      separator == absl::string_view::npos ||
+      separator + 1 >= program.size() - suffix.size()) {
+    Fail(absl::StrCat("run rpc_fuzzer as rpc_<Service>_<Method>_fuzzer (a "
+                      "link made by the build), not as ",
+                      program));
+  }
+  const absl::string_view service =
+      program.substr(prefix.size(), separator - prefix.size());
+  const absl::string_view method = program.substr(
+      separator + 1, program.size() - suffix.size() - separator - 1);
+  return absl::StrCat("/freeform.v1.", service, "/", method);
 }
 
 void Check(bool condition, absl::string_view what) {
@@ -93,12 +123,12 @@ std::string ToString(const grpc::ByteBuffer& buffer) {
   return bytes;
 }
 
-// The process's server and the generic client of kFuzzMethod.
+// The process's server and the generic client of the fuzzed method.
 class Harness {
  public:
   Harness() {
     spdlog::set_level(spdlog::level::err);  // no access log per call
-    const absl::string_view name = absl::string_view(kFuzzMethod).substr(1);
+    const absl::string_view name = absl::string_view(FuzzMethod()).substr(1);
     std::string full_name(name);
     full_name[name.find('/')] = '.';
     method_ =
@@ -150,7 +180,7 @@ class Harness {
     grpc::Slice slice(data, size);
     const grpc::ByteBuffer request(&slice, 1);
     std::unique_ptr<grpc::GenericClientAsyncReaderWriter> call =
-        stub_->PrepareCall(&context, kFuzzMethod, &queue_);
+        stub_->PrepareCall(&context, FuzzMethod(), &queue_);
     Check(call != nullptr, "cannot prepare the call");
     call->StartCall(this);
     Await();
@@ -250,7 +280,9 @@ Harness& TheHarness() {
 }  // namespace
 }  // namespace freeform::server
 
-extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
+extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** argv) {
+  freeform::server::FuzzMethod() =
+      freeform::server::MethodOfProgram((*argv)[0]);
   freeform::server::TheHarness();
   return 0;
 }

@@ -54,6 +54,17 @@ absl::StatusOr<double> ArcLength(const Curve& curve, double start, double end,
                                  double tolerance,
                                  const CancellationToken* cancel = nullptr);
 
+// ArcLengths writes into lengths[i] the length of `curve` over the interval
+// [intervals[2 i], intervals[2 i + 1]] within `tolerance`, for every pair of
+// `intervals` (an even number of values), in chunks on the context's pool.
+// `lengths` holds intervals.size() / 2 values. Every interval is checked
+// before any work: errors name "intervals[i].start", "intervals[i].end"
+// (as ArcLength's "start" and "end") or "tolerance"; and the context
+// token's CANCELLED / DEADLINE_EXCEEDED.
+absl::Status ArcLengths(const Curve& curve, absl::Span<const double> intervals,
+                        double tolerance, absl::Span<double> lengths,
+                        const ExecutionContext& context = {});
+
 // ParametersAtArcLengths writes into parameters[i] the parameter t >= start
 // with |L(start, t) - lengths[i]| <= tolerance. Every length must lie in
 // [0, L(start, domain end)] (one within the tolerance above that gives the

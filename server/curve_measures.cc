@@ -1,0 +1,369 @@
+// CurveService queries of shape along a curve: ArcLength,
+// ParametersAtArcLength, SampleByArcLength, Curvature and
+// RotationMinimizingFrames.
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "convert.h"
+#include "curve_service.h"
+#include "freeform/core/arc_length.h"
+#include "freeform/core/differential_geometry.h"
+#include "freeform/core/status.h"
+#include "plan.h"
+#include "prepare.h"
+#include "queries.h"
+
+namespace freeform::server {
+namespace {
+
+// CheckCount returns RESOURCE_EXHAUSTED naming `field` when `count` items
+// are over the parameter limit.
+absl::Status CheckCount(uint64_t count, const ServiceLimits& limits,
+                        absl::string_view field) {
+  if (count <= limits.max_parameters) return absl::OkStatus();
+  return ExhaustedFieldError(
+      field, absl::StrCat(count, " values exceed the server's limit of ",
+                          limits.max_parameters, " (--max_parameters)"));
+}
+
+// The ends of an interval, omitted ends taken from the domain.
+std::pair<double, double> EndsOf(const v1::ParameterInterval& interval,
+                                 const ParameterDomain& domain) {
+  return {interval.has_start() ? interval.start() : domain.start,
+          interval.has_end() ? interval.end() : domain.end};
+}
+
+// The parameters of an evaluation-like request, resolved and copied once.
+absl::StatusOr<std::vector<double>> ResolveParameters(
+    const v1::Parameters& parameters, const Curve& curve,
+    const ServiceLimits& limits) {
+  const ParameterDomain domain = DomainOf(curve);
+  absl::StatusOr<ParameterSet> set = ParameterSet::Resolve(
+      parameters, domain.start, domain.end, limits.max_parameters);
+  if (!set.ok()) return PrefixFieldPath(set.status(), "parameters");
+  ParameterStorage storage;
+  const absl::Span<const double> values = set->Values(0, set->size(), storage);
+  return std::vector<double>(values.begin(), values.end());
+}
+
+// ParameterError renames the core's "parameters[i]" (a parameter where the
+// curve stands still) to the request's path of that parameter.
+absl::Status ParameterError(const absl::Status& status,
+                            const v1::Parameters& parameters) {
+  const std::optional<std::string> field = FieldPathOf(status);
+  if (!field.has_value() || !absl::StartsWith(*field, "parameters[")) {
+    return status;
+  }
+  const std::string index = field->substr(std::string("parameters").size());
+  return InvalidFieldError(
+      parameters.has_list() ? absl::StrCat("parameters.list.values", index)
+                            : "parameters.range",
+      absl::StrCat("value ", index, ": ", FieldRuleOf(status)));
+}
+
+// PointsAt writes the curve's points at `parameters` into `points`.
+absl::Status PointsAt(const Curve& curve, absl::Span<const double> parameters,
+                      v1::Points& points, const ExecutionContext& execution) {
+  const int dimension = DimensionOf(curve);
+  points.set_dimension(static_cast<uint32_t>(dimension));
+  const absl::Span<double> output[] = {
+      UninitializedArray(*points.mutable_coordinates(),
+                         parameters.size() * static_cast<size_t>(dimension))};
+  return EvaluateCurve(curve, parameters, output, execution);
+}
+
+// Answers of parameters and points: their size per parameter.
+uint64_t ParameterAndPointValues(const Curve& curve) {
+  return 1 + static_cast<uint64_t>(DimensionOf(curve));
+}
+
+absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
+                                        const ServiceLimits& limits,
+                                        v1::ArcLengthResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  absl::StatusOr<double> tolerance =
+      Tolerance(request.has_tolerance(), request.tolerance(),
+                kDefaultQueryTolerance, "tolerance");
+  if (!tolerance.ok()) return tolerance.status();
+  const uint64_t count =
+      std::max<uint64_t>(1, static_cast<uint64_t>(request.intervals_size()));
+  if (absl::Status status = CheckCount(count, limits, "intervals");
+      !status.ok()) {
+    return status;
+  }
+  const ParameterDomain domain = DomainOf(*curve);
+  std::vector<double> intervals;
+  intervals.reserve(2 * count);
+  for (const v1::ParameterInterval& interval : request.intervals()) {
+    const auto [start, end] = EndsOf(interval, domain);
+    intervals.push_back(start);
+    intervals.push_back(end);
+  }
+  if (intervals.empty()) intervals = {domain.start, domain.end};
+  return UnaryWork{
+      .plan = {.memory_bytes =
+                   AnswerPlan(count, 16 * count, limits).memory_bytes,
+               .heavy = true},
+      .run = [curve = *std::move(curve), intervals = std::move(intervals),
+              tolerance = *tolerance,
+              &response](const ExecutionContext& execution) {
+        return ArcLengths(curve, intervals, tolerance,
+                          UninitializedArray(*response.mutable_lengths(),
+                                             intervals.size() / 2),
+                          execution);
+      }};
+}
+
+absl::StatusOr<UnaryWork> PlanParametersAtArcLength(
+    const v1::ParametersAtArcLengthRequest& request,
+    const ServiceLimits& limits, v1::ParametersAtArcLengthResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  absl::StatusOr<double> tolerance =
+      Tolerance(request.has_tolerance(), request.tolerance(),
+                kDefaultQueryTolerance, "tolerance");
+  if (!tolerance.ok()) return tolerance.status();
+  const uint64_t count = static_cast<uint64_t>(request.lengths_size());
+  if (count == 0) {
+    return InvalidFieldError("lengths", "needs at least one length");
+  }
+  if (absl::Status status = CheckCount(count, limits, "lengths");
+      !status.ok()) {
+    return status;
+  }
+  const uint64_t values = count * ParameterAndPointValues(*curve);
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "lengths");
+      !status.ok()) {
+    return status;
+  }
+  const double start =
+      request.has_start() ? request.start() : DomainOf(*curve).start;
+  return UnaryWork{
+      .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
+               .heavy = true},
+      .run = [curve = *std::move(curve), start,
+              lengths = SpanOf(request.lengths()), tolerance = *tolerance,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        const absl::Span<double> parameters =
+            UninitializedArray(*response.mutable_parameters(), lengths.size());
+        if (absl::Status status = ParametersAtArcLengths(
+                curve, start, lengths, tolerance, parameters, execution);
+            !status.ok()) {
+          return status;
+        }
+        return PointsAt(curve, parameters, *response.mutable_points(),
+                        execution);
+      }};
+}
+
+absl::StatusOr<UnaryWork> PlanSampleByArcLength(
+    const v1::SampleByArcLengthRequest& request, const ServiceLimits& limits,
+    v1::SampleByArcLengthResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  absl::StatusOr<double> tolerance =
+      Tolerance(request.has_tolerance(), request.tolerance(),
+                kDefaultQueryTolerance, "tolerance");
+  if (!tolerance.ok()) return tolerance.status();
+  const uint64_t count = request.count();
+  if (count < 2) {
+    return InvalidFieldError("count",
+                             absl::StrCat("must be at least 2, got ", count));
+  }
+  if (absl::Status status = CheckCount(count, limits, "count"); !status.ok()) {
+    return status;
+  }
+  const uint64_t values = count * ParameterAndPointValues(*curve);
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "count");
+      !status.ok()) {
+    return status;
+  }
+  const auto [start, end] = EndsOf(request.interval(), DomainOf(*curve));
+  return UnaryWork{
+      .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
+               .heavy = true},
+      .run = [curve = *std::move(curve), start, end, count,
+              tolerance = *tolerance,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        const absl::Span<double> parameters = UninitializedArray(
+            *response.mutable_parameters(), static_cast<size_t>(count));
+        if (absl::Status status = PrefixFieldPath(
+                EqualArcLengthParameters(curve, start, end,
+                                         static_cast<size_t>(count), tolerance,
+                                         parameters, execution),
+                "interval");
+            !status.ok()) {
+          return status;
+        }
+        return PointsAt(curve, parameters, *response.mutable_points(),
+                        execution);
+      }};
+}
+
+// Points of `dimension` coordinates in a response, `count` of them, or none
+// when `size` is 0 (a buffer the dimension does not have).
+absl::Span<double> PointArray(v1::Points& points, int dimension, size_t size) {
+  if (size == 0) return {};
+  points.set_dimension(static_cast<uint32_t>(dimension));
+  return UninitializedArray(*points.mutable_coordinates(), size);
+}
+
+absl::StatusOr<UnaryWork> PlanCurvature(
+    const v1::CurveCurvatureRequest& request, const ServiceLimits& limits,
+    v1::CurveCurvatureResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  absl::StatusOr<std::vector<double>> parameters =
+      ResolveParameters(request.parameters(), *curve, limits);
+  if (!parameters.ok()) return parameters.status();
+  const int dimension = DimensionOf(*curve);
+  const FrenetFrameSizes sizes = FrenetSizes(dimension, parameters->size());
+  const uint64_t values = uint64_t{sizes.tangents} + sizes.normals +
+                          sizes.binormals + sizes.curvatures + sizes.torsions +
+                          sizes.statuses;
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [curve = *std::move(curve), parameters = *std::move(parameters),
+              dimension, sizes,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        response.set_dimension(static_cast<uint32_t>(dimension));
+        std::vector<CurvePointStatus> statuses(sizes.statuses);
+        const FrenetFrameOutput output = {
+            .tangents = PointArray(*response.mutable_tangents(), dimension,
+                                   sizes.tangents),
+            .normals = PointArray(*response.mutable_normals(), dimension,
+                                  sizes.normals),
+            .binormals =
+                PointArray(*response.mutable_binormals(), 3, sizes.binormals),
+            .curvatures = UninitializedArray(*response.mutable_curvatures(),
+                                             sizes.curvatures),
+            .torsions = sizes.torsions == 0
+                            ? absl::Span<double>()
+                            : UninitializedArray(*response.mutable_torsions(),
+                                                 sizes.torsions),
+            .statuses = absl::MakeSpan(statuses)};
+        if (absl::Status status =
+                EvaluateFrenetFrames(curve, parameters, output, execution);
+            !status.ok()) {
+          return status;
+        }
+        response.mutable_statuses()->Reserve(static_cast<int>(statuses.size()));
+        for (const CurvePointStatus status : statuses) {
+          response.add_statuses(static_cast<v1::CurvePointStatus>(status));
+        }
+        return absl::OkStatus();
+      }};
+}
+
+absl::StatusOr<UnaryWork> PlanRotationMinimizingFrames(
+    const v1::RotationMinimizingFramesRequest& request,
+    const ServiceLimits& limits,
+    v1::RotationMinimizingFramesResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  absl::StatusOr<std::vector<double>> parameters =
+      ResolveParameters(request.parameters(), *curve, limits);
+  if (!parameters.ok()) return parameters.status();
+  const int dimension = DimensionOf(*curve);
+  if (dimension < 2) {
+    return InvalidFieldError("curve",
+                             "rotation-minimizing frames need a curve of "
+                             "dimension 2 or more");
+  }
+  const RotationMinimizingFrameSizes sizes =
+      RotationMinimizingSizes(dimension, parameters->size());
+  const uint64_t values =
+      uint64_t{sizes.tangents} + sizes.references + sizes.third;
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [curve = *std::move(curve), parameters = *std::move(parameters),
+              reference = SpanOf(request.initial_reference()), dimension, sizes,
+              request = &request.parameters(),
+              &response](const ExecutionContext& execution) {
+        response.set_dimension(static_cast<uint32_t>(dimension));
+        const RotationMinimizingFrameOutput output = {
+            .tangents = PointArray(*response.mutable_tangents(), dimension,
+                                   sizes.tangents),
+            .references = PointArray(*response.mutable_references(), dimension,
+                                     sizes.references),
+            .third = PointArray(*response.mutable_third(), 3, sizes.third)};
+        return ParameterError(
+            EvaluateRotationMinimizingFrames(curve, parameters, reference,
+                                             output, execution),
+            *request);
+      }};
+}
+
+}  // namespace
+
+grpc::ServerUnaryReactor* CurveServiceImpl::ArcLength(
+    grpc::CallbackServerContext* context, const v1::ArcLengthRequest* request,
+    v1::ArcLengthResponse* response) {
+  return frame_->Unary("CurveService.ArcLength", context, request, response,
+                       [this, request, response] {
+                         return PlanArcLength(*request, frame_->limits(),
+                                              *response);
+                       });
+}
+
+grpc::ServerUnaryReactor* CurveServiceImpl::ParametersAtArcLength(
+    grpc::CallbackServerContext* context,
+    const v1::ParametersAtArcLengthRequest* request,
+    v1::ParametersAtArcLengthResponse* response) {
+  return frame_->Unary("CurveService.ParametersAtArcLength", context, request,
+                       response, [this, request, response] {
+                         return PlanParametersAtArcLength(
+                             *request, frame_->limits(), *response);
+                       });
+}
+
+grpc::ServerUnaryReactor* CurveServiceImpl::SampleByArcLength(
+    grpc::CallbackServerContext* context,
+    const v1::SampleByArcLengthRequest* request,
+    v1::SampleByArcLengthResponse* response) {
+  return frame_->Unary("CurveService.SampleByArcLength", context, request,
+                       response, [this, request, response] {
+                         return PlanSampleByArcLength(
+                             *request, frame_->limits(), *response);
+                       });
+}
+
+grpc::ServerUnaryReactor* CurveServiceImpl::Curvature(
+    grpc::CallbackServerContext* context,
+    const v1::CurveCurvatureRequest* request,
+    v1::CurveCurvatureResponse* response) {
+  return frame_->Unary("CurveService.Curvature", context, request, response,
+                       [this, request, response] {
+                         return PlanCurvature(*request, frame_->limits(),
+                                              *response);
+                       });
+}
+
+grpc::ServerUnaryReactor* CurveServiceImpl::RotationMinimizingFrames(
+    grpc::CallbackServerContext* context,
+    const v1::RotationMinimizingFramesRequest* request,
+    v1::RotationMinimizingFramesResponse* response) {
+  return frame_->Unary("CurveService.RotationMinimizingFrames", context,
+                       request, response, [this, request, response] {
+                         return PlanRotationMinimizingFrames(
+                             *request, frame_->limits(), *response);
+                       });
+}
+
+}  // namespace freeform::server

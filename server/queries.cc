@@ -1,0 +1,200 @@
+#include "queries.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "convert.h"
+#include "freeform/core/status.h"
+#include "plan.h"
+#include "prepare.h"
+
+namespace freeform::server {
+namespace {
+
+// The most pieces one closest-point query examines: bounds its work (a
+// query that needs more answers complete = false).
+constexpr size_t kMaxPiecesPerQuery = 4096;
+
+// The most pairs of parts one intersection examines.
+constexpr size_t kMaxIntersectionPairs = size_t{1} << 20;
+
+absl::StatusOr<double> Separation(bool has_value, double value,
+                                  absl::string_view field) {
+  if (!has_value) return kDefaultSeparation;
+  if (std::isfinite(value) && value >= 0.0) return value;
+  return InvalidFieldError(
+      field, absl::StrCat("must be non-negative and finite, got ", value));
+}
+
+// WriteClosestPoints copies the minima of every query, without the unused
+// slots of the core's layout.
+void WriteClosestPoints(const ClosestPoints& minima,
+                        v1::ClosestPointResponse& response) {
+  const size_t queries = minima.counts.size();
+  const size_t dimension = static_cast<size_t>(minima.dimension);
+  const size_t parameter_count = static_cast<size_t>(minima.parameter_count);
+  const size_t slots = static_cast<size_t>(minima.max_minima);
+  response.set_parameter_count(static_cast<uint32_t>(parameter_count));
+  response.mutable_distances()->Add(minima.distances.begin(),
+                                    minima.distances.end());
+  response.mutable_lower_bounds()->Add(minima.lower_bounds.begin(),
+                                       minima.lower_bounds.end());
+  size_t total = 0;
+  for (size_t r = 0; r < queries; ++r) {
+    response.add_minima_counts(static_cast<uint32_t>(minima.counts[r]));
+    response.add_complete(minima.complete[r] != 0);
+    total += static_cast<size_t>(minima.counts[r]);
+  }
+  absl::Span<double> parameters = UninitializedArray(
+      *response.mutable_parameters(), total * parameter_count);
+  v1::Points& points = *response.mutable_points();
+  points.set_dimension(static_cast<uint32_t>(dimension));
+  absl::Span<double> coordinates =
+      UninitializedArray(*points.mutable_coordinates(), total * dimension);
+  size_t at = 0;
+  for (size_t r = 0; r < queries; ++r) {
+    const size_t count = static_cast<size_t>(minima.counts[r]);
+    std::copy_n(minima.parameters.begin() + r * slots * parameter_count,
+                count * parameter_count,
+                parameters.begin() + at * parameter_count);
+    std::copy_n(minima.points.begin() + r * slots * dimension,
+                count * dimension, coordinates.begin() + at * dimension);
+    at += count;
+  }
+}
+
+}  // namespace
+
+absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
+                                 absl::string_view field) {
+  if (!has_value) return fallback;
+  if (std::isfinite(value) && value > 0.0) return value;
+  return InvalidFieldError(
+      field, absl::StrCat("must be positive and finite, got ", value));
+}
+
+absl::StatusOr<ClosestPointOptions> ToCore(
+    const v1::ClosestPointOptions& options) {
+  absl::StatusOr<double> tolerance =
+      Tolerance(options.has_tolerance(), options.tolerance(),
+                kDefaultQueryTolerance, "options.tolerance");
+  if (!tolerance.ok()) return tolerance.status();
+  absl::StatusOr<double> separation = Separation(
+      options.has_separation(), options.separation(), "options.separation");
+  if (!separation.ok()) return separation.status();
+  const uint32_t max_minima =
+      options.max_minima() == 0 ? kDefaultMaxMinima : options.max_minima();
+  if (max_minima > static_cast<uint32_t>(kMaxMinimaPerQuery)) {
+    return InvalidFieldError(
+        "options.max_minima",
+        absl::StrCat("must be at most ", kMaxMinimaPerQuery, ", got ",
+                     max_minima));
+  }
+  return ClosestPointOptions{.tolerance = *tolerance,
+                             .separation = *separation,
+                             .max_minima = static_cast<int>(max_minima),
+                             .max_pieces = kMaxPiecesPerQuery};
+}
+
+absl::StatusOr<IntersectionOptions> ToCore(
+    const v1::IntersectionOptions& options, uint64_t values_per_result,
+    const ServiceLimits& limits) {
+  absl::StatusOr<double> tolerance =
+      Tolerance(options.has_tolerance(), options.tolerance(),
+                kDefaultQueryTolerance, "options.tolerance");
+  if (!tolerance.ok()) return tolerance.status();
+  absl::StatusOr<double> separation = Separation(
+      options.has_separation(), options.separation(), "options.separation");
+  if (!separation.ok()) return separation.status();
+  const uint64_t max_results = options.max_results() == 0
+                                   ? kDefaultMaxResults
+                                   : uint64_t{options.max_results()};
+  if (absl::Status status =
+          UnaryAnswerCheck(SaturatingProduct(max_results, values_per_result),
+                           limits, "options.max_results");
+      !status.ok()) {
+    return status;
+  }
+  return IntersectionOptions{.tolerance = *tolerance,
+                             .separation = *separation,
+                             .max_results = static_cast<size_t>(max_results),
+                             .max_pairs = kMaxIntersectionPairs};
+}
+
+absl::Status IntersectionError(const absl::Status& status) {
+  const std::optional<std::string> field = FieldPathOf(status);
+  if (field == "max_results") return PrefixFieldPath(status, "options");
+  if (field == "max_pairs") {
+    return ExhaustedFieldError(
+        "options.tolerance",
+        absl::StrCat("the search would examine more pairs of pieces than the "
+                     "server's ",
+                     kMaxIntersectionPairs,
+                     ": the inputs stay within the tolerance of each other "
+                     "along a stretch it cannot resolve (an overlap or a "
+                     "curve lying in the surface); ",
+                     FieldRuleOf(status)));
+  }
+  return status;
+}
+
+absl::StatusOr<UnaryWork> PlanClosestPoints(
+    int dimension, int parameter_count, const v1::Points& queries,
+    const v1::ClosestPointOptions& options, ClosestPointSearch search,
+    const ServiceLimits& limits, v1::ClosestPointResponse& response) {
+  absl::StatusOr<PointsView> points = PreparePoints(queries, limits, "queries");
+  if (!points.ok()) return points.status();
+  if (points->dimension != dimension) {
+    return InvalidFieldError(
+        "queries.dimension",
+        absl::StrCat("must be the geometry's dimension ", dimension, ", got ",
+                     points->dimension));
+  }
+  absl::StatusOr<ClosestPointOptions> core_options = ToCore(options);
+  if (!core_options.ok()) return core_options.status();
+  // The core's answer keeps max_minima slots per query; the response at
+  // most as many.
+  const uint64_t values = ClosestPointsValues(
+      points->size(), dimension, parameter_count, core_options->max_minima);
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "queries");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [points = *points, options = *core_options,
+              search = std::move(search),
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<ClosestPoints> minima =
+            search(points, options, execution);
+        if (!minima.ok()) return minima.status();
+        WriteClosestPoints(*minima, response);
+        return absl::OkStatus();
+      }};
+}
+
+UnaryWork PlanBoundingBox(int dimension, double tolerance,
+                          BoxComputation compute, const ServiceLimits& limits,
+                          v1::BoundingBoxResponse& response) {
+  const uint64_t values = BoundingBoxValues(dimension);
+  return UnaryWork{
+      // The search is heavy whatever the answer's size.
+      .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
+               .heavy = true},
+      .run = [tolerance, compute = std::move(compute),
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<BoundingBox> box =
+            compute(tolerance, execution.cancellation);
+        if (!box.ok()) return box.status();
+        response.set_dimension(static_cast<uint32_t>(box->lower.size()));
+        response.mutable_lower()->Add(box->lower.begin(), box->lower.end());
+        response.mutable_upper()->Add(box->upper.begin(), box->upper.end());
+        return absl::OkStatus();
+      }};
+}
+
+}  // namespace freeform::server

@@ -1,0 +1,80 @@
+// What the query RPCs of both services share (query.proto): the options
+// with their defaults and checks, the plans of closest points and bounding
+// boxes for a curve or a surface, and the writers of their answers.
+// Thread-compatible.
+#ifndef FREEFORM_SERVER_QUERIES_H_
+#define FREEFORM_SERVER_QUERIES_H_
+
+#include <cstdint>
+
+#include "absl/functional/any_invocable.h"
+#include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
+#include "freeform/core/bounding_box.h"
+#include "freeform/core/closest_point.h"
+#include "freeform/core/intersection.h"
+#include "freeform/v1/query.pb.h"
+#include "rpc.h"
+#include "service_limits.h"
+
+namespace freeform::server {
+
+// Defaults of the optional tolerances (query.proto).
+inline constexpr double kDefaultQueryTolerance = 1e-9;
+inline constexpr double kDefaultSeparation = 1e-7;
+inline constexpr uint32_t kDefaultMaxMinima = 8;
+// The default cap of intersection results (points plus overlaps).
+inline constexpr uint64_t kDefaultMaxResults = 1 << 16;
+
+// Tolerance returns `value` when `has_value` (it must be positive and
+// finite, else INVALID_ARGUMENT naming `field`), otherwise `fallback`.
+absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
+                                 absl::string_view field);
+
+// ToCore checks closest-point options (fields under "options.") and fills
+// in their defaults; the pieces one query may examine come from the server.
+absl::StatusOr<ClosestPointOptions> ToCore(
+    const v1::ClosestPointOptions& options);
+
+// ToCore checks intersection options whose answer holds `values_per_result`
+// doubles per result: the cap of results is the request's (or the
+// default), within the output and message limits.
+absl::StatusOr<IntersectionOptions> ToCore(
+    const v1::IntersectionOptions& options, uint64_t values_per_result,
+    const ServiceLimits& limits);
+
+// IntersectionError maps the core's limits of an intersection to the
+// request's fields: "max_results" is options.max_results, and "max_pairs"
+// (more pairs of pieces than the server examines: a stretch of contact the
+// tolerance cannot resolve, a curve lying in the surface) is
+// options.tolerance. Other errors pass unchanged.
+absl::Status IntersectionError(const absl::Status& status);
+
+// A closest-point search of a prepared geometry: (queries, options,
+// context) -> minima.
+using ClosestPointSearch = absl::AnyInvocable<absl::StatusOr<ClosestPoints>(
+    const PointsView&, const ClosestPointOptions&, const ExecutionContext&)
+                                                  const>;
+
+// PlanClosestPoints plans a batch of closest-point queries of a geometry
+// of `dimension` with `parameter_count` parameters per point: the queries
+// ("queries", within the parameter limit) and options are checked and the
+// answer's size bounded before any work.
+absl::StatusOr<UnaryWork> PlanClosestPoints(
+    int dimension, int parameter_count, const v1::Points& queries,
+    const v1::ClosestPointOptions& options, ClosestPointSearch search,
+    const ServiceLimits& limits, v1::ClosestPointResponse& response);
+
+// A bounding-box computation of a prepared geometry at a tolerance.
+using BoxComputation = absl::AnyInvocable<absl::StatusOr<BoundingBox>(
+    double, const CancellationToken*) const>;
+
+// PlanBoundingBox plans the box of a geometry of `dimension` ("tolerance"
+// is optional, default 1e-9).
+UnaryWork PlanBoundingBox(int dimension, double tolerance,
+                          BoxComputation compute, const ServiceLimits& limits,
+                          v1::BoundingBoxResponse& response);
+
+}  // namespace freeform::server
+
+#endif  // FREEFORM_SERVER_QUERIES_H_

@@ -1,0 +1,298 @@
+// SurfaceService queries: ClosestPoint, IntersectCurve, Section, Curvature
+// and BoundingBox.
+#include <algorithm>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
+#include "convert.h"
+#include "freeform/core/bounding_box.h"
+#include "freeform/core/closest_point.h"
+#include "freeform/core/differential_geometry.h"
+#include "freeform/core/intersection.h"
+#include "freeform/core/section.h"
+#include "freeform/core/status.h"
+#include "plan.h"
+#include "prepare.h"
+#include "queries.h"
+#include "surface_samples.h"
+#include "surface_service.h"
+
+namespace freeform::server {
+namespace {
+
+// The default chordal tolerance of section polylines, and the default cap
+// of their vertices.
+constexpr double kDefaultSectionTolerance = 1e-6;
+constexpr uint64_t kDefaultSectionPoints = uint64_t{1} << 18;
+
+// The most quadtree cells one section examines.
+constexpr size_t kMaxSectionCells = size_t{1} << 20;
+
+// SectionError maps the core's cell cap to the request's tolerance (a
+// tolerance too fine for the surface, or a surface touching the plane along
+// a region).
+absl::Status SectionError(const absl::Status& status) {
+  if (FieldPathOf(status) != "max_cells") return status;
+  return ExhaustedFieldError(
+      "tolerance",
+      absl::StrCat("the section would examine more than the server's ",
+                   kMaxSectionCells, " cells; ", FieldRuleOf(status)));
+}
+
+absl::StatusOr<UnaryWork> PlanClosestPoint(
+    const v1::SurfaceClosestPointRequest& request, const ServiceLimits& limits,
+    v1::ClosestPointResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  return PlanClosestPoints(
+      DimensionOf(*surface), 2, request.queries(), request.options(),
+      [surface = *std::move(surface)](const PointsView& queries,
+                                      const ClosestPointOptions& options,
+                                      const ExecutionContext& execution) {
+        return SurfaceClosestPoints(surface, queries, options, execution);
+      },
+      limits, response);
+}
+
+absl::StatusOr<UnaryWork> PlanIntersectCurve(
+    const v1::IntersectCurveSurfaceRequest& request,
+    const ServiceLimits& limits, v1::IntersectCurveSurfaceResponse& response) {
+  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
+  if (!curve.ok()) return curve.status();
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  const int dimension = DimensionOf(*curve);
+  if (DimensionOf(*surface) != dimension) {
+    return InvalidFieldError(
+        "surface", absl::StrCat("must have the curve's dimension ", dimension,
+                                ", not ", DimensionOf(*surface)));
+  }
+  // A point holds (t, u, v) and the curve's point.
+  const uint64_t per_result = 3 + static_cast<uint64_t>(dimension);
+  absl::StatusOr<IntersectionOptions> options =
+      ToCore(request.options(), per_result, limits);
+  if (!options.ok()) return options.status();
+  const uint64_t values = options->max_results * per_result;
+  return UnaryWork{
+      .plan = {.memory_bytes =
+                   AnswerPlan(values, 8 * values, limits).memory_bytes,
+               .heavy = true},
+      .run = [curve = *std::move(curve), surface = *std::move(surface),
+              options = *options,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<CurveSurfaceIntersections> found = IntersectCurveSurface(
+            curve, surface, options, execution.cancellation);
+        if (!found.ok()) return IntersectionError(found.status());
+        response.set_dimension(static_cast<uint32_t>(found->dimension));
+        response.mutable_curve_parameters()->Add(
+            found->curve_parameters.begin(), found->curve_parameters.end());
+        response.mutable_surface_parameters()->Add(
+            found->surface_parameters.begin(), found->surface_parameters.end());
+        response.mutable_points()->set_dimension(
+            static_cast<uint32_t>(found->dimension));
+        response.mutable_points()->mutable_coordinates()->Add(
+            found->points.begin(), found->points.end());
+        return absl::OkStatus();
+      }};
+}
+
+void WriteSections(const Sections& sections,
+                   v1::SectionSurfaceResponse& response) {
+  const size_t dimension = static_cast<size_t>(sections.dimension);
+  for (size_t k = 0; k + 1 < sections.offsets.size(); ++k) {
+    const size_t first = sections.offsets[k], last = sections.offsets[k + 1];
+    v1::SectionPolyline& polyline = *response.add_polylines();
+    polyline.mutable_points()->set_dimension(static_cast<uint32_t>(dimension));
+    polyline.mutable_points()->mutable_coordinates()->Add(
+        sections.points.begin() + first * dimension,
+        sections.points.begin() + last * dimension);
+    polyline.mutable_parameters()->Add(sections.parameters.begin() + 2 * first,
+                                       sections.parameters.begin() + 2 * last);
+    polyline.set_closed(sections.closed[k] != 0);
+  }
+}
+
+absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
+                                      const ServiceLimits& limits,
+                                      v1::SectionSurfaceResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  absl::StatusOr<double> tolerance =
+      Tolerance(request.has_tolerance(), request.tolerance(),
+                kDefaultSectionTolerance, "tolerance");
+  if (!tolerance.ok()) return tolerance.status();
+  const int dimension = DimensionOf(*surface);
+  // A vertex holds its point and (u, v); each polyline adds a few bytes.
+  const uint64_t per_point = 2 + static_cast<uint64_t>(dimension);
+  const uint64_t requested = request.max_points() > 0
+                                 ? uint64_t{request.max_points()}
+                                 : kDefaultSectionPoints;
+  if (absl::Status status = UnaryAnswerCheck(
+          SaturatingProduct(requested, per_point), limits, "max_points");
+      !status.ok()) {
+    return status;
+  }
+  const uint64_t values = requested * per_point;
+  return UnaryWork{
+      .plan = {.memory_bytes =
+                   AnswerPlan(2 * values, 8 * values, limits).memory_bytes,
+               .heavy = true},
+      .run = [surface = *std::move(surface),
+              point = SpanOf(request.plane_point()),
+              normal = SpanOf(request.plane_normal()),
+              options =
+                  SectionOptions{.tolerance = *tolerance,
+                                 .max_points = static_cast<size_t>(requested),
+                                 .max_cells = kMaxSectionCells},
+              &response](const ExecutionContext& execution) -> absl::Status {
+        absl::StatusOr<Sections> sections = IntersectSurfacePlane(
+            surface, point, normal, options, execution.cancellation);
+        if (!sections.ok()) return SectionError(sections.status());
+        WriteSections(*sections, response);
+        return absl::OkStatus();
+      }};
+}
+
+absl::StatusOr<UnaryWork> PlanCurvature(
+    const v1::SurfaceCurvatureRequest& request, const ServiceLimits& limits,
+    v1::SurfaceCurvatureResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  SurfacePlan plan;
+  plan.dimension = DimensionOf(*surface);
+  if (plan.dimension != 3) {
+    return InvalidFieldError(
+        "surface", absl::StrCat("curvatures need a 3D surface, this one is ",
+                                plan.dimension, "D"));
+  }
+  plan.domain = DomainOf(*surface);
+  plan.triangular = IsTriangular(*surface);
+  plan.surface = *std::move(surface);
+  const SurfaceCurvatureSizes per_point = CurvatureSizes(1);
+  const uint64_t values_per_point =
+      uint64_t{per_point.normals} + per_point.gaussian + per_point.mean +
+      per_point.principal_curvatures + per_point.principal_directions +
+      per_point.statuses;
+  if (absl::Status status =
+          ResolveSamples(request.parameters(), limits, values_per_point, plan);
+      !status.ok()) {
+    return status;
+  }
+  const uint64_t values = plan.size() * values_per_point;
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
+      !status.ok()) {
+    return status;
+  }
+  return UnaryWork{
+      .plan = AnswerPlan(values, 8 * values, limits),
+      .run = [plan = std::move(plan),
+              &response](const ExecutionContext& execution) -> absl::Status {
+        const SurfaceCurvatureSizes sizes = CurvatureSizes(plan.size());
+        std::vector<SurfacePointStatus> statuses(sizes.statuses);
+        v1::Points& normals = *response.mutable_normals();
+        normals.set_dimension(3);
+        const SurfaceCurvatureOutput output = {
+            .normals = UninitializedArray(*normals.mutable_coordinates(),
+                                          sizes.normals),
+            .gaussian = UninitializedArray(*response.mutable_gaussian(),
+                                           sizes.gaussian),
+            .mean = UninitializedArray(*response.mutable_mean(), sizes.mean),
+            .principal_curvatures =
+                UninitializedArray(*response.mutable_principal_curvatures(),
+                                   sizes.principal_curvatures),
+            .principal_directions =
+                UninitializedArray(*response.mutable_principal_directions(),
+                                   sizes.principal_directions),
+            .statuses = absl::MakeSpan(statuses)};
+        if (absl::Status status = EvaluateSurfaceCurvatures(
+                *plan.surface, plan.All(), output, execution);
+            !status.ok()) {
+          return status;
+        }
+        response.mutable_statuses()->Reserve(static_cast<int>(statuses.size()));
+        for (const SurfacePointStatus status : statuses) {
+          response.add_statuses(static_cast<v1::SurfacePointStatus>(status));
+        }
+        return absl::OkStatus();
+      }};
+}
+
+absl::StatusOr<UnaryWork> PlanBoundingBox(
+    const v1::SurfaceBoundingBoxRequest& request, const ServiceLimits& limits,
+    v1::BoundingBoxResponse& response) {
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  absl::StatusOr<double> tolerance =
+      Tolerance(request.has_tolerance(), request.tolerance(),
+                kDefaultQueryTolerance, "tolerance");
+  if (!tolerance.ok()) return tolerance.status();
+  return PlanBoundingBox(
+      DimensionOf(*surface), *tolerance,
+      [surface = *std::move(surface)](double tolerance,
+                                      const CancellationToken* cancel) {
+        return SurfaceBoundingBox(surface, tolerance, cancel);
+      },
+      limits, response);
+}
+
+}  // namespace
+
+grpc::ServerUnaryReactor* SurfaceServiceImpl::ClosestPoint(
+    grpc::CallbackServerContext* context,
+    const v1::SurfaceClosestPointRequest* request,
+    v1::ClosestPointResponse* response) {
+  return frame_->Unary("SurfaceService.ClosestPoint", context, request,
+                       response, [this, request, response] {
+                         return PlanClosestPoint(*request, frame_->limits(),
+                                                 *response);
+                       });
+}
+
+grpc::ServerUnaryReactor* SurfaceServiceImpl::IntersectCurve(
+    grpc::CallbackServerContext* context,
+    const v1::IntersectCurveSurfaceRequest* request,
+    v1::IntersectCurveSurfaceResponse* response) {
+  return frame_->Unary("SurfaceService.IntersectCurve", context, request,
+                       response, [this, request, response] {
+                         return PlanIntersectCurve(*request, frame_->limits(),
+                                                   *response);
+                       });
+}
+
+grpc::ServerUnaryReactor* SurfaceServiceImpl::Section(
+    grpc::CallbackServerContext* context,
+    const v1::SectionSurfaceRequest* request,
+    v1::SectionSurfaceResponse* response) {
+  return frame_->Unary("SurfaceService.Section", context, request, response,
+                       [this, request, response] {
+                         return PlanSection(*request, frame_->limits(),
+                                            *response);
+                       });
+}
+
+grpc::ServerUnaryReactor* SurfaceServiceImpl::Curvature(
+    grpc::CallbackServerContext* context,
+    const v1::SurfaceCurvatureRequest* request,
+    v1::SurfaceCurvatureResponse* response) {
+  return frame_->Unary("SurfaceService.Curvature", context, request, response,
+                       [this, request, response] {
+                         return PlanCurvature(*request, frame_->limits(),
+                                              *response);
+                       });
+}
+
+grpc::ServerUnaryReactor* SurfaceServiceImpl::BoundingBox(
+    grpc::CallbackServerContext* context,
+    const v1::SurfaceBoundingBoxRequest* request,
+    v1::BoundingBoxResponse* response) {
+  return frame_->Unary("SurfaceService.BoundingBox", context, request, response,
+                       [this, request, response] {
+                         return PlanBoundingBox(*request, frame_->limits(),
+                                                *response);
+                       });
+}
+
+}  // namespace freeform::server
