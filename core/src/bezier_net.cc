@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "freeform/core/bezier.h"
-#include "freeform/core/bezier_pieces.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
@@ -164,9 +163,9 @@ Net LiftSurface(const SurfaceData& surface) {
                 surface.coordinates, surface.weights);
 }
 
-absl::StatusOr<Pieces> LiftCurvePieces(const Curve& curve,
-                                       const CancellationToken* cancel) {
-  absl::StatusOr<BezierDecomposition> pieces = CurveBezierPieces(curve, cancel);
+absl::StatusOr<Pieces> LiftPieces(const Curve& curve,
+                                  const CancellationToken* cancel) {
+  absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve, cancel);
   if (!pieces.ok()) return pieces.status();
   Pieces result{.dimension = DimensionOf(curve), .parameter_count = 1};
   for (const BezierCurveData& segment : pieces->segments) {
@@ -180,12 +179,13 @@ absl::StatusOr<Pieces> LiftCurvePieces(const Curve& curve,
   return result;
 }
 
-absl::StatusOr<Pieces> LiftSurfacePieces(const Surface& surface,
-                                         const CancellationToken* cancel) {
-  absl::StatusOr<SurfacePieces> pieces = SurfaceBezierPieces(surface, cancel);
+absl::StatusOr<Pieces> LiftPieces(const Surface& surface,
+                                  const CancellationToken* cancel) {
+  absl::StatusOr<SurfaceDecomposition> pieces =
+      DecomposeSurface(surface, cancel);
   if (!pieces.ok()) return pieces.status();
   Pieces result{.dimension = DimensionOf(surface), .parameter_count = 2};
-  for (const SurfaceData& patch : pieces->patches) {
+  for (const SurfaceData& patch : pieces->pieces.patches) {
     result.nets.push_back(LiftSurface(patch));
   }
   result.parameters = [shared = *std::move(pieces)](size_t k, double s,

@@ -44,9 +44,9 @@ struct Net {
 Net LiftCurve(const BezierCurveData& curve);
 Net LiftSurface(const SurfaceData& surface);
 
-// A geometry's Bezier pieces (bezier_pieces.h), lifted, and the map from a
-// piece's (s, t) in [0, 1]^2 to the geometry's parameters (one for a curve,
-// whose t is ignored; two for a surface).
+// A geometry's Bezier pieces (DecomposeCurve, DecomposeSurface), lifted, and
+// the map from a piece's (s, t) in [0, 1]^2 to the geometry's parameters (one
+// for a curve, whose t is ignored; two for a surface).
 struct Pieces {
   int dimension = 0;
   int parameter_count = 1;
@@ -54,12 +54,12 @@ struct Pieces {
   std::function<void(size_t, double, double, double*)> parameters;
 };
 
-// LiftCurvePieces and LiftSurfacePieces return the pieces of valid
-// geometry; they fail only with the token's status.
-absl::StatusOr<Pieces> LiftCurvePieces(const Curve& curve,
-                                       const CancellationToken* cancel);
-absl::StatusOr<Pieces> LiftSurfacePieces(const Surface& surface,
-                                         const CancellationToken* cancel);
+// LiftPieces returns the pieces of a valid curve or surface; it fails only
+// with the token's status.
+absl::StatusOr<Pieces> LiftPieces(const Curve& curve,
+                                  const CancellationToken* cancel);
+absl::StatusOr<Pieces> LiftPieces(const Surface& surface,
+                                  const CancellationToken* cancel);
 
 // Halve writes the halves [0, 1/2] and [1/2, 1] of `net` in u (in_u) or v.
 void Halve(const Net& net, bool in_u, Net& low, Net& high);

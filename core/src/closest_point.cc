@@ -387,6 +387,23 @@ absl::StatusOr<ClosestPoints> Solve(const Pieces& pieces,
   return answer;
 }
 
+// ClosestPointsOn checks the options and queries and answers them on a
+// curve or a surface.
+template <typename Geometry>
+absl::StatusOr<ClosestPoints> ClosestPointsOn(
+    const Geometry& geometry, const PointsView& queries,
+    const ClosestPointOptions& options, const ExecutionContext& context) {
+  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
+  if (absl::Status status = CheckQueries(queries, DimensionOf(geometry));
+      !status.ok()) {
+    return status;
+  }
+  absl::StatusOr<Pieces> pieces =
+      internal::LiftPieces(geometry, context.cancellation);
+  if (!pieces.ok()) return pieces.status();
+  return Solve(*pieces, queries, options, context);
+}
+
 }  // namespace
 
 size_t ClosestPointsValues(size_t queries, int dimension, int parameter_count,
@@ -399,29 +416,13 @@ size_t ClosestPointsValues(size_t queries, int dimension, int parameter_count,
 absl::StatusOr<ClosestPoints> CurveClosestPoints(
     const Curve& curve, const PointsView& queries,
     const ClosestPointOptions& options, const ExecutionContext& context) {
-  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
-  if (absl::Status status = CheckQueries(queries, DimensionOf(curve));
-      !status.ok()) {
-    return status;
-  }
-  absl::StatusOr<Pieces> pieces =
-      internal::LiftCurvePieces(curve, context.cancellation);
-  if (!pieces.ok()) return pieces.status();
-  return Solve(*pieces, queries, options, context);
+  return ClosestPointsOn(curve, queries, options, context);
 }
 
 absl::StatusOr<ClosestPoints> SurfaceClosestPoints(
     const Surface& surface, const PointsView& queries,
     const ClosestPointOptions& options, const ExecutionContext& context) {
-  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
-  if (absl::Status status = CheckQueries(queries, DimensionOf(surface));
-      !status.ok()) {
-    return status;
-  }
-  absl::StatusOr<Pieces> pieces =
-      internal::LiftSurfacePieces(surface, context.cancellation);
-  if (!pieces.ok()) return pieces.status();
-  return Solve(*pieces, queries, options, context);
+  return ClosestPointsOn(surface, queries, options, context);
 }
 
 }  // namespace freeform

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
 #include "bezier_net.h"
 #include "freeform/core/status.h"
 
@@ -621,39 +622,50 @@ bool InsideOverlap(double s, double t,
   return false;
 }
 
-}  // namespace
-
-absl::StatusOr<CurveIntersections> IntersectCurves(
-    const Curve& first, const Curve& second, const IntersectionOptions& options,
-    const CancellationToken* cancel) {
+// Intersect checks the inputs, runs the pair search of `first` against
+// `second` (a curve or a surface; `field` names its dimension) and returns
+// finish(first's pieces, second's pieces, the search).
+template <typename Second, typename Finish>
+auto Intersect(const Curve& first, const Second& second,
+               absl::string_view field, const IntersectionOptions& options,
+               const CancellationToken* cancel, Finish finish)
+    -> decltype(finish(std::declval<const Pieces&>(),
+                       std::declval<const Pieces&>(),
+                       std::declval<PairSearch&>())) {
   if (absl::Status status = CheckOptions(options); !status.ok()) return status;
   if (DimensionOf(second) != DimensionOf(first)) {
     return InvalidFieldError(
-        "second.dimension",
-        absl::StrCat("must be the first curve's dimension ", DimensionOf(first),
-                     ", got ", DimensionOf(second)));
+        field, absl::StrCat("must be the first input's dimension ",
+                            DimensionOf(first), ", got ", DimensionOf(second)));
   }
-  absl::StatusOr<Pieces> a = internal::LiftCurvePieces(first, cancel);
+  absl::StatusOr<Pieces> a = internal::LiftPieces(first, cancel);
   if (!a.ok()) return a.status();
-  absl::StatusOr<Pieces> b = internal::LiftCurvePieces(second, cancel);
+  absl::StatusOr<Pieces> b = internal::LiftPieces(second, cancel);
   if (!b.ok()) return b.status();
   PairSearch search(*a, *b, options, cancel);
   if (absl::Status status = search.Run(); !status.ok()) return status;
+  return finish(*a, *b, search);
+}
+
+// CurveAnswer returns the distinct points and merged overlaps of two curves.
+absl::StatusOr<CurveIntersections> CurveAnswer(
+    const Curve& first, const Curve& second, const IntersectionOptions& options,
+    const Pieces& a, const Pieces& b, PairSearch& search) {
   const double slack_s = kParameterSlack * Width(DomainOf(first));
   const double slack_t = kParameterSlack * Width(DomainOf(second));
-  CurveIntersections result{.dimension = a->dimension};
+  CurveIntersections result{.dimension = a.dimension};
   std::vector<std::array<double, 4>> overlaps =
       MergeOverlaps(search.overlaps(), slack_s, slack_t);
   std::vector<std::pair<double, std::vector<double>>> points;
   for (const Hit& hit : search.DistinctHits()) {
     double s = 0.0;
     double t = 0.0;
-    a->parameters(hit.first_piece, hit.x[0], 0.0, &s);
-    b->parameters(hit.second_piece, hit.x[1], 0.0, &t);
+    a.parameters(hit.first_piece, hit.x[0], 0.0, &s);
+    b.parameters(hit.second_piece, hit.x[1], 0.0, &t);
     if (InsideOverlap(s, t, overlaps, slack_s, slack_t)) continue;
     const double* point = search.PointOf(hit);
     std::vector<double> entry = {s, t};
-    entry.insert(entry.end(), point, point + a->dimension);
+    entry.insert(entry.end(), point, point + a.dimension);
     points.emplace_back(s, std::move(entry));
   }
   if (absl::Status status =
@@ -675,22 +687,11 @@ absl::StatusOr<CurveIntersections> IntersectCurves(
   return result;
 }
 
-absl::StatusOr<CurveSurfaceIntersections> IntersectCurveSurface(
-    const Curve& curve, const Surface& surface,
-    const IntersectionOptions& options, const CancellationToken* cancel) {
-  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
-  if (DimensionOf(surface) != DimensionOf(curve)) {
-    return InvalidFieldError(
-        "surface.dimension",
-        absl::StrCat("must be the curve's dimension ", DimensionOf(curve),
-                     ", got ", DimensionOf(surface)));
-  }
-  absl::StatusOr<Pieces> a = internal::LiftCurvePieces(curve, cancel);
-  if (!a.ok()) return a.status();
-  absl::StatusOr<Pieces> b = internal::LiftSurfacePieces(surface, cancel);
-  if (!b.ok()) return b.status();
-  PairSearch search(*a, *b, options, cancel);
-  if (absl::Status status = search.Run(); !status.ok()) return status;
+// SurfaceAnswer returns the distinct points of a curve and a surface in the
+// order of the curve's parameter.
+absl::StatusOr<CurveSurfaceIntersections> SurfaceAnswer(
+    const IntersectionOptions& options, const Pieces& a, const Pieces& b,
+    PairSearch& search) {
   const std::vector<Hit> hits = search.DistinctHits();
   if (absl::Status status = CheckResults(hits.size(), options); !status.ok()) {
     return status;
@@ -698,22 +699,42 @@ absl::StatusOr<CurveSurfaceIntersections> IntersectCurveSurface(
   std::vector<std::array<double, 3>> order;
   for (size_t k = 0; k < hits.size(); ++k) {
     double t = 0.0;
-    a->parameters(hits[k].first_piece, hits[k].x[0], 0.0, &t);
+    a.parameters(hits[k].first_piece, hits[k].x[0], 0.0, &t);
     order.push_back({t, static_cast<double>(k), 0.0});
   }
   std::sort(order.begin(), order.end());
-  CurveSurfaceIntersections result{.dimension = a->dimension};
+  CurveSurfaceIntersections result{.dimension = a.dimension};
   for (const std::array<double, 3>& entry : order) {
     const Hit& hit = hits[static_cast<size_t>(entry[1])];
     double uv[2];
-    b->parameters(hit.second_piece, hit.x[1], hit.x[2], uv);
+    b.parameters(hit.second_piece, hit.x[1], hit.x[2], uv);
     result.curve_parameters.push_back(entry[0]);
     result.surface_parameters.insert(result.surface_parameters.end(),
                                      {uv[0], uv[1]});
     const double* point = search.PointOf(hit);
-    result.points.insert(result.points.end(), point, point + a->dimension);
+    result.points.insert(result.points.end(), point, point + a.dimension);
   }
   return result;
+}
+
+}  // namespace
+
+absl::StatusOr<CurveIntersections> IntersectCurves(
+    const Curve& first, const Curve& second, const IntersectionOptions& options,
+    const CancellationToken* cancel) {
+  return Intersect(first, second, "second.dimension", options, cancel,
+                   [&](const Pieces& a, const Pieces& b, PairSearch& search) {
+                     return CurveAnswer(first, second, options, a, b, search);
+                   });
+}
+
+absl::StatusOr<CurveSurfaceIntersections> IntersectCurveSurface(
+    const Curve& curve, const Surface& surface,
+    const IntersectionOptions& options, const CancellationToken* cancel) {
+  return Intersect(curve, surface, "surface.dimension", options, cancel,
+                   [&](const Pieces& a, const Pieces& b, PairSearch& search) {
+                     return SurfaceAnswer(options, a, b, search);
+                   });
 }
 
 }  // namespace freeform

@@ -465,7 +465,7 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   if (!std::isfinite(options.tolerance) || options.tolerance <= 0.0) {
     return InvalidFieldError("tolerance", "must be positive and finite");
   }
-  absl::StatusOr<Pieces> pieces = internal::LiftSurfacePieces(surface, cancel);
+  absl::StatusOr<Pieces> pieces = internal::LiftPieces(surface, cancel);
   if (!pieces.ok()) return pieces.status();
   std::vector<double> normal(plane_normal.begin(), plane_normal.end());
   double length = 0.0;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "freeform/core/status.h"
-#include "query_shapes.h"
+#include "shapes.h"
 #include "teapot.h"
 #include "test_util.h"
 
@@ -82,7 +82,7 @@ struct SurfaceReference {
         uv.insert(uv.end(), p.begin(), p.end());
       }
     }
-    grid_points = SurfacePoints(surface, uv);
+    grid_points = SurfacePoints(surface, SurfaceSamples::Pairs(uv));
   }
 
   double Nearest(const double* q) const {
@@ -106,7 +106,8 @@ struct SurfaceReference {
           uv.insert(uv.end(), p.begin(), p.end());
         }
       }
-      const std::vector<double> near = SurfacePoints(surface, uv);
+      const std::vector<double> near =
+          SurfacePoints(surface, SurfaceSamples::Pairs(uv));
       for (size_t k = 0; k < uv.size() / 2; ++k) {
         const double d = Distance(near.data() + k * dim, q, dim);
         if (d < distance) {
@@ -284,7 +285,7 @@ TEST(ClosestPointTest, EndPointsAreNearestBeyondTheEnds) {
 
 TEST(ClosestPointTest, NurbsCircle) {
   const double radius = 2.0;
-  const BSplineCurveData data = testing_util::Circle(radius, 1.0, -1.0);
+  const BSplineCurveData data = testing_util::NurbsCircle(radius, 1.0, -1.0);
   const absl::StatusOr<Curve> curve = BSplineCurve::Create(data.view());
   ASSERT_TRUE(curve.ok());
   std::mt19937_64 rng(3);
@@ -322,7 +323,7 @@ TEST(ClosestPointTest, NurbsCircle) {
 
 TEST(ClosestPointTest, SphereAndTorusPatches) {
   const double radius = 1.5;
-  const SurfaceData sphere_data = testing_util::SphereOctant(radius);
+  const SurfaceData sphere_data = testing_util::SpherePatch(radius);
   const absl::StatusOr<Surface> sphere =
       BezierSurface::Create(sphere_data.bezier_view());
   ASSERT_TRUE(sphere.ok());
@@ -450,7 +451,8 @@ TEST(ClosestPointTest, SurfacesNeverFartherThanDenseReference) {
       // The returned point is the surface's point at the returned (u, v).
       const std::vector<double> uv(answer->parameters.begin() + 16 * r,
                                    answer->parameters.begin() + 16 * r + 2);
-      const std::vector<double> point = SurfacePoints(surface, uv);
+      const std::vector<double> point =
+          SurfacePoints(surface, SurfaceSamples::Pairs(uv));
       EXPECT_LE(Distance(point.data(), answer->points.data() + 24 * r, 3),
                 1e-12);
       EXPECT_NEAR(Distance(point.data(), q, 3), answer->distances[r], 1e-12);

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "freeform/core/status.h"
-#include "query_shapes.h"
+#include "shapes.h"
 
 namespace freeform {
 namespace {
@@ -16,7 +16,8 @@ namespace {
 void CheckOnSurface(const Surface& surface, const Sections& sections) {
   for (size_t r = 0; r < sections.parameters.size() / 2; ++r) {
     const std::vector<double> point = testing_util::SurfacePoints(
-        surface, {sections.parameters[2 * r], sections.parameters[2 * r + 1]});
+        surface, SurfaceSamples::Pairs(absl::MakeConstSpan(
+                     sections.parameters.data() + 2 * r, 2)));
     for (int x = 0; x < 3; ++x) {
       ASSERT_NEAR(point[x], sections.points[3 * r + x], 1e-13);
     }
@@ -25,7 +26,7 @@ void CheckOnSurface(const Surface& surface, const Sections& sections) {
 
 TEST(SectionTest, PlaneSectionsOfASpherePatchAreCircles) {
   const double radius = 2.0;
-  const SurfaceData data = testing_util::SphereOctant(radius);
+  const SurfaceData data = testing_util::SpherePatch(radius);
   const absl::StatusOr<Surface> sphere =
       BezierSurface::Create(data.bezier_view());
   ASSERT_TRUE(sphere.ok());
@@ -110,7 +111,7 @@ TEST(SectionTest, ClosedContourOfABump) {
 }
 
 TEST(SectionTest, ErrorsNameTheirField) {
-  const SurfaceData data = testing_util::SphereOctant(1.0);
+  const SurfaceData data = testing_util::SpherePatch(1.0);
   const absl::StatusOr<Surface> sphere =
       BezierSurface::Create(data.bezier_view());
   const std::vector<double> point = {0, 0, 0};

@@ -2,13 +2,14 @@
 // for each query point, the parameters, points and distance of the global
 // minimum of the distance to the geometry, certified by branch and bound.
 //
-// The geometry is cut into (rational) Bezier pieces (bezier_pieces.h), kept
-// in homogeneous form. For one query q every piece carries a lower bound of
-// its distance to q from the hull of its control points: the larger of the
-// distance to their bounding box and min_i e . (q - P_i), e the unit vector
-// from the control point nearest q to q (second order in the piece's size;
-// a rational piece needs positive weights for the hull property, and one
-// with a weight 0 gets the bound 0 and is halved first).
+// The geometry is cut into (rational) Bezier pieces (DecomposeCurve in
+// curve.h, DecomposeSurface in surface.h), kept in homogeneous form. For
+// one query q every piece carries a lower bound of its distance to q from
+// the hull of its control points: the larger of the distance to their
+// bounding box and min_i e . (q - P_i), e the unit vector from the control
+// point nearest q to q (second order in the piece's size; a rational piece
+// needs positive weights for the hull property, and one with a weight 0
+// gets the bound 0 and is halved first).
 // Pieces are taken in the order of their bounds (docs/references.md,
 // 'Closest points by branch and bound'):
 //   - the best distance found so far, `best`, starts from the pieces' end

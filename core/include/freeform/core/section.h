@@ -2,11 +2,12 @@
 // curves where a surface meets the hyperplane n . x = n . p, as polylines
 // whose vertices lie on the section.
 //
-// The surface is cut into (rational) Bezier pieces (bezier_pieces.h). On a
-// piece the signed distance times the weight, g = n . (w P) - (n . p) w, is
-// a scalar polynomial Bezier patch whose coefficients are those of the net,
-// and the section is its zero set (docs/references.md, 'Plane sections of
-// Bezier patches'). The parameter square is split as a quadtree:
+// The surface is cut into (rational) Bezier pieces (DecomposeSurface in
+// surface.h). On a piece the signed distance times the weight,
+// g = n . (w P) - (n . p) w, is a scalar polynomial Bezier patch whose
+// coefficients are those of the net, and the section is its zero set
+// (docs/references.md, 'Plane sections of Bezier patches'). The parameter
+// square is split as a quadtree:
 //   - a cell whose coefficients all have one strict sign holds no section
 //     point (convex hull property);
 //   - a cell whose coefficients rise (or fall) strictly along u holds the
