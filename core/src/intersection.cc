@@ -283,10 +283,7 @@ class PairSearch {
         cancel_(cancel),
         leaf_(std::max(options.tolerance, 1e-7 * Extent(first, second))),
         scratch_a_(6 * static_cast<size_t>(first.dimension)),
-        scratch_b_(6 * static_cast<size_t>(first.dimension)) {
-    for (const Net& net : first.nets) first_evaluators_.emplace_back(net);
-    for (const Net& net : second.nets) second_evaluators_.emplace_back(net);
-  }
+        scratch_b_(6 * static_cast<size_t>(first.dimension)) {}
 
   // Run examines every pair of pieces.
   absl::Status Run();
@@ -319,8 +316,7 @@ class PairSearch {
   const IntersectionOptions& options_;
   const CancellationToken* cancel_;
   const double leaf_;
-  std::vector<NetEvaluator> first_evaluators_;
-  std::vector<NetEvaluator> second_evaluators_;
+  NetEvaluator evaluator_;
   std::vector<double> scratch_a_;
   std::vector<double> scratch_b_;
   std::vector<double> residual_;
@@ -333,9 +329,9 @@ void PairSearch::Model(size_t first_piece, size_t second_piece, const double* x,
                        LocalModel& model) {
   const int dim = first_.dimension;
   const bool curves = second_.parameter_count == 1;
-  first_evaluators_[first_piece].Evaluate(x[0], 0.0, scratch_a_.data());
-  second_evaluators_[second_piece].Evaluate(x[1], curves ? 0.0 : x[2],
-                                            scratch_b_.data());
+  evaluator_.Evaluate(first_.nets[first_piece], x[0], 0.0, scratch_a_.data());
+  evaluator_.Evaluate(second_.nets[second_piece], x[1], curves ? 0.0 : x[2],
+                      scratch_b_.data());
   // Gauss-Newton on F = A(x0) - B(x1, x2): columns A', -B_u, -B_v.
   const int count = curves ? 2 : 3;
   const double* columns[3] = {scratch_a_.data() + dim, scratch_b_.data() + dim,
@@ -372,23 +368,22 @@ Hit PairSearch::Solve(const Part& a, const Part& b) {
 std::pair<double, double> PairSearch::Project(bool on_first, size_t piece,
                                               const double* point, double lo,
                                               double hi, double guess) {
-  NetEvaluator& evaluator =
-      on_first ? first_evaluators_[piece] : second_evaluators_[piece];
+  const Net& net = on_first ? first_.nets[piece] : second_.nets[piece];
   const std::vector<double> query(point, point + first_.dimension);
   std::vector<double> partials(6 * static_cast<size_t>(first_.dimension));
   double x = std::clamp(guess, lo, hi);
   const double value = internal::MinimizeInBox(
       1, &lo, &hi, &x, [&](const double* at, LocalModel& model) {
-        internal::DistanceModel(evaluator, 1, query.data(), at, partials.data(),
-                                model);
+        internal::DistanceModel(evaluator_, net, 1, query.data(), at,
+                                partials.data(), model);
       });
   return {x, std::sqrt(2.0 * value)};
 }
 
 double PairSearch::SinAngle(const Part& a, double s, const Part& b, double t) {
   const int dim = first_.dimension;
-  first_evaluators_[a.piece].Evaluate(s, 0.0, scratch_a_.data());
-  second_evaluators_[b.piece].Evaluate(t, 0.0, scratch_b_.data());
+  evaluator_.Evaluate(first_.nets[a.piece], s, 0.0, scratch_a_.data());
+  evaluator_.Evaluate(second_.nets[b.piece], t, 0.0, scratch_b_.data());
   const double* da = scratch_a_.data() + dim;
   const double* db = scratch_b_.data() + dim;
   const double la = std::sqrt(Dot(da, da, dim));
@@ -434,9 +429,9 @@ bool PairSearch::FindOverlap(const Part& a, const Part& b) {
   const End start = ends.front();
   const End end = ends.back();
   std::vector<double> from(static_cast<size_t>(dim));
-  first_evaluators_[a.piece].Evaluate(start.s, 0.0, scratch_a_.data());
+  evaluator_.Evaluate(first_.nets[a.piece], start.s, 0.0, scratch_a_.data());
   std::copy_n(scratch_a_.data(), dim, from.data());
-  first_evaluators_[a.piece].Evaluate(end.s, 0.0, scratch_a_.data());
+  evaluator_.Evaluate(first_.nets[a.piece], end.s, 0.0, scratch_a_.data());
   if (Distance(from.data(), scratch_a_.data(), dim) <=
       std::max(options_.separation, 10.0 * tolerance)) {
     return false;
@@ -445,7 +440,7 @@ bool PairSearch::FindOverlap(const Part& a, const Part& b) {
   for (int k = 0; k <= samples + 1; ++k) {
     const double f = static_cast<double>(k) / (samples + 1);
     const double s = start.s + f * (end.s - start.s);
-    first_evaluators_[a.piece].Evaluate(s, 0.0, scratch_a_.data());
+    evaluator_.Evaluate(first_.nets[a.piece], s, 0.0, scratch_a_.data());
     std::copy_n(scratch_a_.data(), dim, from.data());
     const auto [t, d] = Project(false, b.piece, from.data(), b.lo[0], b.hi[0],
                                 start.t + f * (end.t - start.t));
@@ -527,7 +522,8 @@ absl::Status PairSearch::Run() {
 }
 
 const double* PairSearch::PointOf(const Hit& hit) {
-  first_evaluators_[hit.first_piece].Evaluate(hit.x[0], 0.0, scratch_a_.data());
+  evaluator_.Evaluate(first_.nets[hit.first_piece], hit.x[0], 0.0,
+                      scratch_a_.data());
   return scratch_a_.data();
 }
 

@@ -96,10 +96,6 @@ class Slicer {
     for (const Net& net : pieces.nets) {
       scalars_.push_back(ScalarNet(net, normal, offset));
     }
-    for (size_t k = 0; k < pieces.nets.size(); ++k) {
-      evaluators_.emplace_back(pieces.nets[k]);
-      scalar_evaluators_.emplace_back(scalars_[k]);
-    }
   }
 
   absl::Status Run();
@@ -124,8 +120,7 @@ class Slicer {
   CancellationPoll poll_;
   const CancellationToken* cancel_;
   std::vector<Net> scalars_;
-  std::vector<NetEvaluator> evaluators_;
-  std::vector<NetEvaluator> scalar_evaluators_;
+  NetEvaluator evaluator_;
   std::vector<double> partials_;
   std::vector<double> scalar_partials_;
   std::vector<std::vector<Vertex>> arcs_;
@@ -134,7 +129,7 @@ class Slicer {
 };
 
 double Slicer::G(size_t piece, double s, double t) {
-  scalar_evaluators_[piece].Evaluate(s, t, scalar_partials_.data());
+  evaluator_.Evaluate(scalars_[piece], s, t, scalar_partials_.data());
   return scalar_partials_[0];
 }
 
@@ -182,7 +177,8 @@ Vertex Slicer::MakeVertex(size_t piece, int along, double c, double a) {
   Vertex vertex{.piece = piece};
   vertex.x[along] = a;
   vertex.x[1 - along] = c;
-  evaluators_[piece].Evaluate(vertex.x[0], vertex.x[1], partials_.data());
+  evaluator_.Evaluate(pieces_.nets[piece], vertex.x[0], vertex.x[1],
+                      partials_.data());
   vertex.point.assign(partials_.begin(), partials_.begin() + pieces_.dimension);
   return vertex;
 }

@@ -137,6 +137,10 @@ void CheckCurveAnswer(const Curve& curve, const PointsView& queries,
                   answer.distances[r], 1e-9);
     }
     ASSERT_LE(answer.lower_bounds[r], answer.distances[r]);
+    // Certified: nothing closer than the tolerance below the distance.
+    if (answer.complete[r]) {
+      ASSERT_GE(answer.lower_bounds[r], answer.distances[r] - 1e-9 - 1e-14);
+    }
   }
 }
 
@@ -230,6 +234,40 @@ TEST(ClosestPointTest, CurvesNeverFartherThanDenseReference) {
     EXPECT_EQ(incomplete, 0) << c.name;
     std::printf("%s: 1000 queries %.1f ms, worst excess over reference %.2e\n",
                 c.name.c_str(), ms, worst);
+  }
+}
+
+// A cubic clamped B-spline of 100 random control points (97 spans, the
+// benchmark's W1 shape): queries around it, far from it and on it.
+TEST(ClosestPointTest, ManySpansMatchTheDenseReference) {
+  std::mt19937_64 rng(19);
+  const std::vector<double> control = RandomValues(rng, 3 * 100);
+  std::vector<double> knots(4, 0.0);
+  for (int i = 1; i < 97; ++i) knots.push_back(i / 97.0);
+  knots.insert(knots.end(), 4, 1.0);
+  const absl::StatusOr<Curve> curve =
+      BSplineCurve::Create({3, {3, control}, knots, {}});
+  ASSERT_TRUE(curve.ok());
+  std::vector<double> queries = RandomValues(rng, 3 * 600, -1.2, 1.2);
+  const std::vector<double> far = RandomValues(rng, 3 * 100, -6.0, 6.0);
+  queries.insert(queries.end(), far.begin(), far.end());
+  const std::vector<double> on =
+      CurvePoints(*curve, RandomValues(rng, 100, 0, 1));
+  queries.insert(queries.end(), on.begin(), on.end());
+  const PointsView view{3, queries};
+  const absl::StatusOr<ClosestPoints> answer = CurveClosestPoints(*curve, view);
+  ASSERT_TRUE(answer.ok());
+  CheckCurveAnswer(*curve, view, *answer);
+  const std::vector<double> samples = Grid(0.0, 1.0, 4000);
+  const std::vector<double> points = CurvePoints(*curve, samples);
+  for (size_t r = 0; r < view.size(); ++r) {
+    EXPECT_TRUE(answer->complete[r]) << r;
+    const double reference =
+        CurveReference(*curve, samples, points, view.point(r));
+    EXPECT_LE(answer->distances[r], reference + 1e-9) << r;
+    if (r >= 700) {
+      EXPECT_LE(answer->distances[r], 1e-12) << r;
+    }
   }
 }
 
