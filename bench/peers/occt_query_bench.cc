@@ -53,59 +53,55 @@ using freeform::bench::SplineData;
 constexpr size_t kQueries = 100'000;
 
 // The distinct knots and their multiplicities of a knot vector.
-void DistinctKnots(const std::vector<double>& knots,
-                   TColStd_Array1OfReal*& values,
-                   TColStd_Array1OfInteger*& multiplicities) {
-  std::vector<double> distinct;
-  std::vector<int> counts;
-  for (const double knot : knots) {
-    if (!distinct.empty() && distinct.back() == knot) {
-      ++counts.back();
-    } else {
-      distinct.push_back(knot);
-      counts.push_back(1);
+struct Knots {
+  explicit Knots(const std::vector<double>& knots) {
+    std::vector<double> distinct;
+    std::vector<int> counts;
+    for (const double knot : knots) {
+      if (!distinct.empty() && distinct.back() == knot) {
+        ++counts.back();
+      } else {
+        distinct.push_back(knot);
+        counts.push_back(1);
+      }
+    }
+    const int n = static_cast<int>(distinct.size());
+    values.Resize(1, n, false);
+    multiplicities.Resize(1, n, false);
+    for (int i = 0; i < n; ++i) {
+      values.SetValue(i + 1, distinct[i]);
+      multiplicities.SetValue(i + 1, counts[i]);
     }
   }
-  const int n = static_cast<int>(distinct.size());
-  values = new TColStd_Array1OfReal(1, n);
-  multiplicities = new TColStd_Array1OfInteger(1, n);
-  for (int i = 0; i < n; ++i) {
-    values->SetValue(i + 1, distinct[i]);
-    multiplicities->SetValue(i + 1, counts[i]);
+
+  TColStd_Array1OfReal values{1, 1};
+  TColStd_Array1OfInteger multiplicities{1, 1};
+};
+
+// SplineOf returns the OCCT B-spline (Geom_BSplineCurve with gp_Pnt poles,
+// or Geom2d_BSplineCurve with gp_Pnt2d) of `data`.
+template <typename Spline, typename Poles, typename Point>
+Handle(Spline) SplineOf(const SplineData& data) {
+  const size_t dim = static_cast<size_t>(data.dimension);
+  const int count = static_cast<int>(data.points.size() / dim);
+  Poles poles(1, count);
+  for (int i = 0; i < count; ++i) {
+    Point pole;
+    for (size_t x = 0; x < dim; ++x) {
+      pole.SetCoord(static_cast<int>(x) + 1, data.points[i * dim + x]);
+    }
+    poles.SetValue(i + 1, pole);
   }
+  const Knots knots(data.knots);
+  return new Spline(poles, knots.values, knots.multiplicities, data.degree);
 }
 
 Handle(Geom_BSplineCurve) Curve3d(const SplineData& data) {
-  const int count = static_cast<int>(data.points.size() / 3);
-  TColgp_Array1OfPnt poles(1, count);
-  for (int i = 0; i < count; ++i) {
-    poles.SetValue(i + 1, gp_Pnt(data.points[3 * i], data.points[3 * i + 1],
-                                 data.points[3 * i + 2]));
-  }
-  TColStd_Array1OfReal* knots = nullptr;
-  TColStd_Array1OfInteger* multiplicities = nullptr;
-  DistinctKnots(data.knots, knots, multiplicities);
-  Handle(Geom_BSplineCurve) curve =
-      new Geom_BSplineCurve(poles, *knots, *multiplicities, data.degree);
-  delete knots;
-  delete multiplicities;
-  return curve;
+  return SplineOf<Geom_BSplineCurve, TColgp_Array1OfPnt, gp_Pnt>(data);
 }
 
 Handle(Geom2d_BSplineCurve) Curve2d(const SplineData& data) {
-  const int count = static_cast<int>(data.points.size() / 2);
-  TColgp_Array1OfPnt2d poles(1, count);
-  for (int i = 0; i < count; ++i) {
-    poles.SetValue(i + 1, gp_Pnt2d(data.points[2 * i], data.points[2 * i + 1]));
-  }
-  TColStd_Array1OfReal* knots = nullptr;
-  TColStd_Array1OfInteger* multiplicities = nullptr;
-  DistinctKnots(data.knots, knots, multiplicities);
-  Handle(Geom2d_BSplineCurve) curve =
-      new Geom2d_BSplineCurve(poles, *knots, *multiplicities, data.degree);
-  delete knots;
-  delete multiplicities;
-  return curve;
+  return SplineOf<Geom2d_BSplineCurve, TColgp_Array1OfPnt2d, gp_Pnt2d>(data);
 }
 
 double CpuSeconds() {
