@@ -622,17 +622,17 @@ void Search::Report(size_t r, ClosestPoints& answer) {
     const double* point = PointOf(candidate);
     double* points = answer.points.data() + r * slots * dim;
     double* parameters = answer.parameters.data() + r * slots * pc;
-    double t = 0.0;
-    pieces_.parameters(candidate.piece, candidate.x[0], candidate.x[1], &t);
+    double t[2] = {0.0, 0.0};  // (u, v) on a surface
+    pieces_.parameters(candidate.piece, candidate.x[0], candidate.x[1], t);
     bool seen = false;
     for (int k = 0; k < kept && !seen; ++k) {
       // On a curve a point reached at two parameters (a self-intersection,
       // the seam of a closed curve) is two minima; on a surface one (a
       // collapsed edge such as a pole has many parameters).
-      seen =
-          Distance(point, points + static_cast<size_t>(k) * dim, dim) <=
-              options_.separation &&
-          (pc == 2 || std::abs(t - parameters[k]) <= prepared_.parameter_slack);
+      seen = Distance(point, points + static_cast<size_t>(k) * dim, dim) <=
+                 options_.separation &&
+             (pc == 2 ||
+              std::abs(t[0] - parameters[k]) <= prepared_.parameter_slack);
     }
     if (seen) continue;
     if (kept == answer.max_minima) {
