@@ -14,6 +14,7 @@
 #include "freeform/core/intersection.h"
 #include "freeform/core/section.h"
 #include "freeform/core/status.h"
+#include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
 #include "queries.h"
@@ -123,6 +124,9 @@ void WriteSections(const Sections& sections,
     polyline.mutable_parameters()->Add(sections.parameters.begin() + 2 * first,
                                        sections.parameters.begin() + 2 * last);
     polyline.set_closed(sections.closed[k] != 0);
+    if (!sections.curves.empty()) {
+      ToProto(sections.curves[k], *polyline.mutable_curve());
+    }
   }
 }
 
@@ -135,12 +139,19 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
       Tolerance(request.has_tolerance(), request.tolerance(),
                 kDefaultSectionTolerance, "tolerance");
   if (!tolerance.ok()) return tolerance.status();
+  absl::StatusOr<double> fit_tolerance =
+      Tolerance(request.has_fit_tolerance(), request.fit_tolerance(), 0.0,
+                "fit_tolerance");
+  if (!fit_tolerance.ok()) return fit_tolerance.status();
   absl::StatusOr<uint64_t> work =
       PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
   if (!work.ok()) return work.status();
   const int dimension = DimensionOf(*surface);
-  // A vertex holds its point and (u, v); each polyline adds a few bytes.
-  const uint64_t per_point = 2 + static_cast<uint64_t>(dimension);
+  // A vertex holds its point and (u, v), and with a fit at most one
+  // control point and a few knots of its curve; each polyline adds a few
+  // bytes.
+  const uint64_t per_point =
+      (*fit_tolerance > 0 ? 2 : 1) * (2 + static_cast<uint64_t>(dimension));
   const uint64_t requested = request.max_points() > 0
                                  ? uint64_t{request.max_points()}
                                  : kDefaultSectionPoints;

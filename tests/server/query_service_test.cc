@@ -287,6 +287,28 @@ TEST_F(QueryServiceTest, PlaneSectionsOfASpherePatchAreCircles) {
       EXPECT_NEAR(points[k + 2], h, 1e-9);
     }
   }
+  // Fitted: the cubic B-spline of the z = 1 section stays within the fit
+  // tolerance of the circle of radius sqrt(3) (between the vertices too).
+  request.clear_plane_point();
+  Append(request.mutable_plane_point(), {0, 0, 1});
+  request.set_fit_tolerance(1e-6);
+  absl::StatusOr<v1::SectionSurfaceResponse> fitted = client_->Unary(
+      client_->surfaces(), &v1::SurfaceService::Stub::Section, request);
+  ASSERT_TRUE(fitted.ok()) << fitted.status();
+  ASSERT_EQ(fitted->polylines_size(), 1);
+  v1::EvaluateCurveRequest evaluate;
+  *evaluate.mutable_curve() = fitted->polylines(0).curve();
+  EXPECT_EQ(evaluate.curve().bspline().degree(), 3u);
+  evaluate.mutable_parameters()->mutable_range()->set_count(1001);
+  absl::StatusOr<CurveSamples> samples = client_->EvaluateCurve(evaluate);
+  ASSERT_TRUE(samples.ok()) << samples.status();
+  for (size_t k = 0; k < samples->count; ++k) {
+    const absl::Span<const double> p = samples->Point(0, k);
+    EXPECT_NEAR(std::hypot(p[0], p[1]), std::sqrt(3.0), 2e-6);
+    EXPECT_NEAR(p[2], 1.0, 2e-6);
+  }
+  request.clear_fit_tolerance();
+
   request.clear_plane_normal();
   Append(request.mutable_plane_normal(), {0, 0, 0});
   ExpectInvalid(client_
