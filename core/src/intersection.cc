@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numbers>
 #include <utility>
@@ -482,40 +483,48 @@ absl::Status PairSearch::Run() {
   }
   const double zero[2] = {0.0, 0.0};
   const double one[2] = {1.0, 1.0};
-  std::vector<std::pair<PartPtr, PartPtr>> stack;
   std::vector<PartPtr> second_parts;
   for (size_t j = 0; j < second_.nets.size(); ++j) {
     second_parts.push_back(MakePart(j, zero, one, second_.nets[j]));
   }
+  // Piece i of the first input is searched against the pieces of the second
+  // whose boxes it meets, to the end, before piece i + 1: the stack holds
+  // one piece's pairs and their halves, never all pairs of pieces.
+  CancellationPoll poll(cancel_);
+  std::vector<std::pair<PartPtr, PartPtr>> stack;
+  size_t pairs = 0;
   for (size_t i = 0; i < first_.nets.size(); ++i) {
     const PartPtr a = MakePart(i, zero, one, first_.nets[i]);
-    for (const PartPtr& b : second_parts) stack.emplace_back(a, b);
-  }
-  CancellationPoll poll(cancel_);
-  size_t pairs = 0;
-  while (!stack.empty()) {
-    auto [a, b] = std::move(stack.back());
-    stack.pop_back();
-    if (++pairs > options_.max_pairs) {
-      return ExhaustedFieldError(
-          "max_pairs",
-          absl::StrCat("more than ", options_.max_pairs,
-                       " pairs of parts lie within tolerance of each other"));
+    for (const PartPtr& b : second_parts) {
+      if (!BoxesApart(*a, *b, options_.tolerance)) stack.emplace_back(a, b);
     }
-    if (absl::Status status =
-            poll.Done(8 * (a->net.values.size() + b->net.values.size()));
-        !status.ok()) {
+    if (absl::Status status = poll.Done(second_parts.size()); !status.ok()) {
       return status;
     }
-    if (Examine(a, b)) continue;
-    if (a->diameter >= b->diameter) {
-      auto [low, high] = Split(*a);
-      stack.emplace_back(std::move(low), b);
-      stack.emplace_back(std::move(high), b);
-    } else {
-      auto [low, high] = Split(*b);
-      stack.emplace_back(a, std::move(low));
-      stack.emplace_back(a, std::move(high));
+    while (!stack.empty()) {
+      auto [a_part, b_part] = std::move(stack.back());
+      stack.pop_back();
+      if (++pairs > options_.max_pairs) {
+        return ExhaustedFieldError(
+            "max_pairs",
+            absl::StrCat("more than ", options_.max_pairs,
+                         " pairs of parts lie within tolerance of each other"));
+      }
+      if (absl::Status status = poll.Done(
+              8 * (a_part->net.values.size() + b_part->net.values.size()));
+          !status.ok()) {
+        return status;
+      }
+      if (Examine(a_part, b_part)) continue;
+      if (a_part->diameter >= b_part->diameter) {
+        auto [low, high] = Split(*a_part);
+        stack.emplace_back(std::move(low), b_part);
+        stack.emplace_back(std::move(high), b_part);
+      } else {
+        auto [low, high] = Split(*b_part);
+        stack.emplace_back(a_part, std::move(low));
+        stack.emplace_back(a_part, std::move(high));
+      }
     }
   }
   return absl::OkStatus();
@@ -553,13 +562,33 @@ bool PairSearch::SameHit(const Hit& a, const Hit& b) {
 std::vector<Hit> PairSearch::DistinctHits() {
   std::sort(hits_.begin(), hits_.end(),
             [](const Hit& a, const Hit& b) { return a.distance < b.distance; });
+  // A hit is compared with the kept hits whose first coordinate is within
+  // the separation of its own (SameHit's first test) and with those of the
+  // same pair of pieces (its second), not with every kept hit.
+  const double near = std::max(options_.separation, options_.tolerance);
+  std::multimap<double, size_t> by_coordinate;
+  std::map<std::pair<size_t, size_t>, std::vector<size_t>> by_pieces;
   std::vector<Hit> kept;
   for (const Hit& hit : hits_) {
+    const double x = PointOf(hit)[0];
     bool seen = false;
-    for (size_t k = 0; k < kept.size() && !seen; ++k) {
-      seen = SameHit(hit, kept[k]);
+    for (auto it = by_coordinate.lower_bound(x - near);
+         it != by_coordinate.end() && it->first <= x + near && !seen; ++it) {
+      seen = SameHit(hit, kept[it->second]);
     }
-    if (!seen) kept.push_back(hit);
+    const std::pair<size_t, size_t> pieces = {hit.first_piece,
+                                              hit.second_piece};
+    auto same = by_pieces.find(pieces);
+    if (same != by_pieces.end()) {
+      for (size_t k : same->second) {
+        if (seen) break;
+        seen = SameHit(hit, kept[k]);
+      }
+    }
+    if (seen) continue;
+    by_coordinate.emplace(x, kept.size());
+    by_pieces[pieces].push_back(kept.size());
+    kept.push_back(hit);
   }
   return kept;
 }
