@@ -23,8 +23,11 @@ absl::StatusOr<UnaryWork> PlanClosestPoint(
     v1::ClosestPointResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
+  absl::StatusOr<uint64_t> work =
+      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+  if (!work.ok()) return work.status();
   return PlanClosestPoints(
-      DimensionOf(*curve), 1, request.queries(), request.options(),
+      DimensionOf(*curve), 1, *work, request.queries(), request.options(),
       [curve = *std::move(curve)](const PointsView& queries,
                                   const ClosestPointOptions& options,
                                   const ExecutionContext& execution) {
@@ -58,6 +61,12 @@ absl::StatusOr<UnaryWork> PlanIntersect(
   absl::StatusOr<Curve> second =
       PrepareCurve(request.second(), limits, "second");
   if (!second.ok()) return second.status();
+  absl::StatusOr<uint64_t> work =
+      PieceWorkBytes(DecomposedCurveValues(*first), limits, "first");
+  if (!work.ok()) return work.status();
+  absl::StatusOr<uint64_t> second_work =
+      PieceWorkBytes(DecomposedCurveValues(*second), limits, "second");
+  if (!second_work.ok()) return second_work.status();
   const int dimension = DimensionOf(*first);
   if (DimensionOf(*second) != dimension) {
     return InvalidFieldError(
@@ -95,11 +104,14 @@ absl::StatusOr<UnaryWork> PlanBoundingBox(
       Tolerance(request.has_tolerance(), request.tolerance(),
                 kDefaultQueryTolerance, "tolerance");
   if (!tolerance.ok()) return tolerance.status();
+  absl::StatusOr<uint64_t> work =
+      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+  if (!work.ok()) return work.status();
   return PlanBoundingBox(
-      DimensionOf(*curve), *tolerance,
-      [curve = *std::move(curve)](double tolerance,
+      DimensionOf(*curve), *work, *tolerance,
+      [curve = *std::move(curve)](double box_tolerance,
                                   const CancellationToken* cancel) {
-        return CurveBoundingBox(curve, tolerance, cancel);
+        return CurveBoundingBox(curve, box_tolerance, cancel);
       },
       limits, response);
 }

@@ -122,103 +122,22 @@ absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
       *curve);
 }
 
-// The Bezier pieces of a curve and the size of that answer.
-struct DecompositionPlan {
-  uint64_t values = 0;
-  absl::AnyInvocable<absl::StatusOr<BezierDecomposition>(
-      const CancellationToken* cancel) const>
-      decompose;
-};
-
-absl::StatusOr<DecompositionPlan> PlanPieces(const Curve& curve) {
-  return std::visit<absl::StatusOr<DecompositionPlan>>(
-      Overloaded{
-          [](const BezierCurve& bezier) -> absl::StatusOr<DecompositionPlan> {
-            const BezierCurveView view = bezier.view();
-            return DecompositionPlan{
-                .values = CurveValues(view.control_points.size(),
-                                      bezier.dimension(), view.rational()) +
-                          2,
-                .decompose = [view](const CancellationToken*)
-                    -> absl::StatusOr<BezierDecomposition> {
-                  BezierDecomposition single;
-                  single.segments.push_back(
-                      {.dimension = view.control_points.dimension,
-                       .coordinates = {view.control_points.coordinates.begin(),
-                                       view.control_points.coordinates.end()},
-                       .weights = {view.weights.begin(), view.weights.end()}});
-                  single.breakpoints = {0.0, 1.0};
-                  return single;
-                }};
-          },
-          [](const BSplineCurve& bspline) -> absl::StatusOr<DecompositionPlan> {
-            const BSplineCurveView view = bspline.view();
-            // At most one segment per span of the domain, n - p + 1.
-            const uint64_t spans =
-                view.control_points.size() - static_cast<uint64_t>(view.degree);
-            return DecompositionPlan{
-                .values =
-                    SaturatingProduct(
-                        spans, CurveValues(view.degree + 1, bspline.dimension(),
-                                           view.rational())) +
-                    spans + 1,
-                .decompose = [view](const CancellationToken* cancel) {
-                  return DecomposeBSplineCurve(view, cancel);
-                }};
-          },
-          [](const HermiteCurve& hermite) -> absl::StatusOr<DecompositionPlan> {
-            const HermiteCurveView view = hermite.view();
-            const uint64_t pieces = view.points.size() - 1;
-            return DecompositionPlan{
-                .values =
-                    SaturatingProduct(
-                        pieces, CurveValues(4, hermite.dimension(), false)) +
-                    pieces + 1,
-                .decompose = [view](const CancellationToken*)
-                    -> absl::StatusOr<BezierDecomposition> {
-                  return DecomposeHermiteCurve(view);
-                }};
-          },
-          [](const LagrangeCurve& lagrange)
-              -> absl::StatusOr<DecompositionPlan> {
-            const LagrangeCurveView view = lagrange.view();
-            return DecompositionPlan{
-                .values = CurveValues(view.points.size(), lagrange.dimension(),
-                                      false) +
-                          2,
-                .decompose = [view](const CancellationToken*)
-                    -> absl::StatusOr<BezierDecomposition> {
-                  const auto [start, end] = LagrangeDomain(view);
-                  BezierDecomposition single;
-                  single.segments.push_back(
-                      {.dimension = view.points.dimension,
-                       .coordinates = LagrangeToBezier(view),
-                       .weights = {}});
-                  single.breakpoints = {start, end};
-                  return single;
-                }};
-          }},
-      curve);
-}
-
 absl::StatusOr<UnaryWork> PlanDecompose(
     const v1::DecomposeCurveRequest& request, const ServiceLimits& limits,
     v1::DecomposeCurveResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  absl::StatusOr<DecompositionPlan> pieces = PlanPieces(*curve);
-  if (!pieces.ok()) return pieces.status();
-  if (absl::Status status = UnaryAnswerCheck(pieces->values, limits, "curve");
+  const uint64_t values = DecomposedCurveValues(*curve);
+  if (absl::Status status = UnaryAnswerCheck(values, limits, "curve");
       !status.ok()) {
     return status;
   }
-  const uint64_t values = pieces->values;
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
-      .run = [curve = *std::move(curve), pieces = *std::move(pieces),
+      .run = [curve = *std::move(curve),
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<BezierDecomposition> decomposition =
-            pieces.decompose(execution.cancellation);
+            DecomposeCurve(curve, execution.cancellation);
         if (!decomposition.ok()) return decomposition.status();
         for (const BezierCurveData& segment : decomposition->segments) {
           ToProto(segment, *response.add_segments());

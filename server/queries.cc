@@ -69,6 +69,17 @@ void WriteClosestPoints(const ClosestPoints& minima,
 
 }  // namespace
 
+absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field) {
+  const uint64_t bytes = SaturatingProduct(piece_values, 3 * 8);
+  if (bytes <= limits.memory_budget_bytes) return bytes;
+  return ExhaustedFieldError(
+      field, absl::StrCat("its Bezier pieces would take ", bytes >> 20,
+                          " MiB, over the server's memory budget of ",
+                          limits.memory_budget_bytes >> 20, " MiB"));
+}
+
 absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
                                  absl::string_view field) {
   if (!has_value) return fallback;
@@ -143,9 +154,10 @@ absl::Status IntersectionError(const absl::Status& status) {
 }
 
 absl::StatusOr<UnaryWork> PlanClosestPoints(
-    int dimension, int parameter_count, const v1::Points& queries,
-    const v1::ClosestPointOptions& options, ClosestPointSearch search,
-    const ServiceLimits& limits, v1::ClosestPointResponse& response) {
+    int dimension, int parameter_count, uint64_t work_bytes,
+    const v1::Points& queries, const v1::ClosestPointOptions& options,
+    ClosestPointSearch search, const ServiceLimits& limits,
+    v1::ClosestPointResponse& response) {
   absl::StatusOr<PointsView> points = PreparePoints(queries, limits, "queries");
   if (!points.ok()) return points.status();
   if (points->dimension != dimension) {
@@ -165,7 +177,10 @@ absl::StatusOr<UnaryWork> PlanClosestPoints(
     return status;
   }
   return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values, limits),
+      .plan =
+          {.memory_bytes =
+               AnswerPlan(values, 8 * values + work_bytes, limits).memory_bytes,
+           .heavy = true},
       .run = [points = *points, options = *core_options,
               search = std::move(search),
               &response](const ExecutionContext& execution) -> absl::Status {
@@ -177,13 +192,14 @@ absl::StatusOr<UnaryWork> PlanClosestPoints(
       }};
 }
 
-UnaryWork PlanBoundingBox(int dimension, double tolerance,
+UnaryWork PlanBoundingBox(int dimension, uint64_t work_bytes, double tolerance,
                           BoxComputation compute, const ServiceLimits& limits,
                           v1::BoundingBoxResponse& response) {
   const uint64_t values = BoundingBoxValues(dimension);
   return UnaryWork{
       // The search is heavy whatever the answer's size.
-      .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
+      .plan = {.memory_bytes =
+                   AnswerPlan(values, work_bytes, limits).memory_bytes,
                .heavy = true},
       .run = [tolerance, compute = std::move(compute),
               &response](const ExecutionContext& execution) -> absl::Status {

@@ -26,6 +26,15 @@ inline constexpr uint32_t kDefaultMaxMinima = 8;
 // The default cap of intersection results (points plus overlaps).
 inline constexpr uint64_t kDefaultMaxResults = 1 << 16;
 
+// PieceWorkBytes returns the working memory of a query that cuts geometry
+// into Bezier pieces of `piece_values` doubles (DecomposedCurveValues,
+// SurfacePieceValues; the queries keep them in homogeneous form and a
+// subdivided copy), or RESOURCE_EXHAUSTED naming `field` when that is over
+// the server's memory budget.
+absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field);
+
 // Tolerance returns `value` when `has_value` (it must be positive and
 // finite, else INVALID_ARGUMENT naming `field`), otherwise `fallback`.
 absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
@@ -57,21 +66,23 @@ using ClosestPointSearch = absl::AnyInvocable<absl::StatusOr<ClosestPoints>(
                                                   const>;
 
 // PlanClosestPoints plans a batch of closest-point queries of a geometry
-// of `dimension` with `parameter_count` parameters per point: the queries
+// of `dimension` with `parameter_count` parameters per point, whose pieces
+// take `work_bytes` (PieceWorkBytes): the queries
 // ("queries", within the parameter limit) and options are checked and the
 // answer's size bounded before any work.
 absl::StatusOr<UnaryWork> PlanClosestPoints(
-    int dimension, int parameter_count, const v1::Points& queries,
-    const v1::ClosestPointOptions& options, ClosestPointSearch search,
-    const ServiceLimits& limits, v1::ClosestPointResponse& response);
+    int dimension, int parameter_count, uint64_t work_bytes,
+    const v1::Points& queries, const v1::ClosestPointOptions& options,
+    ClosestPointSearch search, const ServiceLimits& limits,
+    v1::ClosestPointResponse& response);
 
 // A bounding-box computation of a prepared geometry at a tolerance.
 using BoxComputation = absl::AnyInvocable<absl::StatusOr<BoundingBox>(
     double, const CancellationToken*) const>;
 
-// PlanBoundingBox plans the box of a geometry of `dimension` ("tolerance"
-// is optional, default 1e-9).
-UnaryWork PlanBoundingBox(int dimension, double tolerance,
+// PlanBoundingBox plans the box of a geometry of `dimension` whose pieces
+// take `work_bytes`, to `tolerance`.
+UnaryWork PlanBoundingBox(int dimension, uint64_t work_bytes, double tolerance,
                           BoxComputation compute, const ServiceLimits& limits,
                           v1::BoundingBoxResponse& response);
 

@@ -47,8 +47,11 @@ absl::StatusOr<UnaryWork> PlanClosestPoint(
     v1::ClosestPointResponse& response) {
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
+  absl::StatusOr<uint64_t> work =
+      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+  if (!work.ok()) return work.status();
   return PlanClosestPoints(
-      DimensionOf(*surface), 2, request.queries(), request.options(),
+      DimensionOf(*surface), 2, *work, request.queries(), request.options(),
       [surface = *std::move(surface)](const PointsView& queries,
                                       const ClosestPointOptions& options,
                                       const ExecutionContext& execution) {
@@ -64,6 +67,12 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
   if (!curve.ok()) return curve.status();
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
+  absl::StatusOr<uint64_t> work =
+      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+  if (!work.ok()) return work.status();
+  absl::StatusOr<uint64_t> surface_work =
+      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+  if (!surface_work.ok()) return surface_work.status();
   const int dimension = DimensionOf(*curve);
   if (DimensionOf(*surface) != dimension) {
     return InvalidFieldError(
@@ -78,7 +87,9 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
   const uint64_t values = options->max_results * per_result;
   return UnaryWork{
       .plan = {.memory_bytes =
-                   AnswerPlan(values, 8 * values, limits).memory_bytes,
+                   AnswerPlan(values, 8 * values + *work + *surface_work,
+                              limits)
+                       .memory_bytes,
                .heavy = true},
       .run = [curve = *std::move(curve), surface = *std::move(surface),
               options = *options,
@@ -124,6 +135,9 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
       Tolerance(request.has_tolerance(), request.tolerance(),
                 kDefaultSectionTolerance, "tolerance");
   if (!tolerance.ok()) return tolerance.status();
+  absl::StatusOr<uint64_t> work =
+      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+  if (!work.ok()) return work.status();
   const int dimension = DimensionOf(*surface);
   // A vertex holds its point and (u, v); each polyline adds a few bytes.
   const uint64_t per_point = 2 + static_cast<uint64_t>(dimension);
@@ -137,9 +151,10 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
   }
   const uint64_t values = requested * per_point;
   return UnaryWork{
-      .plan = {.memory_bytes =
-                   AnswerPlan(2 * values, 8 * values, limits).memory_bytes,
-               .heavy = true},
+      .plan =
+          {.memory_bytes =
+               AnswerPlan(2 * values, 8 * values + *work, limits).memory_bytes,
+           .heavy = true},
       .run = [surface = *std::move(surface),
               point = SpanOf(request.plane_point()),
               normal = SpanOf(request.plane_normal()),
@@ -229,11 +244,14 @@ absl::StatusOr<UnaryWork> PlanBoundingBox(
       Tolerance(request.has_tolerance(), request.tolerance(),
                 kDefaultQueryTolerance, "tolerance");
   if (!tolerance.ok()) return tolerance.status();
+  absl::StatusOr<uint64_t> work =
+      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+  if (!work.ok()) return work.status();
   return PlanBoundingBox(
-      DimensionOf(*surface), *tolerance,
-      [surface = *std::move(surface)](double tolerance,
+      DimensionOf(*surface), *work, *tolerance,
+      [surface = *std::move(surface)](double box_tolerance,
                                       const CancellationToken* cancel) {
-        return SurfaceBoundingBox(surface, tolerance, cancel);
+        return SurfaceBoundingBox(surface, box_tolerance, cancel);
       },
       limits, response);
 }

@@ -41,6 +41,8 @@ absl::Status CheckSampleCount(uint64_t count, uint64_t values_per_point,
                           field);
 }
 
+}  // namespace
+
 // ResolvePairs returns the (u, v) pairs of `points` once they are pairs
 // (an even, non-zero number of values) within the limits.
 absl::StatusOr<absl::Span<const double>> ResolvePairs(
@@ -64,8 +66,6 @@ absl::StatusOr<absl::Span<const double>> ResolvePairs(
   }
   return uv;
 }
-
-}  // namespace
 
 std::vector<SurfacePlan::Piece> SurfacePlan::Pieces(size_t first,
                                                     size_t last) const {

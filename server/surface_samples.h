@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "absl/types/span.h"
 #include "freeform/core/surface.h"
 #include "freeform/v1/geometry.pb.h"
@@ -61,6 +62,13 @@ struct SurfacePlan {
            (normals ? 3 : 0);
   }
 };
+
+// ResolvePairs returns the (u, v) pairs of `points` once they are pairs
+// (an even, non-zero number of values) within the limits, with
+// `values_per_point` numbers of answer each.
+absl::StatusOr<absl::Span<const double>> ResolvePairs(
+    const v1::SurfacePoints& points, uint64_t values_per_point,
+    const ServiceLimits& limits);
 
 // ResolveSamples resolves the (u, v) points or the grid into `plan`, after
 // checking their number, with `values_per_point` numbers each, against the

@@ -1,8 +1,10 @@
 #include "freeform/core/curve.h"
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
+#include "piece_values.h"
 #include "validated.h"
 #include "variant_dispatch.h"
 
@@ -141,6 +143,36 @@ std::vector<double> CurveBreakpoints(const Curve& curve) {
     return HermiteNodes(hermite->view());
   }
   return {domain.start, domain.end};
+}
+
+uint64_t DecomposedCurveValues(const Curve& curve) {
+  return std::visit(
+      internal::Overloaded{
+          [](const BezierCurve& bezier) {
+            const BezierCurveView& view = bezier.view();
+            return internal::PieceValues(1, view.control_points.size(),
+                                         view.control_points.dimension,
+                                         view.rational(), 2);
+          },
+          [](const BSplineCurve& bspline) {
+            // At most one piece per span of the domain, n - p + 1.
+            const BSplineCurveView& view = bspline.view();
+            const uint64_t spans =
+                view.control_points.size() - static_cast<uint64_t>(view.degree);
+            return internal::PieceValues(
+                spans, static_cast<uint64_t>(view.degree) + 1,
+                view.control_points.dimension, view.rational(), spans + 1);
+          },
+          [](const LagrangeCurve& lagrange) {
+            return internal::PieceValues(1, lagrange.view().points.size(),
+                                         lagrange.dimension(), false, 2);
+          },
+          [](const HermiteCurve& hermite) {
+            const uint64_t pieces = hermite.view().points.size() - 1;
+            return internal::PieceValues(pieces, 4, hermite.dimension(), false,
+                                         pieces + 1);
+          }},
+      curve);
 }
 
 absl::StatusOr<BezierDecomposition> DecomposeCurve(

@@ -1,6 +1,7 @@
 #include "freeform/core/surface.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -9,6 +10,7 @@
 #include "freeform/core/normals.h"
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
+#include "piece_values.h"
 #include "validated.h"
 #include "variant_dispatch.h"
 
@@ -137,6 +139,40 @@ int DimensionOf(const Surface& surface) {
 
 SurfaceDomain DomainOf(const Surface& surface) {
   return internal::DomainOfKind(surface);
+}
+
+uint64_t SurfacePieceValues(const Surface& surface) {
+  return std::visit(
+      internal::Overloaded{
+          [](const BezierSurface& bezier) {
+            const BezierSurfaceView& view = bezier.view();
+            const ControlNetView& net = view.control_net;
+            return internal::PieceValues(1,
+                                         static_cast<uint64_t>(net.count_u) *
+                                             static_cast<uint64_t>(net.count_v),
+                                         net.dimension, view.rational(), 4);
+          },
+          [](const BSplineSurface& bspline) {
+            const BSplineSurfaceView& view = bspline.view();
+            const ControlNetView& net = view.control_net;
+            const uint64_t spans_u =
+                static_cast<uint64_t>(net.count_u - view.degree_u);
+            const uint64_t spans_v =
+                static_cast<uint64_t>(net.count_v - view.degree_v);
+            return internal::PieceValues(
+                spans_u * spans_v,
+                static_cast<uint64_t>(view.degree_u + 1) *
+                    static_cast<uint64_t>(view.degree_v + 1),
+                net.dimension, view.rational(), spans_u + spans_v + 2);
+          },
+          [](const TriangularPatch& triangular) {
+            const TriangularPatchView& view = triangular.view();
+            const uint64_t side = static_cast<uint64_t>(view.degree) + 1;
+            return internal::PieceValues(1, side * side,
+                                         view.control_points.dimension,
+                                         view.rational(), 4);
+          }},
+      surface);
 }
 
 bool IsTriangular(const Surface& surface) {

@@ -8,7 +8,7 @@ std::vector<RpcCase> AllCases(StreamSize stream) {
   for (std::vector<RpcCase> group :
        {CurveEvaluationCases(stream), CurveRefinementCases(),
         CurveConstructionCases(), SurfaceEvaluationCases(stream),
-        SurfaceRefinementCases(), SurfaceTessellationCases()}) {
+        SurfaceRefinementCases(), SurfaceTessellationCases(), QueryCases()}) {
     for (RpcCase& c : group) cases.push_back(std::move(c));
   }
   return cases;

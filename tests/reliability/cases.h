@@ -41,8 +41,10 @@ std::vector<RpcCase> CurveConstructionCases();
 std::vector<RpcCase> SurfaceEvaluationCases(StreamSize stream = {});
 std::vector<RpcCase> SurfaceRefinementCases();
 std::vector<RpcCase> SurfaceTessellationCases();
+// The queries of both services, one case per method.
+std::vector<RpcCase> QueryCases();
 
-// Every method of both services (20 cases).
+// Every method of both services (33 cases).
 std::vector<RpcCase> AllCases(StreamSize stream = {});
 
 // A random set of curve blending functions (Bernstein, B-spline, either

@@ -48,25 +48,7 @@ std::string LongBSpline(int count) {
   return text + "}";
 }
 
-class HostileInputTest : public InProcessServerTest {
- protected:
-  // Waits until no call is in flight: a call the client gave up on must not
-  // keep computing.
-  bool Drains(std::chrono::milliseconds within) {
-    const auto until = std::chrono::steady_clock::now() + within;
-    while (std::chrono::steady_clock::now() < until) {
-      if (server_->calls_in_flight() == 0) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return server_->calls_in_flight() == 0;
-  }
-
-  std::unique_ptr<Client> Hurried(std::chrono::milliseconds timeout) {
-    ClientOptions options;
-    options.timeout = timeout;
-    return std::make_unique<Client>(ClientChannel(), options);
-  }
-};
+using HostileInputTest = InProcessServerTest;
 
 // 1. Integer fields are checked in their own type.
 

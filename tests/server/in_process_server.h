@@ -17,6 +17,7 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
@@ -115,6 +116,24 @@ class InProcessServerTest : public ::testing::Test {
       EXPECT_EQ(violations[0].field, field) << status;
     }
     EXPECT_FALSE(violations[0].description.empty());
+  }
+
+  // Drains waits until no call is in flight: a call the client gave up on
+  // must not keep computing.
+  bool Drains(std::chrono::milliseconds within) {
+    const auto until = std::chrono::steady_clock::now() + within;
+    while (std::chrono::steady_clock::now() < until) {
+      if (server_->calls_in_flight() == 0) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return server_->calls_in_flight() == 0;
+  }
+
+  // Hurried returns a client whose calls have the deadline `timeout`.
+  std::unique_ptr<Client> Hurried(std::chrono::milliseconds timeout) {
+    ClientOptions options;
+    options.timeout = timeout;
+    return std::make_unique<Client>(ClientChannel(), options);
   }
 
   std::unique_ptr<FreeformServer> server_;

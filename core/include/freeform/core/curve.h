@@ -22,6 +22,7 @@
 #ifndef FREEFORM_CORE_CURVE_H_
 #define FREEFORM_CORE_CURVE_H_
 
+#include <cstdint>
 #include <memory>
 #include <variant>
 #include <vector>
@@ -169,6 +170,12 @@ std::vector<double> CurveBreakpoints(const Curve& curve);
 // DEADLINE_EXCEEDED.
 absl::StatusOr<BezierDecomposition> DecomposeCurve(
     const Curve& curve, const CancellationToken* cancel = nullptr);
+
+// DecomposedCurveValues returns an upper bound, known before any work, of
+// the doubles DecomposeCurve returns for `curve` (every piece's coordinates
+// and weights, and the breakpoints): what a caller must plan for, in its
+// answer or as working memory. Saturates at UINT64_MAX.
+uint64_t DecomposedCurveValues(const Curve& curve);
 
 }  // namespace freeform
 

@@ -12,6 +12,7 @@
 #ifndef FREEFORM_CORE_SURFACE_H_
 #define FREEFORM_CORE_SURFACE_H_
 
+#include <cstdint>
 #include <memory>
 #include <variant>
 #include <vector>
@@ -134,6 +135,15 @@ absl::Status EvaluateSurface(const Surface& surface,
                              const SurfaceSamples& samples,
                              SurfaceOutput partials, absl::Span<double> normals,
                              const ExecutionContext& context = {});
+
+// SurfacePieceValues returns an upper bound, known before any work, of the
+// doubles of the surface's (rational) Bezier pieces (coordinates, weights
+// and breakpoints): one per span rectangle of a B-spline surface, the net
+// of a Bezier surface, and the degenerate tensor net of degrees (n, n) of a
+// triangular patch of degree n. The geometric queries cut the surface into
+// these pieces first, so it bounds their working memory. Saturates at
+// UINT64_MAX.
+uint64_t SurfacePieceValues(const Surface& surface);
 
 }  // namespace freeform
 
