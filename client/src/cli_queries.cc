@@ -245,6 +245,14 @@ int RunClosestOn(const CommonFlags& flags, const QueryOptions& options,
 }
 
 int RunClosest(const CommonFlags& flags, const QueryOptions& options) {
+  const auto from_stdin = [](const std::string& file) {
+    return file.empty() || file == "-";
+  };
+  if (!options.csv.empty() && from_stdin(options.csv) &&
+      from_stdin(options.file)) {
+    return InputError(absl::InvalidArgumentError(
+        "--csv - reads the points from stdin: give the request with --file"));
+  }
   if (options.surface) {
     return RunClosestOn(flags, options,
                         &v1::SurfaceService::Stub::ClosestPoint);

@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <numbers>
-#include <regex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,13 +77,17 @@ std::vector<double> Numbers(const std::vector<std::string>& row,
 // the segments' ends of a path), in pixels.
 std::vector<std::pair<double, double>> SvgPoints(const std::string& svg,
                                                  const std::string& label) {
-  const std::regex element("class=\"" + label +
-                           "\"[^>]* (points|d)=\"([^\"]*)\"");
-  std::smatch match;
-  EXPECT_TRUE(std::regex_search(svg, match, element)) << label << "\n" << svg;
+  const size_t element = svg.find("class=\"" + label + "\"");
+  const size_t end = svg.find('>', element);
+  size_t start = svg.find(" points=\"", element);
+  if (start > end) start = svg.find(" d=\"", element);
+  EXPECT_LT(start, end) << label << "\n" << svg;
+  if (start > end) return {};
+  start = svg.find('"', start) + 1;
+  const std::string data = svg.substr(start, svg.find('"', start) - start);
   std::vector<double> values;
-  for (absl::string_view field : absl::StrSplit(
-           match[2].str(), absl::ByAnyChar(" ,ML"), absl::SkipEmpty())) {
+  for (absl::string_view field :
+       absl::StrSplit(data, absl::ByAnyChar(" ,ML"), absl::SkipEmpty())) {
     values.push_back(Number(std::string(field)));
   }
   std::vector<std::pair<double, double>> points;
