@@ -4,8 +4,10 @@
 // round_robin), applies a per-call deadline, retries UNAVAILABLE calls, and
 // returns absl::StatusOr of plain C++ types for the common calls. Errors keep
 // the server's gRPC code; an INVALID_ARGUMENT's google.rpc.BadRequest field
-// violations are available through FieldViolationsOf. For every other RPC
-// use the generated stubs from curves() / surfaces() with NewContext().
+// violations are available through FieldViolationsOf. Every other unary
+// RPC is Unary(&v1::CurveService::Stub::ArcLength, request) (any method of
+// either service's stub); streams use curves() / surfaces() with
+// NewContext().
 //
 // Thread-safe: one Client may serve many threads at once.
 //
