@@ -1,11 +1,14 @@
 // The data of the benchmark workloads (docs/benchmarks.md): the LCG,
-// uniform parameters and clamped uniform knots, so every benchmark program
-// computes exactly the geometry the peers (OpenCASCADE, scipy, Eigen) do.
+// uniform parameters, clamped uniform knots, random splines and query
+// points, so every benchmark program computes exactly the geometry the peers
+// (OpenCASCADE, scipy, Eigen; bench/peers/) do.
 #ifndef FREEFORM_BENCH_WORKLOADS_H_
 #define FREEFORM_BENCH_WORKLOADS_H_
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace freeform::bench {
@@ -50,6 +53,48 @@ inline std::vector<double> ClampedUniformKnots(int count, int degree) {
   }
   knots.insert(knots.end(), static_cast<size_t>(degree) + 1, 1.0);
   return knots;
+}
+
+// A clamped B-spline curve's data (polynomial).
+struct SplineData {
+  int degree = 3;
+  int dimension = 3;
+  std::vector<double> points;  // `dimension` coordinates each
+  std::vector<double> knots;
+};
+
+// RandomSpline returns the clamped B-spline of `degree` on clamped uniform
+// knots whose `count` control points of `dimension` coordinates are drawn
+// from LCG seed `seed` (W1: seed 1, 100 points, 3D, cubic).
+inline SplineData RandomSpline(uint64_t seed, int count, int dimension,
+                               int degree = 3) {
+  return {.degree = degree,
+          .dimension = dimension,
+          .points = RandomPoints(seed, static_cast<size_t>(count), dimension),
+          .knots = ClampedUniformKnots(count, degree)};
+}
+
+// PointsInBox returns `count` points drawn from LCG seed `seed`, uniform in
+// the bounding box of `points` (of `dimension` coordinates) scaled about its
+// centre by `scale` (1.1: inflated by 10%).
+inline std::vector<double> PointsInBox(const std::vector<double>& points,
+                                       int dimension, double scale,
+                                       uint64_t seed, size_t count) {
+  const size_t dim = static_cast<size_t>(dimension);
+  std::vector<double> lo(dim, std::numeric_limits<double>::infinity());
+  std::vector<double> hi(dim, -std::numeric_limits<double>::infinity());
+  for (size_t k = 0; k < points.size(); ++k) {
+    lo[k % dim] = std::min(lo[k % dim], points[k]);
+    hi[k % dim] = std::max(hi[k % dim], points[k]);
+  }
+  Lcg lcg(seed);
+  std::vector<double> result(count * dim);
+  for (size_t k = 0; k < result.size(); ++k) {
+    const double centre = 0.5 * (lo[k % dim] + hi[k % dim]);
+    const double half = 0.5 * scale * (hi[k % dim] - lo[k % dim]);
+    result[k] = centre + half * lcg.Next();
+  }
+  return result;
 }
 
 }  // namespace freeform::bench

@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "freeform/core/bezier.h"
-#include "freeform/core/bezier_pieces.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
@@ -28,31 +27,48 @@ Net Lifted(int dimension, int count_u, int count_v,
   return net;
 }
 
+// RaiseBasis turns the Bernstein basis of degree j - 1 at t in values[0..j-1]
+// into that of degree j.
+void RaiseBasis(int j, double t, double* values) {
+  const double s = 1.0 - t;
+  double carry = 0.0;  // t * B(j-1, i-1)
+  for (int i = 0; i < j; ++i) {
+    const double previous = values[i];
+    values[i] = s * previous + carry;
+    carry = t * previous;
+  }
+  values[j] = carry;
+}
+
 // BernsteinUpToSecond writes B(n,i,t) and its first and second derivatives
 // into out[k * (n + 1) + i], k = 0, 1, 2 (docs/references.md, 'Bernstein
-// polynomials': B'(n,i) = n (B(n-1,i-1) - B(n-1,i))).
-void BernsteinUpToSecond(int n, double t, std::vector<double>& lower,
-                         double* out) {
+// polynomials': B'(n,i) = n (B(n-1,i-1) - B(n-1,i))), from the basis of
+// degree n - 2 raised to n - 1 and n.
+void BernsteinUpToSecond(int n, double t, double* out) {
   const size_t count = static_cast<size_t>(n) + 1;
   std::fill(out, out + 3 * count, 0.0);
-  BernsteinBasis(n, t, absl::MakeSpan(out, count));
-  for (int k = 1; k <= std::min(n, 2); ++k) {
-    const int m = n - k;
-    lower.assign(static_cast<size_t>(m) + 1, 0.0);
-    BernsteinBasis(m, t, absl::MakeSpan(lower));
-    const double scale = k == 1 ? n : static_cast<double>(n) * (n - 1);
-    double* row = out + static_cast<size_t>(k) * count;
-    for (int j = 0; j <= m; ++j) {
-      const double b = scale * lower[static_cast<size_t>(j)];
-      if (k == 1) {
-        row[j + 1] += b;
-        row[j] -= b;
-      } else {
-        row[j + 2] += b;
-        row[j + 1] -= 2.0 * b;
-        row[j] += b;
-      }
+  double* values = out;
+  values[0] = 1.0;
+  for (int j = 1; j <= n - 2; ++j) RaiseBasis(j, t, values);
+  if (n >= 2) {
+    const double scale = static_cast<double>(n) * (n - 1);
+    double* second = out + 2 * count;
+    for (int i = 0; i <= n - 2; ++i) {
+      const double b = scale * values[i];
+      second[i] += b;
+      second[i + 1] -= 2.0 * b;
+      second[i + 2] += b;
     }
+    RaiseBasis(n - 1, t, values);
+  }
+  if (n >= 1) {
+    double* first = out + count;
+    for (int i = 0; i <= n - 1; ++i) {
+      const double b = n * values[i];
+      first[i] -= b;
+      first[i + 1] += b;
+    }
+    RaiseBasis(n, t, values);
   }
 }
 
@@ -105,6 +121,17 @@ void NewtonStep(int count, const LocalModel& model, const bool* free,
   if (scale == 0.0) scale = 1.0;
   double g[3];
   for (int a = 0; a < m; ++a) g[a] = model.gradient[index[a]];
+  if (m == 1) {  // the same shifts without the square root
+    const double h = model.hessian[index[0] * 4];
+    for (double shift = 0.0;; shift = shift == 0.0 ? 1e-12 : shift * 100.0) {
+      const double shifted = h + shift * scale;
+      if (shifted > 0.0 || shift > 1e12) {
+        const double d = -g[0] / shifted;
+        step[index[0]] = std::isfinite(d) ? d : 0.0;
+        return;
+      }
+    }
+  }
   for (double shift = 0.0;; shift = shift == 0.0 ? 1e-12 : shift * 100.0) {
     double h[9];
     for (int a = 0; a < m; ++a) {
@@ -164,9 +191,9 @@ Net LiftSurface(const SurfaceData& surface) {
                 surface.coordinates, surface.weights);
 }
 
-absl::StatusOr<Pieces> LiftCurvePieces(const Curve& curve,
-                                       const CancellationToken* cancel) {
-  absl::StatusOr<BezierDecomposition> pieces = CurveBezierPieces(curve, cancel);
+absl::StatusOr<Pieces> LiftPieces(const Curve& curve,
+                                  const CancellationToken* cancel) {
+  absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve, cancel);
   if (!pieces.ok()) return pieces.status();
   Pieces result{.dimension = DimensionOf(curve), .parameter_count = 1};
   for (const BezierCurveData& segment : pieces->segments) {
@@ -180,12 +207,13 @@ absl::StatusOr<Pieces> LiftCurvePieces(const Curve& curve,
   return result;
 }
 
-absl::StatusOr<Pieces> LiftSurfacePieces(const Surface& surface,
-                                         const CancellationToken* cancel) {
-  absl::StatusOr<SurfacePieces> pieces = SurfaceBezierPieces(surface, cancel);
+absl::StatusOr<Pieces> LiftPieces(const Surface& surface,
+                                  const CancellationToken* cancel) {
+  absl::StatusOr<SurfaceDecomposition> pieces =
+      DecomposeSurface(surface, cancel);
   if (!pieces.ok()) return pieces.status();
   Pieces result{.dimension = DimensionOf(surface), .parameter_count = 2};
-  for (const SurfaceData& patch : pieces->patches) {
+  for (const SurfaceData& patch : pieces->pieces.patches) {
     result.nets.push_back(LiftSurface(patch));
   }
   result.parameters = [shared = *std::move(pieces)](size_t k, double s,
@@ -198,29 +226,35 @@ absl::StatusOr<Pieces> LiftSurfacePieces(const Surface& surface,
 }
 
 void Halve(const Net& net, bool in_u, Net& low, Net& high) {
-  low = net;
-  high = net;
+  for (Net* half : {&low, &high}) {
+    half->dimension = net.dimension;
+    half->rational = net.rational;
+    half->count_u = net.count_u;
+    half->count_v = net.count_v;
+    half->values.resize(net.values.size());
+  }
   const int lines = in_u ? net.count_v : net.count_u;
   const int n = (in_u ? net.count_u : net.count_v) - 1;
   const int stride = net.stride();
-  std::vector<double> work(static_cast<size_t>(n + 1) * stride);
+  // de Casteljau in place on each line of `high`: after pass r its points
+  // 0..n-r are the r-th level, point 0 being low's point r, and point k
+  // keeps the level n - k once the pass n - k is done (high's point k).
   for (int line = 0; line < lines; ++line) {
-    auto source = [&](Net& target, int k) {
+    auto at = [&](Net& target, int k) {
       return in_u ? target.at(k, line) : target.at(line, k);
     };
     for (int k = 0; k <= n; ++k) {
       std::copy_n(in_u ? net.at(k, line) : net.at(line, k), stride,
-                  work.data() + static_cast<size_t>(k) * stride);
+                  at(high, k));
     }
+    std::copy_n(at(high, 0), stride, at(low, 0));
     for (int r = 1; r <= n; ++r) {
       for (int k = 0; k <= n - r; ++k) {
-        double* a = work.data() + static_cast<size_t>(k) * stride;
-        const double* b = a + stride;
+        double* a = at(high, k);
+        const double* b = at(high, k + 1);
         for (int x = 0; x < stride; ++x) a[x] = 0.5 * (a[x] + b[x]);
       }
-      std::copy_n(work.data(), stride, source(low, r));
-      std::copy_n(work.data() + static_cast<size_t>(n - r) * stride, stride,
-                  source(high, n - r));
+      std::copy_n(at(high, 0), stride, at(low, r));
     }
   }
 }
@@ -327,19 +361,44 @@ void PolygonLengths(absl::Span<const double> points, int dimension, int count_u,
   }
 }
 
-NetEvaluator::NetEvaluator(const Net& net)
-    : net_(net),
-      basis_u_(3 * static_cast<size_t>(net.count_u)),
-      basis_v_(3 * static_cast<size_t>(net.count_v)),
-      homogeneous_(PartialCount(2) * static_cast<size_t>(net.stride())) {}
+void NetEvaluator::EvaluateCurve(const Net& net, double s, double* partials) {
+  const int nu = net.count_u;
+  const int stride = net.stride();
+  basis_u_.resize(3 * static_cast<size_t>(nu));
+  BernsteinUpToSecond(nu - 1, s, basis_u_.data());
+  homogeneous_.resize(PartialCount(2) * static_cast<size_t>(stride));
+  double* out = net.rational ? homogeneous_.data() : partials;
+  std::fill(out, out + PartialCount(2) * stride, 0.0);
+  double* rows[3] = {out + PartialIndex(0, 0) * stride,
+                     out + PartialIndex(1, 0) * stride,
+                     out + PartialIndex(2, 0) * stride};
+  for (int i = 0; i < nu; ++i) {
+    const double* p = net.at(i, 0);
+    for (int k = 0; k < 3; ++k) {
+      const double b = basis_u_[static_cast<size_t>(k) * nu + i];
+      for (int x = 0; x < stride; ++x) rows[k][x] += b * p[x];
+    }
+  }
+  if (net.rational) {
+    ProjectHomogeneousSurfaceDerivatives(out, net.dimension, 2, partials);
+  }
+}
 
-void NetEvaluator::Evaluate(double s, double t, double* partials) {
-  const int nu = net_.count_u;
-  const int nv = net_.count_v;
-  const int stride = net_.stride();
-  BernsteinUpToSecond(nu - 1, s, scratch_, basis_u_.data());
-  BernsteinUpToSecond(nv - 1, t, scratch_, basis_v_.data());
-  double* out = net_.rational ? homogeneous_.data() : partials;
+void NetEvaluator::Evaluate(const Net& net, double s, double t,
+                            double* partials) {
+  if (net.count_v == 1) {
+    EvaluateCurve(net, s, partials);
+    return;
+  }
+  const int nu = net.count_u;
+  const int nv = net.count_v;
+  const int stride = net.stride();
+  basis_u_.resize(3 * static_cast<size_t>(nu));
+  basis_v_.resize(3 * static_cast<size_t>(nv));
+  BernsteinUpToSecond(nu - 1, s, basis_u_.data());
+  BernsteinUpToSecond(nv - 1, t, basis_v_.data());
+  homogeneous_.resize(PartialCount(2) * static_cast<size_t>(stride));
+  double* out = net.rational ? homogeneous_.data() : partials;
   std::fill(out, out + PartialCount(2) * stride, 0.0);
   for (int k = 0; k <= 2; ++k) {
     for (int l = 0; k + l <= 2; ++l) {
@@ -349,22 +408,22 @@ void NetEvaluator::Evaluate(double s, double t, double* partials) {
         if (bu == 0.0) continue;
         for (int j = 0; j < nv; ++j) {
           const double b = bu * basis_v_[static_cast<size_t>(l) * nv + j];
-          const double* p = net_.at(i, j);
+          const double* p = net.at(i, j);
           for (int x = 0; x < stride; ++x) target[x] += b * p[x];
         }
       }
     }
   }
-  if (net_.rational) {
-    ProjectHomogeneousSurfaceDerivatives(out, net_.dimension, 2, partials);
+  if (net.rational) {
+    ProjectHomogeneousSurfaceDerivatives(out, net.dimension, 2, partials);
   }
 }
 
-void DistanceModel(NetEvaluator& evaluator, int parameter_count,
+void DistanceModel(NetEvaluator& evaluator, const Net& net, int parameter_count,
                    const double* query, const double* x, double* partials,
                    LocalModel& model) {
-  const int dim = evaluator.dimension();
-  evaluator.Evaluate(x[0], parameter_count == 2 ? x[1] : 0.0, partials);
+  const int dim = net.dimension;
+  evaluator.Evaluate(net, x[0], parameter_count == 2 ? x[1] : 0.0, partials);
   const double* s = partials;
   const double* su = s + dim;
   const double* sv = s + 2 * dim;
@@ -402,6 +461,14 @@ double MinimizeInBox(int count, const double* lower, const double* upper,
     }
     double step[3];
     NewtonStep(count, current, free, step);
+    // Converged: the step is within a few rounding errors of x.
+    bool negligible = true;
+    for (int i = 0; i < count; ++i) {
+      negligible &= std::abs(step[i]) <=
+                    4.0 * std::numeric_limits<double>::epsilon() *
+                        std::max(std::abs(x[i]), upper[i] - lower[i]);
+    }
+    if (negligible) break;
     bool moved = false;
     for (double fraction = 1.0; fraction > 1e-12; fraction *= 0.5) {
       double trial[3];
@@ -416,10 +483,12 @@ double MinimizeInBox(int count, const double* lower, const double* upper,
       // Near the minimum the value stops resolving the step (it changes
       // by rounding only) while the gradient still does: a step that halves
       // the projected gradient and keeps the value within rounding counts.
-      const bool flat = next.value <= current.value * (1.0 + 1e-10) &&
-                        GradientNorm(count, next, trial, lower, upper) <
-                            0.5 * GradientNorm(count, current, x, lower, upper);
-      if (next.value < current.value || flat) {
+      const bool better =
+          next.value < current.value ||
+          (next.value <= current.value * (1.0 + 1e-10) &&
+           GradientNorm(count, next, trial, lower, upper) <
+               0.5 * GradientNorm(count, current, x, lower, upper));
+      if (better) {
         std::copy_n(trial, count, x);
         current = next;
         moved = true;

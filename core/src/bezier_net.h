@@ -44,9 +44,9 @@ struct Net {
 Net LiftCurve(const BezierCurveData& curve);
 Net LiftSurface(const SurfaceData& surface);
 
-// A geometry's Bezier pieces (bezier_pieces.h), lifted, and the map from a
-// piece's (s, t) in [0, 1]^2 to the geometry's parameters (one for a curve,
-// whose t is ignored; two for a surface).
+// A geometry's Bezier pieces (DecomposeCurve, DecomposeSurface), lifted, and
+// the map from a piece's (s, t) in [0, 1]^2 to the geometry's parameters (one
+// for a curve, whose t is ignored; two for a surface).
 struct Pieces {
   int dimension = 0;
   int parameter_count = 1;
@@ -54,14 +54,15 @@ struct Pieces {
   std::function<void(size_t, double, double, double*)> parameters;
 };
 
-// LiftCurvePieces and LiftSurfacePieces return the pieces of valid
-// geometry; they fail only with the token's status.
-absl::StatusOr<Pieces> LiftCurvePieces(const Curve& curve,
-                                       const CancellationToken* cancel);
-absl::StatusOr<Pieces> LiftSurfacePieces(const Surface& surface,
-                                         const CancellationToken* cancel);
+// LiftPieces returns the pieces of a valid curve or surface; it fails only
+// with the token's status.
+absl::StatusOr<Pieces> LiftPieces(const Curve& curve,
+                                  const CancellationToken* cancel);
+absl::StatusOr<Pieces> LiftPieces(const Surface& surface,
+                                  const CancellationToken* cancel);
 
-// Halve writes the halves [0, 1/2] and [1/2, 1] of `net` in u (in_u) or v.
+// Halve writes the halves [0, 1/2] and [1/2, 1] of `net` in u (in_u) or v
+// (reusing the memory `low` and `high` hold).
 void Halve(const Net& net, bool in_u, Net& low, Net& high);
 
 // Project writes the Cartesian control points (dimension values each) and
@@ -103,20 +104,19 @@ void PolygonLengths(absl::Span<const double> points, int dimension, int count_u,
 
 // NetEvaluator evaluates a net's partials S, S_u, S_v, S_uu, S_uv, S_vv at
 // (s, t) in [0, 1]^2 (PartialIndex order, dimension values each; those in v
-// are zero for a curve). Not thread-safe: one per thread.
+// are zero for a curve). It holds only scratch memory, so one serves every
+// net. Not thread-safe: one per thread.
 class NetEvaluator {
  public:
-  explicit NetEvaluator(const Net& net);
-  int dimension() const { return net_.dimension; }
-  // Evaluate writes the 6 partials into partials[6 * dimension].
-  void Evaluate(double s, double t, double* partials);
+  // Evaluate writes the 6 partials of `net` into partials[6 * dimension].
+  void Evaluate(const Net& net, double s, double t, double* partials);
 
  private:
-  const Net& net_;
+  void EvaluateCurve(const Net& net, double s, double* partials);
+
   std::vector<double> basis_u_;
   std::vector<double> basis_v_;
   std::vector<double> homogeneous_;
-  std::vector<double> scratch_;
 };
 
 // The value, gradient and Hessian (row-major) of a function of up to 3
@@ -128,9 +128,9 @@ struct LocalModel {
 };
 
 // DistanceModel evaluates |S(x) - query|^2 / 2 with its gradient and
-// Hessian (full Newton: the second partials included) for a net of
+// Hessian (full Newton: the second partials included) for `net` of
 // `parameter_count` parameters; `partials` is scratch of 6 * dimension.
-void DistanceModel(NetEvaluator& evaluator, int parameter_count,
+void DistanceModel(NetEvaluator& evaluator, const Net& net, int parameter_count,
                    const double* query, const double* x, double* partials,
                    LocalModel& model);
 
@@ -139,7 +139,8 @@ void DistanceModel(NetEvaluator& evaluator, int parameter_count,
 // gradient pointing out are held, the others take the Newton step (the
 // Hessian shifted until positive definite), halved until the value
 // decreases (or, once the value changes by rounding only, until the
-// projected gradient shrinks). Returns the value at the final x.
+// projected gradient shrinks); it stops when no step decreases, or when the
+// step is within rounding of x. Returns the value at the final x.
 double MinimizeInBox(int count, const double* lower, const double* upper,
                      double* x,
                      absl::FunctionRef<void(const double*, LocalModel&)> model,

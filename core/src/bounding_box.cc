@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "freeform/core/elevation.h"
@@ -12,7 +13,6 @@
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/triangular.h"
-#include "variant_dispatch.h"
 
 namespace freeform {
 namespace {
@@ -195,20 +195,6 @@ SurfaceData ColumnOf(BezierCurveData curve) {
           .weights = std::move(curve.weights)};
 }
 
-// A Bezier surface's own net.
-SurfaceData NetOf(const BezierSurfaceView& view) {
-  const ControlNetView& net = view.control_net;
-  return {.degree_u = net.count_u - 1,
-          .degree_v = net.count_v - 1,
-          .dimension = net.dimension,
-          .count_u = net.count_u,
-          .count_v = net.count_v,
-          .coordinates = {net.coordinates.begin(), net.coordinates.end()},
-          .knots_u = {},
-          .knots_v = {},
-          .weights = {view.weights.begin(), view.weights.end()}};
-}
-
 // A triangular patch's own control points (its domain triangle does not
 // change its points).
 TriangularPatchData PatchOf(const TriangularPatchView& view) {
@@ -242,24 +228,16 @@ absl::StatusOr<BoundingBox> SurfaceBoundingBox(
   if (absl::Status status = CheckTolerance(tolerance); !status.ok()) {
     return status;
   }
-  return std::visit(
-      internal::Overloaded{
-          [&](const BezierSurface& bezier) {
-            return BoxOf(std::vector<SurfaceData>{NetOf(bezier.view())},
-                         tolerance, cancel);
-          },
-          [&](const BSplineSurface& bspline) -> absl::StatusOr<BoundingBox> {
-            absl::StatusOr<BezierPatchDecomposition> patches =
-                DecomposeBSplineSurface(bspline.view(), cancel);
-            if (!patches.ok()) return patches.status();
-            return BoxOf(patches->patches, tolerance, cancel);
-          },
-          [&](const TriangularPatch& patch) {
-            return BoxOf(
-                std::vector<TriangularPatchData>{PatchOf(patch.view())},
-                tolerance, cancel);
-          }},
-      surface);
+  // A triangular patch is halved as a triangle (BisectTriangularPatch), a
+  // tensor surface as its Bezier pieces.
+  if (const auto* patch = std::get_if<TriangularPatch>(&surface)) {
+    return BoxOf(std::vector<TriangularPatchData>{PatchOf(patch->view())},
+                 tolerance, cancel);
+  }
+  absl::StatusOr<SurfaceDecomposition> pieces =
+      DecomposeSurface(surface, cancel);
+  if (!pieces.ok()) return pieces.status();
+  return BoxOf(pieces->pieces.patches, tolerance, cancel);
 }
 
 }  // namespace freeform

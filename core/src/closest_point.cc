@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "bezier_net.h"
@@ -63,6 +65,204 @@ struct Candidate {
   double distance = kInfinity;
 };
 
+// What every query reads about the pieces, computed once per batch: their
+// projected control points, whether the hull property holds (positive
+// weights), and the box of the control points (its centre and half widths
+// by coordinate, piece after piece, so that one pass over all pieces runs
+// in SIMD lanes) with the radius of the ball about its centre.
+struct Prepared {
+  explicit Prepared(const Pieces& pieces);
+
+  // Gaps writes, for every piece k < padded, box[k] = the squared distance
+  // from `query` to its box (0 without the hull property) and centre[k] =
+  // the squared distance to the box's centre.
+  void Gaps(const double* query, double* box, double* centre) const;
+  // Reachable returns false when piece k, whose gaps are box and centre, is
+  // certainly farther than `limit`: its box or its ball is.
+  bool Reachable(size_t k, double box, double centre, double limit) const {
+    const double ball = limit + radius[k];
+    return box <= limit * limit && centre <= ball * ball;
+  }
+
+  const Pieces& pieces;
+  std::vector<std::vector<double>> projected;
+  std::vector<uint8_t> hull;
+  std::vector<size_t> hull_less;  // the pieces without the hull property
+  size_t padded = 0;              // the number of pieces rounded up to 4
+  std::vector<double> middle;     // [x * padded + k]: the box's centre
+  std::vector<double> half;       // [x * padded + k]: its half width
+  std::vector<double> radius;     // of the ball about the box's centre
+  std::vector<double> diameter;
+  double parameter_slack = 0.0;  // curves: parameters this close are one
+};
+
+Prepared::Prepared(const Pieces& pieces_in) : pieces(pieces_in) {
+  const size_t count = pieces.nets.size();
+  const size_t dim = static_cast<size_t>(pieces.dimension);
+  projected.resize(count);
+  hull.resize(count);
+  padded = (count + 3) / 4 * 4;
+  middle.assign(padded * dim, kInfinity);
+  half.assign(padded * dim, 0.0);
+  radius.assign(count, kInfinity);
+  diameter.assign(count, kInfinity);
+  std::vector<double> lo(dim), hi(dim);
+  for (size_t k = 0; k < count; ++k) {
+    hull[k] = internal::Project(pieces.nets[k], projected[k]) ? 1 : 0;
+    if (!hull[k]) {
+      hull_less.push_back(k);
+      continue;
+    }
+    const std::vector<double>& points = projected[k];
+    std::copy_n(points.data(), dim, lo.data());
+    std::copy_n(points.data(), dim, hi.data());
+    for (size_t i = 0; i < points.size(); ++i) {
+      lo[i % dim] = std::min(lo[i % dim], points[i]);
+      hi[i % dim] = std::max(hi[i % dim], points[i]);
+    }
+    for (size_t x = 0; x < dim; ++x) {
+      middle[x * padded + k] = 0.5 * (lo[x] + hi[x]);
+      half[x * padded + k] = 0.5 * (hi[x] - lo[x]);
+    }
+    diameter[k] = Distance(lo.data(), hi.data(), pieces.dimension);
+    double widest = 0.0;
+    for (size_t i = 0; i < points.size(); i += dim) {
+      double sum = 0.0;
+      for (size_t x = 0; x < dim; ++x) {
+        const double d = points[i + x] - middle[x * padded + k];
+        sum += d * d;
+      }
+      widest = std::max(widest, sum);
+    }
+    radius[k] = std::sqrt(widest);
+  }
+  double start[2], end[2];
+  pieces.parameters(0, 0.0, 0.0, start);
+  pieces.parameters(count - 1, 1.0, 1.0, end);
+  parameter_slack = 1e-9 * std::abs(end[0] - start[0]);
+}
+
+// GapsOf is Prepared::Gaps for `Dimension` coordinates (0: any, `dim`),
+// four pieces at a time (SIMD lanes); the padding pieces are infinitely
+// far.
+template <int Dimension>
+void GapsOf(const Prepared& prepared, int dim, const double* query, double* box,
+            double* centre) {
+  const size_t padded = prepared.padded;
+  const int d = Dimension > 0 ? Dimension : dim;
+  for (size_t k = 0; k < padded; k += 4) {
+    double outside[4] = {0.0, 0.0, 0.0, 0.0};
+    double inside[4] = {0.0, 0.0, 0.0, 0.0};
+    for (int x = 0; x < d; ++x) {
+      const double* middle = prepared.middle.data() + x * padded + k;
+      const double* half = prepared.half.data() + x * padded + k;
+      for (int lane = 0; lane < 4; ++lane) {
+        const double offset = query[x] - middle[lane];
+        const double beyond = std::abs(offset) - half[lane];
+        const double gap = 0.5 * (beyond + std::abs(beyond));  // max(., 0)
+        outside[lane] += gap * gap;
+        inside[lane] += offset * offset;
+      }
+    }
+    for (int lane = 0; lane < 4; ++lane) {
+      box[k + lane] = outside[lane];
+      centre[k + lane] = inside[lane];
+    }
+  }
+  for (const size_t k : prepared.hull_less) box[k] = 0.0;
+}
+
+void Prepared::Gaps(const double* query, double* box, double* centre) const {
+  switch (pieces.dimension) {
+    case 2:
+      return GapsOf<2>(*this, 2, query, box, centre);
+    case 3:
+      return GapsOf<3>(*this, 3, query, box, centre);
+    default:
+      return GapsOf<0>(*this, pieces.dimension, query, box, centre);
+  }
+}
+
+// What the Bernstein coefficients of phi(s) = |C(s) - q|^2 / 2 tell about a
+// polynomial curve part in its own parameter s in [0, 1]: lower bounds of
+// phi and of phi'' over the part (-infinity when unknown).
+struct PhiHull {
+  double lowest = -kInfinity;
+  double curvature = -kInfinity;
+};
+
+// PhiHulls computes the PhiHull of polynomial curve parts: phi is the
+// polynomial of degree m = 2n with the Bernstein coefficients
+// c_k = sum_{i+j=k} binom(n,i) binom(n,j) / binom(m,k) (P_i - q).(P_j - q)
+// / 2, so phi >= min_k c_k and
+// phi'' = m (m - 1) sum_k (c_k - 2 c_{k+1} + c_{k+2}) B(m-2,k) >=
+// m (m - 1) min_k of the second differences (docs/references.md, 'Closest
+// points by branch and bound'). Each c_k is a convex combination of the
+// products, so it is exact to a few rounding errors of max_i |P_i - q|^2,
+// which both bounds give up. It keeps the weights of the last degree.
+class PhiHulls {
+ public:
+  // Of returns the PhiHull of the part with `count` control points
+  // `points` of `dimension` coordinates for the query q.
+  PhiHull Of(const double* points, int count, int dimension, const double* q);
+
+ private:
+  int degree_ = -1;
+  std::vector<double> weights_;  // [i * (n + 1) + j], j >= i
+  std::vector<double> c_;
+};
+
+PhiHull PhiHulls::Of(const double* points, int count, int dimension,
+                     const double* q) {
+  const int n = count - 1;
+  const int m = 2 * n;
+  constexpr int kMaxDegree = 64;
+  if (n < 1 || n > kMaxDegree) return {};
+  const size_t row = static_cast<size_t>(count);
+  if (n != degree_) {
+    double binomial_n[kMaxDegree + 1];
+    double binomial_m[2 * kMaxDegree + 1];
+    binomial_n[0] = binomial_m[0] = 1.0;
+    for (int i = 1; i <= n; ++i) {
+      binomial_n[i] = binomial_n[i - 1] * (n - i + 1) / i;
+    }
+    for (int k = 1; k <= m; ++k) {
+      binomial_m[k] = binomial_m[k - 1] * (m - k + 1) / k;
+    }
+    weights_.assign(row * row, 0.0);
+    for (int i = 0; i <= n; ++i) {
+      for (int j = i; j <= n; ++j) {
+        weights_[i * row + j] = (i == j ? 0.5 : 1.0) * binomial_n[i] *
+                                binomial_n[j] / binomial_m[i + j];
+      }
+    }
+    degree_ = n;
+  }
+  c_.assign(static_cast<size_t>(m) + 1, 0.0);
+  double reach = 0.0;
+  for (int i = 0; i <= n; ++i) {
+    const double* a = points + static_cast<size_t>(i) * dimension;
+    for (int j = i; j <= n; ++j) {
+      const double* b = points + static_cast<size_t>(j) * dimension;
+      double dot = 0.0;
+      for (int x = 0; x < dimension; ++x) dot += (a[x] - q[x]) * (b[x] - q[x]);
+      if (i == j) reach = std::max(reach, dot);
+      c_[static_cast<size_t>(i + j)] += weights_[i * row + j] * dot;
+    }
+  }
+  double lowest = kInfinity;
+  for (const double value : c_) lowest = std::min(lowest, value);
+  double second = kInfinity;
+  for (size_t k = 0; k + 2 <= static_cast<size_t>(m); ++k) {
+    second = std::min(second, c_[k] - 2.0 * c_[k + 1] + c_[k + 2]);
+  }
+  const double rounding = 4.0 * (dimension + m + 4) *
+                          std::numeric_limits<double>::epsilon() * reach;
+  return {.lowest = lowest - rounding,
+          .curvature =
+              static_cast<double>(m) * (m - 1) * (second - 4.0 * rounding)};
+}
+
 // A part of a piece: its net over the box [lo, hi] of the piece's
 // parameters, and what the search knows about it.
 struct Node {
@@ -75,6 +275,7 @@ struct Node {
   double diameter = kInfinity;   // of its control points' box
   Candidate corner;              // its best corner (a point of the geometry)
   double guess[2] = {0.0, 0.0};  // where its control point nearest q sits
+  PhiHull phi;                   // polynomial curves
 };
 
 const Net& NetOf(const Node& node) {
@@ -86,23 +287,12 @@ bool LaterBound(const Node& a, const Node& b) { return a.bound > b.bound; }
 // The search for one query; one per thread, reused across queries.
 class Search {
  public:
-  Search(const Pieces& pieces, const ClosestPointOptions& options)
-      : pieces_(pieces), options_(options) {
-    evaluators_.reserve(pieces.nets.size());
-    for (const Net& net : pieces.nets) evaluators_.emplace_back(net);
-    partials_.resize(6 * static_cast<size_t>(pieces.dimension));
-    corner_point_.resize(static_cast<size_t>(pieces.dimension));
-    // The pieces' projected control points, shared by every query.
-    projected_pieces_.resize(pieces.nets.size());
-    hull_pieces_.resize(pieces.nets.size());
-    for (size_t k = 0; k < pieces.nets.size(); ++k) {
-      hull_pieces_[k] = internal::Project(pieces.nets[k], projected_pieces_[k]);
-    }
-    double start[2], end[2];
-    pieces.parameters(0, 0.0, 0.0, start);
-    pieces.parameters(pieces.nets.size() - 1, 1.0, 1.0, end);
-    parameter_slack_ = 1e-9 * std::abs(end[0] - start[0]);
-  }
+  Search(const Prepared& prepared, const ClosestPointOptions& options)
+      : prepared_(prepared),
+        pieces_(prepared.pieces),
+        options_(options),
+        partials_(6 * static_cast<size_t>(prepared.pieces.dimension)),
+        corner_point_(static_cast<size_t>(prepared.pieces.dimension)) {}
 
   // Run answers query r into `answer`; returns the token's status when it
   // stopped the search.
@@ -115,29 +305,37 @@ class Search {
   Candidate Newton(const Candidate& start, const double* lo, const double* hi,
                    int iterations);
   void Model(size_t piece, const double* x, LocalModel& model);
-  bool Branch(CancellationPoll& poll, absl::Status& status);
+  double ConvexBound(const Node& node, const Candidate& found,
+                     double curvature);
+  bool Examine(Node node, CancellationPoll& poll, absl::Status& status);
+  void Push(Node node);
   void Report(size_t r, ClosestPoints& answer);
   double* PointOf(const Candidate& candidate);
+  Net Spare();
 
+  const Prepared& prepared_;
   const Pieces& pieces_;
   const ClosestPointOptions& options_;
-  std::vector<NetEvaluator> evaluators_;
+  NetEvaluator evaluator_;
   std::vector<double> partials_;
   std::vector<double> projected_;
-  std::vector<std::vector<double>> projected_pieces_;
-  std::vector<bool> hull_pieces_;
   std::vector<double> corner_point_;
+  PhiHulls phi_;
+  std::vector<double> box_gaps_;
+  std::vector<double> centre_gaps_;
   const double* query_ = nullptr;
   std::vector<Node> heap_;
+  std::vector<Net> spare_;
   std::vector<Candidate> candidates_;
+  std::vector<Candidate> polished_;
   double best_ = kInfinity;
   double lower_ = kInfinity;
-  double parameter_slack_ = 0.0;  // curves: parameters this close are one
 };
 
 void Search::Model(size_t piece, const double* x, LocalModel& model) {
-  internal::DistanceModel(evaluators_[piece], pieces_.parameter_count, query_,
-                          x, partials_.data(), model);
+  internal::DistanceModel(evaluator_, pieces_.nets[piece],
+                          pieces_.parameter_count, query_, x, partials_.data(),
+                          model);
 }
 
 Candidate Search::Newton(const Candidate& start, const double* lo,
@@ -153,9 +351,16 @@ Candidate Search::Newton(const Candidate& start, const double* lo,
 }
 
 double* Search::PointOf(const Candidate& candidate) {
-  evaluators_[candidate.piece].Evaluate(candidate.x[0], candidate.x[1],
-                                        partials_.data());
+  evaluator_.Evaluate(pieces_.nets[candidate.piece], candidate.x[0],
+                      candidate.x[1], partials_.data());
   return partials_.data();
+}
+
+Net Search::Spare() {
+  if (spare_.empty()) return Net{};
+  Net net = std::move(spare_.back());
+  spare_.pop_back();
+  return net;
 }
 
 Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
@@ -167,10 +372,18 @@ Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
             .shared = shared,
             .owned = std::move(owned)};
   const Net& net = NetOf(node);
-  const bool hull = shared != nullptr ? hull_pieces_[piece]
+  // A polynomial curve part is bounded by the coefficients of phi, and
+  // most parts are ruled out by that alone.
+  const bool polynomial_curve = net.count_v == 1 && !net.rational;
+  if (polynomial_curve) {
+    node.phi = phi_.Of(net.values.data(), net.count_u, dim, query_);
+    node.bound = std::sqrt(2.0 * std::max(node.phi.lowest, 0.0));
+    if (node.bound > best_ + options_.tolerance) return node;
+  }
+  const bool hull = shared != nullptr ? prepared_.hull[piece] != 0
                                       : internal::Project(net, projected_);
   const std::vector<double>& projected =
-      shared != nullptr ? projected_pieces_[piece] : projected_;
+      shared != nullptr ? prepared_.projected[piece] : projected_;
   const int nu = net.count_u;
   const int nv = net.count_v;
   double* point = corner_point_.data();
@@ -186,17 +399,18 @@ Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
       }
     }
   }
-  double nearest = kInfinity;
+  double nearest = kInfinity;  // squared
   const double* nearest_point = nullptr;
   for (int i = 0; hull && i < nu; ++i) {
     for (int j = 0; j < nv; ++j) {
-      const double d =
-          Distance(projected.data() + (static_cast<size_t>(i) * nv + j) * dim,
-                   query_, dim);
+      const double* p =
+          projected.data() + (static_cast<size_t>(i) * nv + j) * dim;
+      double d = 0.0;
+      for (int x = 0; x < dim; ++x)
+        d += (p[x] - query_[x]) * (p[x] - query_[x]);
       if (d >= nearest) continue;
       nearest = d;
-      nearest_point =
-          projected.data() + (static_cast<size_t>(i) * nv + j) * dim;
+      nearest_point = p;
       node.guess[0] = lo[0] + (nu > 1 ? i / (nu - 1.0) : 0.0) * (hi[0] - lo[0]);
       node.guess[1] = lo[1] + (nv > 1 ? j / (nv - 1.0) : 0.0) * (hi[1] - lo[1]);
     }
@@ -205,10 +419,13 @@ Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
     node.guess[0] = 0.5 * (lo[0] + hi[0]);
     node.guess[1] = 0.5 * (lo[1] + hi[1]);
   } else {
-    node.diameter = internal::BoxDiameter(projected, dim);
-    node.bound = std::max(
-        internal::BoxDistance(projected, dim, query_),
-        internal::DirectionalBound(projected, dim, query_, nearest_point));
+    node.diameter = shared != nullptr ? prepared_.diameter[piece]
+                                      : internal::BoxDiameter(projected, dim);
+    if (!polynomial_curve) {
+      node.bound = std::max(
+          internal::BoxDistance(projected, dim, query_),
+          internal::DirectionalBound(projected, dim, query_, nearest_point));
+    }
   }
   if (node.corner.distance < best_) {
     best_ = node.corner.distance;
@@ -217,17 +434,44 @@ Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
   return node;
 }
 
-// Branch takes the node of smallest bound: drops it (and stops) when the
-// bound exceeds best + tolerance, else runs Newton in it and resolves or
-// halves it. Returns false when the search is over.
-bool Search::Branch(CancellationPoll& poll, absl::Status& status) {
-  std::pop_heap(heap_.begin(), heap_.end(), LaterBound);
-  Node node = std::move(heap_.back());
-  heap_.pop_back();
-  if (node.bound > best_ + options_.tolerance) return false;
+// ConvexBound returns a lower bound of the distance to q over a part of a
+// curve piece on which phi = |C - q|^2 / 2 is strictly convex, phi'' >=
+// `curvature` > 0 on [lo, hi] (in the piece's parameter): phi(s) >=
+// phi(x) + phi'(x) (s - x) + curvature (s - x)^2 / 2 about the point x that
+// Newton found, whose minimum over [lo, hi] is exact to second order in
+// phi'(x) (docs/references.md, 'Closest points by branch and bound').
+double Search::ConvexBound(const Node& node, const Candidate& found,
+                           double curvature) {
+  LocalModel model;
+  Model(node.piece, found.x, model);
+  const double x = found.x[0];
+  const double g = model.gradient[0];
+  const double s = std::clamp(x - g / curvature, node.lo[0], node.hi[0]);
+  const double lowest =
+      model.value + g * (s - x) + 0.5 * curvature * (s - x) * (s - x);
+  return std::sqrt(2.0 * std::max(lowest, 0.0));
+}
+
+void Search::Push(Node node) {
+  if (node.bound > best_ + options_.tolerance) {
+    if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
+    return;
+  }
+  heap_.push_back(std::move(node));
+  std::push_heap(heap_.begin(), heap_.end(), LaterBound);
+}
+
+// Examine runs Newton in a node whose bound is within tolerance of the best,
+// then resolves it, drops it (a convex part whose minimum is too far) or
+// halves it. Returns false when the token stopped the search.
+bool Search::Examine(Node node, CancellationPoll& poll, absl::Status& status) {
   const Net& net = NetOf(node);
   status = poll.Done(net.values.size() * 16);
   if (!status.ok()) return false;
+  if (node.bound > best_ + options_.tolerance) {
+    if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
+    return true;
+  }
   Candidate start = node.corner;
   start.x[0] = node.guess[0];
   start.x[1] = node.guess[1];
@@ -237,13 +481,26 @@ bool Search::Branch(CancellationPoll& poll, absl::Status& status) {
   if (node.corner.distance < found.distance) found = node.corner;
   candidates_.push_back(found);
   best_ = std::min(best_, found.distance);
-  // Resolved: its distance is certified, and it is small enough to hold
-  // one minimum of those within tolerance of the best (see the header).
+  // Resolved: its distance is certified, and it holds one minimum of those
+  // within tolerance of the best: it is convex, or small (see the header).
   const double leaf = 16.0 * std::max({options_.separation, options_.tolerance,
                                        std::sqrt(options_.tolerance * best_)});
+  const bool tight = found.distance - node.bound <= options_.tolerance;
+  const double width = node.hi[0] - node.lo[0];
+  const double curvature = node.phi.curvature / (width * width);
+  if ((!tight || node.diameter > leaf) && curvature > 0.0 &&
+      std::isfinite(curvature)) {
+    node.bound = std::max(node.bound, ConvexBound(node, found, curvature));
+    node.diameter = 0.0;  // one minimum: resolved once tight
+  }
+  if (node.bound > best_ + options_.tolerance) {
+    if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
+    return true;
+  }
   if (found.distance - node.bound <= options_.tolerance &&
       node.diameter <= leaf) {
     lower_ = std::min(lower_, node.bound);
+    if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
     return true;
   }
   internal::Project(net, projected_);
@@ -254,20 +511,26 @@ bool Search::Branch(CancellationPoll& poll, absl::Status& status) {
                              net.count_v, along_u, along_v);
   }
   const bool in_u = net.count_v == 1 || along_u >= along_v;
-  Net low, high;
+  Net low = Spare();
+  Net high = Spare();
   internal::Halve(net, in_u, low, high);
+  if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
   const int axis = in_u ? 0 : 1;
   const double middle = 0.5 * (node.lo[axis] + node.hi[axis]);
   double lo_high[2] = {node.lo[0], node.lo[1]};
   double hi_low[2] = {node.hi[0], node.hi[1]};
   lo_high[axis] = middle;
   hi_low[axis] = middle;
+  // Newton in the half that holds the point found here starts from it.
   for (Node child :
        {MakeNode(node.piece, node.lo, hi_low, nullptr, std::move(low)),
         MakeNode(node.piece, lo_high, node.hi, nullptr, std::move(high))}) {
-    if (child.bound > best_ + options_.tolerance) continue;
-    heap_.push_back(std::move(child));
-    std::push_heap(heap_.begin(), heap_.end(), LaterBound);
+    if (found.piece == node.piece && found.x[axis] >= child.lo[axis] &&
+        found.x[axis] <= child.hi[axis]) {
+      child.guess[0] = found.x[0];
+      child.guess[1] = found.x[1];
+    }
+    Push(std::move(child));
   }
   return true;
 }
@@ -279,22 +542,48 @@ absl::Status Search::Run(const double* query, size_t r, CancellationPoll& poll,
   candidates_.clear();
   best_ = kInfinity;
   lower_ = kInfinity;
+  // The piece nearest by its box (then by its box's centre) is examined
+  // first: the best distance it sets rules out most other pieces at once.
+  const size_t count = pieces_.nets.size();
+  box_gaps_.resize(prepared_.padded);
+  centre_gaps_.resize(prepared_.padded);
+  prepared_.Gaps(query, box_gaps_.data(), centre_gaps_.data());
+  size_t seed = 0;
+  for (size_t k = 1; k < count; ++k) {
+    if (box_gaps_[k] < box_gaps_[seed] ||
+        (box_gaps_[k] == box_gaps_[seed] &&
+         centre_gaps_[k] < centre_gaps_[seed])) {
+      seed = k;
+    }
+  }
   const double zero[2] = {0.0, 0.0};
   const double one[2] = {1.0, 1.0};
-  for (size_t k = 0; k < pieces_.nets.size(); ++k) {
-    heap_.push_back(MakeNode(k, zero, one, &pieces_.nets[k], Net{}));
-  }
-  std::make_heap(heap_.begin(), heap_.end(), LaterBound);
-  size_t examined = 0;
-  bool complete = true;
+  size_t examined = 1;
   absl::Status status;
-  while (!heap_.empty()) {
+  bool running = Examine(MakeNode(seed, zero, one, &pieces_.nets[seed], Net{}),
+                         poll, status);
+  for (size_t k = 0; running && k < count; ++k) {
+    if (k == seed || !prepared_.Reachable(k, box_gaps_[k], centre_gaps_[k],
+                                          best_ + options_.tolerance)) {
+      continue;
+    }
+    Push(MakeNode(k, zero, one, &pieces_.nets[k], Net{}));
+  }
+  bool complete = true;
+  while (running && !heap_.empty() &&
+         heap_.front().bound <= best_ + options_.tolerance) {
     if (++examined > options_.max_pieces) {
       complete = false;
       lower_ = std::min(lower_, heap_.front().bound);
       break;
     }
-    if (!Branch(poll, status)) break;
+    std::pop_heap(heap_.begin(), heap_.end(), LaterBound);
+    Node node = std::move(heap_.back());
+    heap_.pop_back();
+    running = Examine(std::move(node), poll, status);
+  }
+  for (Node& node : heap_) {
+    if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
   }
   if (!status.ok()) return status;
   answer.complete[r] = complete ? 1 : 0;
@@ -308,28 +597,33 @@ void Search::Report(size_t r, ClosestPoints& answer) {
   const double zero[2] = {0.0, 0.0};
   const double one[2] = {1.0, 1.0};
   const double limit = best_ + options_.tolerance;
-  std::vector<Candidate> polished;
-  for (const Candidate& candidate : candidates_) {
-    if (candidate.distance <= limit) {
-      polished.push_back(Newton(candidate, zero, one, kPolishNewtonSteps));
+  polished_.clear();
+  for (size_t k = 0; k < candidates_.size(); ++k) {
+    const Candidate& candidate = candidates_[k];
+    // The halves of a part start from its point and often end there too.
+    const bool again = k > 0 && candidates_[k - 1].piece == candidate.piece &&
+                       candidates_[k - 1].x[0] == candidate.x[0] &&
+                       candidates_[k - 1].x[1] == candidate.x[1];
+    if (candidate.distance <= limit && !again) {
+      polished_.push_back(Newton(candidate, zero, one, kPolishNewtonSteps));
     }
   }
-  std::sort(polished.begin(), polished.end(),
+  std::sort(polished_.begin(), polished_.end(),
             [](const Candidate& a, const Candidate& b) {
               return a.distance < b.distance;
             });
   const int dim = pieces_.dimension;
   const int pc = pieces_.parameter_count;
   const size_t slots = static_cast<size_t>(answer.max_minima);
-  const double smallest = polished.front().distance;
+  const double smallest = polished_.front().distance;
   int kept = 0;
-  for (const Candidate& candidate : polished) {
+  for (const Candidate& candidate : polished_) {
     if (candidate.distance > smallest + options_.tolerance) break;
     const double* point = PointOf(candidate);
     double* points = answer.points.data() + r * slots * dim;
     double* parameters = answer.parameters.data() + r * slots * pc;
-    double t = 0.0;
-    pieces_.parameters(candidate.piece, candidate.x[0], candidate.x[1], &t);
+    double t[2] = {0.0, 0.0};  // (u, v) on a surface
+    pieces_.parameters(candidate.piece, candidate.x[0], candidate.x[1], t);
     bool seen = false;
     for (int k = 0; k < kept && !seen; ++k) {
       // On a curve a point reached at two parameters (a self-intersection,
@@ -337,7 +631,8 @@ void Search::Report(size_t r, ClosestPoints& answer) {
       // collapsed edge such as a pole has many parameters).
       seen = Distance(point, points + static_cast<size_t>(k) * dim, dim) <=
                  options_.separation &&
-             (pc == 2 || std::abs(t - parameters[k]) <= parameter_slack_);
+             (pc == 2 ||
+              std::abs(t[0] - parameters[k]) <= prepared_.parameter_slack);
     }
     if (seen) continue;
     if (kept == answer.max_minima) {
@@ -370,11 +665,12 @@ absl::StatusOr<ClosestPoints> Solve(const Pieces& pieces,
       .complete = std::vector<uint8_t>(count),
       .parameters = std::vector<double>(slots * pieces.parameter_count),
       .points = std::vector<double>(slots * pieces.dimension)};
+  const Prepared prepared(pieces);
   ExecutionContext chunks = context;
-  chunks.grain = std::clamp<size_t>(context.grain, 1, 16);
+  chunks.grain = std::clamp<size_t>(context.grain, 1, 64);
   std::atomic<bool> stopped{false};
   absl::Status status = ParallelFor(count, chunks, [&](size_t b, size_t e) {
-    Search search(pieces, options);
+    Search search(prepared, options);
     CancellationPoll poll(context.cancellation);
     for (size_t r = b; r < e && !stopped.load(std::memory_order_relaxed); ++r) {
       if (!search.Run(queries.point(r), r, poll, answer).ok()) {
@@ -385,6 +681,23 @@ absl::StatusOr<ClosestPoints> Solve(const Pieces& pieces,
   if (!status.ok()) return status;
   if (stopped.load()) return CheckCancelled(context.cancellation);
   return answer;
+}
+
+// ClosestPointsOn checks the options and queries and answers them on a
+// curve or a surface.
+template <typename Geometry>
+absl::StatusOr<ClosestPoints> ClosestPointsOn(
+    const Geometry& geometry, const PointsView& queries,
+    const ClosestPointOptions& options, const ExecutionContext& context) {
+  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
+  if (absl::Status status = CheckQueries(queries, DimensionOf(geometry));
+      !status.ok()) {
+    return status;
+  }
+  absl::StatusOr<Pieces> pieces =
+      internal::LiftPieces(geometry, context.cancellation);
+  if (!pieces.ok()) return pieces.status();
+  return Solve(*pieces, queries, options, context);
 }
 
 }  // namespace
@@ -399,29 +712,13 @@ size_t ClosestPointsValues(size_t queries, int dimension, int parameter_count,
 absl::StatusOr<ClosestPoints> CurveClosestPoints(
     const Curve& curve, const PointsView& queries,
     const ClosestPointOptions& options, const ExecutionContext& context) {
-  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
-  if (absl::Status status = CheckQueries(queries, DimensionOf(curve));
-      !status.ok()) {
-    return status;
-  }
-  absl::StatusOr<Pieces> pieces =
-      internal::LiftCurvePieces(curve, context.cancellation);
-  if (!pieces.ok()) return pieces.status();
-  return Solve(*pieces, queries, options, context);
+  return ClosestPointsOn(curve, queries, options, context);
 }
 
 absl::StatusOr<ClosestPoints> SurfaceClosestPoints(
     const Surface& surface, const PointsView& queries,
     const ClosestPointOptions& options, const ExecutionContext& context) {
-  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
-  if (absl::Status status = CheckQueries(queries, DimensionOf(surface));
-      !status.ok()) {
-    return status;
-  }
-  absl::StatusOr<Pieces> pieces =
-      internal::LiftSurfacePieces(surface, context.cancellation);
-  if (!pieces.ok()) return pieces.status();
-  return Solve(*pieces, queries, options, context);
+  return ClosestPointsOn(surface, queries, options, context);
 }
 
 }  // namespace freeform

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
 #include "bezier_net.h"
 #include "freeform/core/status.h"
 
@@ -282,10 +283,7 @@ class PairSearch {
         cancel_(cancel),
         leaf_(std::max(options.tolerance, 1e-7 * Extent(first, second))),
         scratch_a_(6 * static_cast<size_t>(first.dimension)),
-        scratch_b_(6 * static_cast<size_t>(first.dimension)) {
-    for (const Net& net : first.nets) first_evaluators_.emplace_back(net);
-    for (const Net& net : second.nets) second_evaluators_.emplace_back(net);
-  }
+        scratch_b_(6 * static_cast<size_t>(first.dimension)) {}
 
   // Run examines every pair of pieces.
   absl::Status Run();
@@ -318,8 +316,7 @@ class PairSearch {
   const IntersectionOptions& options_;
   const CancellationToken* cancel_;
   const double leaf_;
-  std::vector<NetEvaluator> first_evaluators_;
-  std::vector<NetEvaluator> second_evaluators_;
+  NetEvaluator evaluator_;
   std::vector<double> scratch_a_;
   std::vector<double> scratch_b_;
   std::vector<double> residual_;
@@ -332,9 +329,9 @@ void PairSearch::Model(size_t first_piece, size_t second_piece, const double* x,
                        LocalModel& model) {
   const int dim = first_.dimension;
   const bool curves = second_.parameter_count == 1;
-  first_evaluators_[first_piece].Evaluate(x[0], 0.0, scratch_a_.data());
-  second_evaluators_[second_piece].Evaluate(x[1], curves ? 0.0 : x[2],
-                                            scratch_b_.data());
+  evaluator_.Evaluate(first_.nets[first_piece], x[0], 0.0, scratch_a_.data());
+  evaluator_.Evaluate(second_.nets[second_piece], x[1], curves ? 0.0 : x[2],
+                      scratch_b_.data());
   // Gauss-Newton on F = A(x0) - B(x1, x2): columns A', -B_u, -B_v.
   const int count = curves ? 2 : 3;
   const double* columns[3] = {scratch_a_.data() + dim, scratch_b_.data() + dim,
@@ -371,23 +368,22 @@ Hit PairSearch::Solve(const Part& a, const Part& b) {
 std::pair<double, double> PairSearch::Project(bool on_first, size_t piece,
                                               const double* point, double lo,
                                               double hi, double guess) {
-  NetEvaluator& evaluator =
-      on_first ? first_evaluators_[piece] : second_evaluators_[piece];
+  const Net& net = on_first ? first_.nets[piece] : second_.nets[piece];
   const std::vector<double> query(point, point + first_.dimension);
   std::vector<double> partials(6 * static_cast<size_t>(first_.dimension));
   double x = std::clamp(guess, lo, hi);
   const double value = internal::MinimizeInBox(
       1, &lo, &hi, &x, [&](const double* at, LocalModel& model) {
-        internal::DistanceModel(evaluator, 1, query.data(), at, partials.data(),
-                                model);
+        internal::DistanceModel(evaluator_, net, 1, query.data(), at,
+                                partials.data(), model);
       });
   return {x, std::sqrt(2.0 * value)};
 }
 
 double PairSearch::SinAngle(const Part& a, double s, const Part& b, double t) {
   const int dim = first_.dimension;
-  first_evaluators_[a.piece].Evaluate(s, 0.0, scratch_a_.data());
-  second_evaluators_[b.piece].Evaluate(t, 0.0, scratch_b_.data());
+  evaluator_.Evaluate(first_.nets[a.piece], s, 0.0, scratch_a_.data());
+  evaluator_.Evaluate(second_.nets[b.piece], t, 0.0, scratch_b_.data());
   const double* da = scratch_a_.data() + dim;
   const double* db = scratch_b_.data() + dim;
   const double la = std::sqrt(Dot(da, da, dim));
@@ -433,9 +429,9 @@ bool PairSearch::FindOverlap(const Part& a, const Part& b) {
   const End start = ends.front();
   const End end = ends.back();
   std::vector<double> from(static_cast<size_t>(dim));
-  first_evaluators_[a.piece].Evaluate(start.s, 0.0, scratch_a_.data());
+  evaluator_.Evaluate(first_.nets[a.piece], start.s, 0.0, scratch_a_.data());
   std::copy_n(scratch_a_.data(), dim, from.data());
-  first_evaluators_[a.piece].Evaluate(end.s, 0.0, scratch_a_.data());
+  evaluator_.Evaluate(first_.nets[a.piece], end.s, 0.0, scratch_a_.data());
   if (Distance(from.data(), scratch_a_.data(), dim) <=
       std::max(options_.separation, 10.0 * tolerance)) {
     return false;
@@ -444,7 +440,7 @@ bool PairSearch::FindOverlap(const Part& a, const Part& b) {
   for (int k = 0; k <= samples + 1; ++k) {
     const double f = static_cast<double>(k) / (samples + 1);
     const double s = start.s + f * (end.s - start.s);
-    first_evaluators_[a.piece].Evaluate(s, 0.0, scratch_a_.data());
+    evaluator_.Evaluate(first_.nets[a.piece], s, 0.0, scratch_a_.data());
     std::copy_n(scratch_a_.data(), dim, from.data());
     const auto [t, d] = Project(false, b.piece, from.data(), b.lo[0], b.hi[0],
                                 start.t + f * (end.t - start.t));
@@ -526,7 +522,8 @@ absl::Status PairSearch::Run() {
 }
 
 const double* PairSearch::PointOf(const Hit& hit) {
-  first_evaluators_[hit.first_piece].Evaluate(hit.x[0], 0.0, scratch_a_.data());
+  evaluator_.Evaluate(first_.nets[hit.first_piece], hit.x[0], 0.0,
+                      scratch_a_.data());
   return scratch_a_.data();
 }
 
@@ -621,39 +618,50 @@ bool InsideOverlap(double s, double t,
   return false;
 }
 
-}  // namespace
-
-absl::StatusOr<CurveIntersections> IntersectCurves(
-    const Curve& first, const Curve& second, const IntersectionOptions& options,
-    const CancellationToken* cancel) {
+// Intersect checks the inputs, runs the pair search of `first` against
+// `second` (a curve or a surface; `field` names its dimension) and returns
+// finish(first's pieces, second's pieces, the search).
+template <typename Second, typename Finish>
+auto Intersect(const Curve& first, const Second& second,
+               absl::string_view field, const IntersectionOptions& options,
+               const CancellationToken* cancel, Finish finish)
+    -> decltype(finish(std::declval<const Pieces&>(),
+                       std::declval<const Pieces&>(),
+                       std::declval<PairSearch&>())) {
   if (absl::Status status = CheckOptions(options); !status.ok()) return status;
   if (DimensionOf(second) != DimensionOf(first)) {
     return InvalidFieldError(
-        "second.dimension",
-        absl::StrCat("must be the first curve's dimension ", DimensionOf(first),
-                     ", got ", DimensionOf(second)));
+        field, absl::StrCat("must be the first input's dimension ",
+                            DimensionOf(first), ", got ", DimensionOf(second)));
   }
-  absl::StatusOr<Pieces> a = internal::LiftCurvePieces(first, cancel);
+  absl::StatusOr<Pieces> a = internal::LiftPieces(first, cancel);
   if (!a.ok()) return a.status();
-  absl::StatusOr<Pieces> b = internal::LiftCurvePieces(second, cancel);
+  absl::StatusOr<Pieces> b = internal::LiftPieces(second, cancel);
   if (!b.ok()) return b.status();
   PairSearch search(*a, *b, options, cancel);
   if (absl::Status status = search.Run(); !status.ok()) return status;
+  return finish(*a, *b, search);
+}
+
+// CurveAnswer returns the distinct points and merged overlaps of two curves.
+absl::StatusOr<CurveIntersections> CurveAnswer(
+    const Curve& first, const Curve& second, const IntersectionOptions& options,
+    const Pieces& a, const Pieces& b, PairSearch& search) {
   const double slack_s = kParameterSlack * Width(DomainOf(first));
   const double slack_t = kParameterSlack * Width(DomainOf(second));
-  CurveIntersections result{.dimension = a->dimension};
+  CurveIntersections result{.dimension = a.dimension};
   std::vector<std::array<double, 4>> overlaps =
       MergeOverlaps(search.overlaps(), slack_s, slack_t);
   std::vector<std::pair<double, std::vector<double>>> points;
   for (const Hit& hit : search.DistinctHits()) {
     double s = 0.0;
     double t = 0.0;
-    a->parameters(hit.first_piece, hit.x[0], 0.0, &s);
-    b->parameters(hit.second_piece, hit.x[1], 0.0, &t);
+    a.parameters(hit.first_piece, hit.x[0], 0.0, &s);
+    b.parameters(hit.second_piece, hit.x[1], 0.0, &t);
     if (InsideOverlap(s, t, overlaps, slack_s, slack_t)) continue;
     const double* point = search.PointOf(hit);
     std::vector<double> entry = {s, t};
-    entry.insert(entry.end(), point, point + a->dimension);
+    entry.insert(entry.end(), point, point + a.dimension);
     points.emplace_back(s, std::move(entry));
   }
   if (absl::Status status =
@@ -675,22 +683,11 @@ absl::StatusOr<CurveIntersections> IntersectCurves(
   return result;
 }
 
-absl::StatusOr<CurveSurfaceIntersections> IntersectCurveSurface(
-    const Curve& curve, const Surface& surface,
-    const IntersectionOptions& options, const CancellationToken* cancel) {
-  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
-  if (DimensionOf(surface) != DimensionOf(curve)) {
-    return InvalidFieldError(
-        "surface.dimension",
-        absl::StrCat("must be the curve's dimension ", DimensionOf(curve),
-                     ", got ", DimensionOf(surface)));
-  }
-  absl::StatusOr<Pieces> a = internal::LiftCurvePieces(curve, cancel);
-  if (!a.ok()) return a.status();
-  absl::StatusOr<Pieces> b = internal::LiftSurfacePieces(surface, cancel);
-  if (!b.ok()) return b.status();
-  PairSearch search(*a, *b, options, cancel);
-  if (absl::Status status = search.Run(); !status.ok()) return status;
+// SurfaceAnswer returns the distinct points of a curve and a surface in the
+// order of the curve's parameter.
+absl::StatusOr<CurveSurfaceIntersections> SurfaceAnswer(
+    const IntersectionOptions& options, const Pieces& a, const Pieces& b,
+    PairSearch& search) {
   const std::vector<Hit> hits = search.DistinctHits();
   if (absl::Status status = CheckResults(hits.size(), options); !status.ok()) {
     return status;
@@ -698,22 +695,42 @@ absl::StatusOr<CurveSurfaceIntersections> IntersectCurveSurface(
   std::vector<std::array<double, 3>> order;
   for (size_t k = 0; k < hits.size(); ++k) {
     double t = 0.0;
-    a->parameters(hits[k].first_piece, hits[k].x[0], 0.0, &t);
+    a.parameters(hits[k].first_piece, hits[k].x[0], 0.0, &t);
     order.push_back({t, static_cast<double>(k), 0.0});
   }
   std::sort(order.begin(), order.end());
-  CurveSurfaceIntersections result{.dimension = a->dimension};
+  CurveSurfaceIntersections result{.dimension = a.dimension};
   for (const std::array<double, 3>& entry : order) {
     const Hit& hit = hits[static_cast<size_t>(entry[1])];
     double uv[2];
-    b->parameters(hit.second_piece, hit.x[1], hit.x[2], uv);
+    b.parameters(hit.second_piece, hit.x[1], hit.x[2], uv);
     result.curve_parameters.push_back(entry[0]);
     result.surface_parameters.insert(result.surface_parameters.end(),
                                      {uv[0], uv[1]});
     const double* point = search.PointOf(hit);
-    result.points.insert(result.points.end(), point, point + a->dimension);
+    result.points.insert(result.points.end(), point, point + a.dimension);
   }
   return result;
+}
+
+}  // namespace
+
+absl::StatusOr<CurveIntersections> IntersectCurves(
+    const Curve& first, const Curve& second, const IntersectionOptions& options,
+    const CancellationToken* cancel) {
+  return Intersect(first, second, "second.dimension", options, cancel,
+                   [&](const Pieces& a, const Pieces& b, PairSearch& search) {
+                     return CurveAnswer(first, second, options, a, b, search);
+                   });
+}
+
+absl::StatusOr<CurveSurfaceIntersections> IntersectCurveSurface(
+    const Curve& curve, const Surface& surface,
+    const IntersectionOptions& options, const CancellationToken* cancel) {
+  return Intersect(curve, surface, "surface.dimension", options, cancel,
+                   [&](const Pieces& a, const Pieces& b, PairSearch& search) {
+                     return SurfaceAnswer(options, a, b, search);
+                   });
 }
 
 }  // namespace freeform

@@ -9,6 +9,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "bezier_net.h"
+#include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
 
 namespace freeform {
@@ -96,10 +97,6 @@ class Slicer {
     for (const Net& net : pieces.nets) {
       scalars_.push_back(ScalarNet(net, normal, offset));
     }
-    for (size_t k = 0; k < pieces.nets.size(); ++k) {
-      evaluators_.emplace_back(pieces.nets[k]);
-      scalar_evaluators_.emplace_back(scalars_[k]);
-    }
   }
 
   absl::Status Run();
@@ -124,8 +121,7 @@ class Slicer {
   CancellationPoll poll_;
   const CancellationToken* cancel_;
   std::vector<Net> scalars_;
-  std::vector<NetEvaluator> evaluators_;
-  std::vector<NetEvaluator> scalar_evaluators_;
+  NetEvaluator evaluator_;
   std::vector<double> partials_;
   std::vector<double> scalar_partials_;
   std::vector<std::vector<Vertex>> arcs_;
@@ -134,7 +130,7 @@ class Slicer {
 };
 
 double Slicer::G(size_t piece, double s, double t) {
-  scalar_evaluators_[piece].Evaluate(s, t, scalar_partials_.data());
+  evaluator_.Evaluate(scalars_[piece], s, t, scalar_partials_.data());
   return scalar_partials_[0];
 }
 
@@ -182,7 +178,8 @@ Vertex Slicer::MakeVertex(size_t piece, int along, double c, double a) {
   Vertex vertex{.piece = piece};
   vertex.x[along] = a;
   vertex.x[1 - along] = c;
-  evaluators_[piece].Evaluate(vertex.x[0], vertex.x[1], partials_.data());
+  evaluator_.Evaluate(pieces_.nets[piece], vertex.x[0], vertex.x[1],
+                      partials_.data());
   vertex.point.assign(partials_.begin(), partials_.begin() + pieces_.dimension);
   return vertex;
 }
@@ -451,6 +448,43 @@ absl::Status CheckPlane(absl::Span<const double> point,
   return absl::OkStatus();
 }
 
+// FitPolyline returns the B-spline of polyline k within `tolerance` of its
+// vertices (see SectionOptions::fit_tolerance).
+absl::StatusOr<BSplineCurveData> FitPolyline(const Sections& sections, size_t k,
+                                             double tolerance,
+                                             const CancellationToken* cancel) {
+  const size_t dim = static_cast<size_t>(sections.dimension);
+  // The vertices, a repeated one (which chord lengths cannot place) once.
+  std::vector<double> vertices;
+  for (size_t r = sections.offsets[k]; r < sections.offsets[k + 1]; ++r) {
+    const auto point = sections.points.begin() + r * dim;
+    if (vertices.empty() ||
+        !std::equal(point, point + dim, vertices.end() - dim)) {
+      vertices.insert(vertices.end(), point, point + dim);
+    }
+  }
+  const int count = static_cast<int>(vertices.size() / dim);
+  if (count == 1) {  // a point: a line of length 0
+    vertices.insert(vertices.end(), vertices.begin(), vertices.end());
+    return BSplineCurveData{.degree = 1,
+                            .dimension = sections.dimension,
+                            .coordinates = vertices,
+                            .knots = {0, 0, 1, 1},
+                            .weights = {}};
+  }
+  const PointsView points{sections.dimension, vertices};
+  const int degree = std::min(3, count - 1);
+  absl::StatusOr<CurveApproximation> fit;
+  for (int controls = std::min(count, 2 * (degree + 1));;
+       controls = std::min(count, 2 * controls)) {
+    fit = ApproximateCurve(points, degree, controls,
+                           Parameterization::kChordLength, {}, cancel);
+    if (!fit.ok()) return fit.status();
+    if (fit->max_residual <= tolerance || controls == count) break;
+  }
+  return std::move(fit->curve);
+}
+
 }  // namespace
 
 absl::StatusOr<Sections> IntersectSurfacePlane(
@@ -465,7 +499,10 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   if (!std::isfinite(options.tolerance) || options.tolerance <= 0.0) {
     return InvalidFieldError("tolerance", "must be positive and finite");
   }
-  absl::StatusOr<Pieces> pieces = internal::LiftSurfacePieces(surface, cancel);
+  if (!std::isfinite(options.fit_tolerance) || options.fit_tolerance < 0.0) {
+    return InvalidFieldError("fit_tolerance", "must be finite and >= 0");
+  }
+  absl::StatusOr<Pieces> pieces = internal::LiftPieces(surface, cancel);
   if (!pieces.ok()) return pieces.status();
   std::vector<double> normal(plane_normal.begin(), plane_normal.end());
   double length = 0.0;
@@ -491,6 +528,14 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   Sections sections{.dimension = dimension};
   Chain chain(slicer.arcs(), dimension, 1e-9 * std::max(extent, 1e-300));
   chain.Write(*pieces, sections);
+  if (options.fit_tolerance > 0.0) {
+    for (size_t k = 0; k + 1 < sections.offsets.size(); ++k) {
+      absl::StatusOr<BSplineCurveData> curve =
+          FitPolyline(sections, k, options.fit_tolerance, cancel);
+      if (!curve.ok()) return curve.status();
+      sections.curves.push_back(*std::move(curve));
+    }
+  }
   return sections;
 }
 

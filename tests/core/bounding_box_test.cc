@@ -16,29 +16,15 @@
 namespace freeform {
 namespace {
 
+using testing_util::CurvePoints;
 using testing_util::EvenlySpaced;
 using testing_util::NurbsCircle;
 using testing_util::RandomKnots;
 using testing_util::RandomValues;
 using testing_util::SpherePatch;
+using testing_util::SurfacePoints;
 
 constexpr double kTolerance = 1e-10;
-
-std::vector<double> CurvePoints(const Curve& curve,
-                                const std::vector<double>& parameters) {
-  std::vector<double> points(parameters.size() * DimensionOf(curve));
-  const absl::Span<double> output[] = {absl::MakeSpan(points)};
-  EXPECT_TRUE(EvaluateCurve(curve, parameters, output).ok());
-  return points;
-}
-
-std::vector<double> SurfacePoints(const Surface& surface,
-                                  const SurfaceSamples& samples) {
-  std::vector<double> points(samples.size() * DimensionOf(surface));
-  const absl::Span<double> output[] = {absl::MakeSpan(points)};
-  EXPECT_TRUE(EvaluateSurface(surface, samples, output, {}).ok());
-  return points;
-}
 
 // GoldenMaximum returns the largest value of f on [a, b] near its single
 // local maximum there, by golden-section search.

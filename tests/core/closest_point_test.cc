@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "freeform/core/status.h"
-#include "query_shapes.h"
+#include "shapes.h"
 #include "teapot.h"
 #include "test_util.h"
 
@@ -82,7 +82,7 @@ struct SurfaceReference {
         uv.insert(uv.end(), p.begin(), p.end());
       }
     }
-    grid_points = SurfacePoints(surface, uv);
+    grid_points = SurfacePoints(surface, SurfaceSamples::Pairs(uv));
   }
 
   double Nearest(const double* q) const {
@@ -106,7 +106,8 @@ struct SurfaceReference {
           uv.insert(uv.end(), p.begin(), p.end());
         }
       }
-      const std::vector<double> near = SurfacePoints(surface, uv);
+      const std::vector<double> near =
+          SurfacePoints(surface, SurfaceSamples::Pairs(uv));
       for (size_t k = 0; k < uv.size() / 2; ++k) {
         const double d = Distance(near.data() + k * dim, q, dim);
         if (d < distance) {
@@ -136,6 +137,10 @@ void CheckCurveAnswer(const Curve& curve, const PointsView& queries,
                   answer.distances[r], 1e-9);
     }
     ASSERT_LE(answer.lower_bounds[r], answer.distances[r]);
+    // Certified: nothing closer than the tolerance below the distance.
+    if (answer.complete[r]) {
+      ASSERT_GE(answer.lower_bounds[r], answer.distances[r] - 1e-9 - 1e-14);
+    }
   }
 }
 
@@ -232,6 +237,40 @@ TEST(ClosestPointTest, CurvesNeverFartherThanDenseReference) {
   }
 }
 
+// A cubic clamped B-spline of 100 random control points (97 spans, the
+// benchmark's W1 shape): queries around it, far from it and on it.
+TEST(ClosestPointTest, ManySpansMatchTheDenseReference) {
+  std::mt19937_64 rng(19);
+  const std::vector<double> control = RandomValues(rng, 3 * 100);
+  std::vector<double> knots(4, 0.0);
+  for (int i = 1; i < 97; ++i) knots.push_back(i / 97.0);
+  knots.insert(knots.end(), 4, 1.0);
+  const absl::StatusOr<Curve> curve =
+      BSplineCurve::Create({3, {3, control}, knots, {}});
+  ASSERT_TRUE(curve.ok());
+  std::vector<double> queries = RandomValues(rng, 3 * 600, -1.2, 1.2);
+  const std::vector<double> far = RandomValues(rng, 3 * 100, -6.0, 6.0);
+  queries.insert(queries.end(), far.begin(), far.end());
+  const std::vector<double> on =
+      CurvePoints(*curve, RandomValues(rng, 100, 0, 1));
+  queries.insert(queries.end(), on.begin(), on.end());
+  const PointsView view{3, queries};
+  const absl::StatusOr<ClosestPoints> answer = CurveClosestPoints(*curve, view);
+  ASSERT_TRUE(answer.ok());
+  CheckCurveAnswer(*curve, view, *answer);
+  const std::vector<double> samples = Grid(0.0, 1.0, 4000);
+  const std::vector<double> points = CurvePoints(*curve, samples);
+  for (size_t r = 0; r < view.size(); ++r) {
+    EXPECT_TRUE(answer->complete[r]) << r;
+    const double reference =
+        CurveReference(*curve, samples, points, view.point(r));
+    EXPECT_LE(answer->distances[r], reference + 1e-9) << r;
+    if (r >= 700) {
+      EXPECT_LE(answer->distances[r], 1e-12) << r;
+    }
+  }
+}
+
 TEST(ClosestPointTest, PointsOnCurvesInvertToTheirParameter) {
   std::mt19937_64 rng(7);
   CurveData data;
@@ -284,7 +323,7 @@ TEST(ClosestPointTest, EndPointsAreNearestBeyondTheEnds) {
 
 TEST(ClosestPointTest, NurbsCircle) {
   const double radius = 2.0;
-  const BSplineCurveData data = testing_util::Circle(radius, 1.0, -1.0);
+  const BSplineCurveData data = testing_util::NurbsCircle(radius, 1.0, -1.0);
   const absl::StatusOr<Curve> curve = BSplineCurve::Create(data.view());
   ASSERT_TRUE(curve.ok());
   std::mt19937_64 rng(3);
@@ -322,7 +361,7 @@ TEST(ClosestPointTest, NurbsCircle) {
 
 TEST(ClosestPointTest, SphereAndTorusPatches) {
   const double radius = 1.5;
-  const SurfaceData sphere_data = testing_util::SphereOctant(radius);
+  const SurfaceData sphere_data = testing_util::SpherePatch(radius);
   const absl::StatusOr<Surface> sphere =
       BezierSurface::Create(sphere_data.bezier_view());
   ASSERT_TRUE(sphere.ok());
@@ -450,7 +489,8 @@ TEST(ClosestPointTest, SurfacesNeverFartherThanDenseReference) {
       // The returned point is the surface's point at the returned (u, v).
       const std::vector<double> uv(answer->parameters.begin() + 16 * r,
                                    answer->parameters.begin() + 16 * r + 2);
-      const std::vector<double> point = SurfacePoints(surface, uv);
+      const std::vector<double> point =
+          SurfacePoints(surface, SurfaceSamples::Pairs(uv));
       EXPECT_LE(Distance(point.data(), answer->points.data() + 24 * r, 3),
                 1e-12);
       EXPECT_NEAR(Distance(point.data(), q, 3), answer->distances[r], 1e-12);

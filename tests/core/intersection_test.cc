@@ -11,7 +11,7 @@
 
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
-#include "query_shapes.h"
+#include "shapes.h"
 #include "test_util.h"
 
 namespace freeform {
@@ -22,7 +22,8 @@ std::vector<double> CurvePoint(const Curve& curve, double t) {
 }
 
 std::vector<double> SurfacePoint(const Surface& surface, double u, double v) {
-  return testing_util::SurfacePoints(surface, {u, v});
+  const double uv[2] = {u, v};
+  return testing_util::SurfacePoints(surface, SurfaceSamples::Pairs(uv));
 }
 
 double Distance(const std::vector<double>& a, const std::vector<double>& b) {
@@ -103,8 +104,8 @@ TEST(IntersectionTest, NonIntersectingPairsGiveNothing) {
   ASSERT_TRUE(hits.ok());
   EXPECT_TRUE(hits->first_parameters.empty());
   EXPECT_TRUE(hits->first_intervals.empty());
-  const BSplineCurveData c1 = testing_util::Circle(1.0, 0.0, 0.0);
-  const BSplineCurveData c2 = testing_util::Circle(0.9, 2.0, 0.1);
+  const BSplineCurveData c1 = testing_util::NurbsCircle(1.0, 0.0, 0.0);
+  const BSplineCurveData c2 = testing_util::NurbsCircle(0.9, 2.0, 0.1);
   const absl::StatusOr<CurveIntersections> circles = IntersectCurves(
       *BSplineCurve::Create(c1.view()), *BSplineCurve::Create(c2.view()));
   ASSERT_TRUE(circles.ok());
@@ -112,7 +113,7 @@ TEST(IntersectionTest, NonIntersectingPairsGiveNothing) {
 }
 
 TEST(IntersectionTest, CircleAndLine) {
-  const BSplineCurveData circle = testing_util::Circle(1.0, 0.0, 0.0);
+  const BSplineCurveData circle = testing_util::NurbsCircle(1.0, 0.0, 0.0);
   const std::vector<double> line = {-2, 0.3, 2, 0.3};
   const absl::StatusOr<Curve> a = BSplineCurve::Create(circle.view());
   const absl::StatusOr<Curve> b = BezierCurve::Create({{2, line}, {}});
@@ -168,7 +169,7 @@ TEST(IntersectionTest, OverlapsComeBackAsOneInterval) {
 
 TEST(IntersectionTest, CurveSurfaceTriplesLandOnBoth) {
   // A line through the sphere octant's point (1, 1, 1) / sqrt(3).
-  const SurfaceData sphere = testing_util::SphereOctant(1.0);
+  const SurfaceData sphere = testing_util::SpherePatch(1.0);
   const absl::StatusOr<Surface> surface =
       BezierSurface::Create(sphere.bezier_view());
   const std::vector<double> line = {0, 0, 0, 1.5, 1.5, 1.5};

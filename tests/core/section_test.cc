@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "freeform/core/status.h"
-#include "query_shapes.h"
+#include "shapes.h"
+#include "test_util.h"
 
 namespace freeform {
 namespace {
@@ -16,7 +18,8 @@ namespace {
 void CheckOnSurface(const Surface& surface, const Sections& sections) {
   for (size_t r = 0; r < sections.parameters.size() / 2; ++r) {
     const std::vector<double> point = testing_util::SurfacePoints(
-        surface, {sections.parameters[2 * r], sections.parameters[2 * r + 1]});
+        surface, SurfaceSamples::Pairs(absl::MakeConstSpan(
+                     sections.parameters.data() + 2 * r, 2)));
     for (int x = 0; x < 3; ++x) {
       ASSERT_NEAR(point[x], sections.points[3 * r + x], 1e-13);
     }
@@ -25,7 +28,7 @@ void CheckOnSurface(const Surface& surface, const Sections& sections) {
 
 TEST(SectionTest, PlaneSectionsOfASpherePatchAreCircles) {
   const double radius = 2.0;
-  const SurfaceData data = testing_util::SphereOctant(radius);
+  const SurfaceData data = testing_util::SpherePatch(radius);
   const absl::StatusOr<Surface> sphere =
       BezierSurface::Create(data.bezier_view());
   ASSERT_TRUE(sphere.ok());
@@ -109,8 +112,60 @@ TEST(SectionTest, ClosedContourOfABump) {
   }
 }
 
+// The section z = h of the sphere patch fitted as a B-spline: the curve,
+// sampled densely (between the vertices too), stays on the circle of radius
+// sqrt(r^2 - h^2) in z = h, from one meridian to the other.
+TEST(SectionTest, FittedSectionOfTheSphereIsOnItsCircle) {
+  const double radius = 2.0;
+  const SurfaceData data = testing_util::SpherePatch(radius);
+  const absl::StatusOr<Surface> sphere =
+      BezierSurface::Create(data.bezier_view());
+  ASSERT_TRUE(sphere.ok());
+  for (const double fit : {1e-3, 1e-6}) {
+    const double h = 1.2;
+    const std::vector<double> point = {0, 0, h};
+    const std::vector<double> normal = {0, 0, 1};
+    const absl::StatusOr<Sections> sections = IntersectSurfacePlane(
+        *sphere, point, normal, {.tolerance = 1e-5, .fit_tolerance = fit});
+    ASSERT_TRUE(sections.ok()) << sections.status();
+    ASSERT_EQ(sections->curves.size(), 1u);
+    const absl::StatusOr<Curve> curve =
+        BSplineCurve::Create(sections->curves[0].view());
+    ASSERT_TRUE(curve.ok()) << curve.status();
+    const ParameterDomain domain = DomainOf(*curve);
+    const std::vector<double> t =
+        testing_util::EvenlySpaced(domain.start, domain.end, 2001);
+    const std::vector<double> samples = testing_util::CurvePoints(*curve, t);
+    const double circle = std::sqrt(radius * radius - h * h);
+    double worst = 0.0;
+    for (size_t r = 0; r < t.size(); ++r) {
+      const double* p = samples.data() + 3 * r;
+      worst = std::max({worst, std::abs(p[2] - h),
+                        std::abs(std::hypot(p[0], p[1]) - circle)});
+    }
+    // Within the fit tolerance at the vertices; between them a smooth fit
+    // of a smooth curve stays as close (the polyline's own chords are 1e-5
+    // from the arc, the fit is not bound to them).
+    EXPECT_LE(worst, fit) << fit;
+    const double* first = samples.data();
+    const double* last = samples.data() + 3 * (t.size() - 1);
+    EXPECT_NEAR(std::min(std::abs(first[0]), std::abs(first[1])), 0.0, 1e-12);
+    EXPECT_NEAR(std::min(std::abs(last[0]), std::abs(last[1])), 0.0, 1e-12);
+  }
+  const std::vector<double> point = {0, 0, 1};
+  const std::vector<double> up = {0, 0, 1};
+  EXPECT_EQ(FieldPathOf(
+                IntersectSurfacePlane(*sphere, point, up, {.fit_tolerance = -1})
+                    .status()),
+            "fit_tolerance");
+  const absl::StatusOr<Sections> plain =
+      IntersectSurfacePlane(*sphere, point, up);
+  ASSERT_TRUE(plain.ok());
+  EXPECT_TRUE(plain->curves.empty());
+}
+
 TEST(SectionTest, ErrorsNameTheirField) {
-  const SurfaceData data = testing_util::SphereOctant(1.0);
+  const SurfaceData data = testing_util::SpherePatch(1.0);
   const absl::StatusOr<Surface> sphere =
       BezierSurface::Create(data.bezier_view());
   const std::vector<double> point = {0, 0, 0};

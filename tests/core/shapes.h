@@ -1,13 +1,20 @@
-// Curves and surfaces with known geometry that the query tests (arc
-// length, differential geometry, bounding boxes) share: the NURBS circle,
-// the twisted cubic and a rational sphere patch, each owning its arrays.
+// Curves and surfaces with exactly known geometry that the query tests
+// (arc length, differential geometry, bounding boxes, closest points,
+// intersections, sections) share, each owning its arrays: the NURBS circle,
+// the twisted cubic, and sphere and torus patches as rational surfaces of
+// revolution; and the evaluation helpers those tests use to check answers.
 #ifndef FREEFORM_TESTS_CORE_SHAPES_H_
 #define FREEFORM_TESTS_CORE_SHAPES_H_
+
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
+#include "absl/types/span.h"
+#include "freeform/core/curve.h"
 #include "freeform/core/geometry_data.h"
+#include "freeform/core/surface.h"
 
 namespace freeform::testing_util {
 
@@ -36,30 +43,71 @@ inline BezierCurveData TwistedCubic() {
           .weights = {}};
 }
 
-// A rational biquadratic Bezier patch of the sphere of `radius` about the
-// origin: the quarter meridian from the equator (u = 0) to the north pole
-// (u = 1, a collapsed row) turned by a quarter about z (v from the x axis
-// to the y axis). It is the surface of revolution (rho(u) X(v), rho(u)
-// Y(v), z(u)) of two rational quarter circles, so its net is P_ij =
-// (rho_i x_j, rho_i y_j, z_i) with weights w_i w_j. S_u x S_v points into
-// the sphere.
-inline SurfaceData SpherePatch(double radius) {
+// Revolution returns the biquadratic rational Bezier patch swept by the
+// quarter circle profile (radial distance rho_i, height z_i, weights 1,
+// sqrt(1/2), 1) turned by a quarter about the z axis from the x axis to the
+// y axis: P_ij = (rho_i x_j, rho_i y_j, z_i), weights w_i w_j (The NURBS
+// Book, section 8.5).
+inline SurfaceData Revolution(const double rho[3], const double z[3]) {
   const double w = std::sqrt(0.5);
-  const double rho[3] = {radius, radius, 0};
-  const double z[3] = {0, radius, radius};
   const double x[3] = {1, 1, 0};
   const double y[3] = {0, 1, 1};
   const double weight[3] = {1, w, 1};
-  SurfaceData sphere{
+  SurfaceData patch{
       .degree_u = 2, .degree_v = 2, .dimension = 3, .count_u = 3, .count_v = 3};
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      sphere.coordinates.insert(sphere.coordinates.end(),
-                                {rho[i] * x[j], rho[i] * y[j], z[i]});
-      sphere.weights.push_back(weight[i] * weight[j]);
+      patch.coordinates.insert(patch.coordinates.end(),
+                               {rho[i] * x[j], rho[i] * y[j], z[i]});
+      patch.weights.push_back(weight[i] * weight[j]);
     }
   }
-  return sphere;
+  return patch;
+}
+
+// A rational biquadratic Bezier patch of the sphere of `radius` about the
+// origin, an octant: the quarter meridian from the equator (u = 0) to the
+// north pole (u = 1, a collapsed row) turned by a quarter about z (v from
+// the x axis to the y axis). S_u x S_v points into the sphere.
+inline SurfaceData SpherePatch(double radius) {
+  const double rho[3] = {radius, radius, 0};
+  const double z[3] = {0, radius, radius};
+  return Revolution(rho, z);
+}
+
+// A quarter of a quarter of the torus with major radius R and minor radius
+// r: the tube's outer upper quarter (angle phi from 0 to pi/2 in u) turned
+// by a quarter about z. Point (theta, phi): ((R + r cos phi) cos theta,
+// (R + r cos phi) sin theta, r sin phi).
+inline SurfaceData TorusPatch(double major, double minor) {
+  const double rho[3] = {major + minor, major + minor, major};
+  const double z[3] = {0, minor, minor};
+  return Revolution(rho, z);
+}
+
+// CurvePoints returns the curve's points at `parameters`.
+inline std::vector<double> CurvePoints(const Curve& curve,
+                                       const std::vector<double>& parameters) {
+  std::vector<double> points(parameters.size() * DimensionOf(curve));
+  const absl::Span<double> output[] = {absl::MakeSpan(points)};
+  EXPECT_TRUE(EvaluateCurve(curve, parameters, output).ok());
+  return points;
+}
+
+// SurfacePoints returns the surface's points at `samples`.
+inline std::vector<double> SurfacePoints(const Surface& surface,
+                                         const SurfaceSamples& samples) {
+  std::vector<double> points(samples.size() * DimensionOf(surface));
+  const absl::Span<double> output[] = {absl::MakeSpan(points)};
+  EXPECT_TRUE(EvaluateSurface(surface, samples, output, {}).ok());
+  return points;
+}
+
+// PointDistance returns |a - b|.
+inline double PointDistance(const double* a, const double* b, int dimension) {
+  double sum = 0.0;
+  for (int x = 0; x < dimension; ++x) sum += (a[x] - b[x]) * (a[x] - b[x]);
+  return std::sqrt(sum);
 }
 
 }  // namespace freeform::testing_util

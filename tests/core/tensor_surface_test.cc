@@ -17,6 +17,7 @@
 #include "freeform/core/normals.h"
 #include "freeform/core/status.h"
 #include "freeform/core/thread_pool.h"
+#include "shapes.h"
 #include "test_util.h"
 
 namespace freeform {
@@ -478,48 +479,22 @@ TEST(TensorSurfaceTest, NurbsCylinderStaysOnTheCylinder) {
   }
 }
 
-// The octant of the unit sphere as a surface of revolution (The NURBS Book
-// section 8.5): the meridian quarter circle (1,0,0)..(0,0,1) in u turned by
-// the quarter circle in v; row u = 1 collapses to the pole (0, 0, 1).
-struct SphereOctant {
-  std::vector<double> net;
-  std::vector<double> weights;
-  std::vector<double> knots = {0, 0, 0, 1, 1, 1};
-  BSplineSurfaceView view() const {
-    return {.degree_u = 2,
-            .degree_v = 2,
-            .control_net = {.dimension = 3,
-                            .count_u = 3,
-                            .count_v = 3,
-                            .coordinates = net},
-            .knots_u = knots,
-            .knots_v = knots,
-            .weights = weights};
-  }
-};
-
-SphereOctant MakeSphereOctant() {
-  SphereOctant sphere;
-  const double radius[] = {1, 1, 0};
-  const double height[] = {0, 1, 1};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      sphere.net.insert(sphere.net.end(), {radius[i] * kArcX[j],
-                                           radius[i] * kArcY[j], height[i]});
-      sphere.weights.push_back(kArcW[i] * kArcW[j]);
-    }
-  }
+// The octant of the unit sphere (SpherePatch) as a NURBS surface on the
+// knots 0,0,0,1,1,1 in u and v.
+SurfaceData MakeSphereOctant() {
+  SurfaceData sphere = testing_util::SpherePatch(1.0);
+  sphere.knots_u = sphere.knots_v = {0, 0, 0, 1, 1, 1};
   return sphere;
 }
 
 TEST(TensorSurfaceTest, NurbsSphereStaysOnTheSphereWithRadialNormals) {
-  const SphereOctant sphere = MakeSphereOctant();
+  const SurfaceData sphere = MakeSphereOctant();
   const std::vector<double> grid = EvenlySpaced(0, 1, 100);
   const SurfaceSamples samples = SurfaceSamples::Grid(grid, grid);
-  Partials p = EvaluateBSpline(sphere.view(), samples, 2);
+  Partials p = EvaluateBSpline(sphere.bspline_view(), samples, 2);
   std::vector<double> normals(3 * samples.size());
   ASSERT_TRUE(ComputeUnitNormals(Spans(p), samples,
-                                 BSplineSurfaceDomain(sphere.view()),
+                                 BSplineSurfaceDomain(sphere.bspline_view()),
                                  absl::MakeSpan(normals))
                   .ok());
   const double sign =

@@ -232,9 +232,9 @@ CallResult ParametersAtArcLength(Client& client, Rng& rng) {
   if (answer.ok() && check.True(answer->points().coordinates_size() ==
                                     static_cast<int>(2 * lengths.size()),
                                 "a point per length")) {
+    const Values points = Flat(answer->points());
     for (size_t k = 0; k < lengths.size(); ++k) {
-      check.NearPoint(Values{answer->points().coordinates(2 * k),
-                             answer->points().coordinates(2 * k + 1)},
+      check.NearPoint(Coordinates(points).subspan(2 * k, 2),
                       circle.At(lengths[k] / circle.radius), kTight, "point",
                       lengths[k]);
     }

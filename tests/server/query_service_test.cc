@@ -94,9 +94,14 @@ TEST_F(QueryServiceTest, ClosestPointsOnTheNurbsCircle) {
               Pointwise(DoubleNear(1e-9), std::vector<double>{3, 2, 0}));
   EXPECT_THAT(answer->minima_counts(), ElementsAre(1, 4, 2));
   EXPECT_THAT(answer->complete(), ElementsAre(true, false, true));
+  // Certified: the lower bound is within the tolerance of the distance
+  // when the answer is complete (the centre's search stops at its piece
+  // budget, with a looser bound).
   for (int r = 0; r < 3; ++r) {
     EXPECT_LE(answer->lower_bounds(r), answer->distances(r));
-    EXPECT_GE(answer->lower_bounds(r), answer->distances(r) - 1e-9);
+    if (answer->complete(r)) {
+      EXPECT_GE(answer->lower_bounds(r), answer->distances(r) - 1e-9);
+    }
   }
   const auto& points = answer->points().coordinates();
   ASSERT_EQ(points.size(), 2 * (1 + 4 + 2));

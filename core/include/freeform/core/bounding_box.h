@@ -2,21 +2,20 @@
 // geometry itself, not of its control points.
 //
 // The geometry is cut into (rational) Bezier pieces (DecomposeCurve,
-// DecomposeBSplineSurface) and each side of the box is found by branch and
-// bound with the convex hull property (docs/references.md, 'Tight bounding
-// boxes by subdivision'): for the largest value of coordinate j, every
-// piece's largest control coordinate is an upper bound of the piece (a
-// rational piece needs positive weights; one with a zero weight has no
-// bound and is split first), and its end points (curves) or corners
-// (patches) lie on the geometry, so they are lower bounds. The piece of
-// largest upper bound is halved by de Casteljau until its upper bound is
-// within `tolerance` of the best value found on the geometry: a tensor
-// patch alternately in u and v (SplitBezierSurface; a curve is a patch of
-// one column), a triangular patch at the midpoint of the edge opposite its
-// newest vertex (BisectTriangularPatch). Halving a piece divides the gap
-// between its hull and the geometry by about four (two halvings for a
-// triangle), so a smooth extreme needs about log4(size / tolerance)
-// halvings.
+// DecomposeSurface; a triangular patch stays one triangle) and each side of the
+// box is found by branch and bound with the convex hull property
+// (docs/references.md, 'Tight bounding boxes by subdivision'): for the largest
+// value of coordinate j, every piece's largest control coordinate is an upper
+// bound of the piece (a rational piece needs positive weights; one with a zero
+// weight has no bound and is split first), and its end points (curves) or
+// corners (patches) lie on the geometry, so they are lower bounds. The piece of
+// largest upper bound is halved by de Casteljau until its upper bound is within
+// `tolerance` of the best value found on the geometry: a tensor patch
+// alternately in u and v (SplitBezierSurface; a curve is a patch of one
+// column), a triangular patch at the midpoint of the edge opposite its newest
+// vertex (BisectTriangularPatch). Halving a piece divides the gap between its
+// hull and the geometry by about four (two halvings for a triangle), so a
+// smooth extreme needs about log4(size / tolerance) halvings.
 //
 // Accuracy contract: the box contains every point of the geometry (as far
 // as double arithmetic can tell: it is widened by the margin 2^-44 of the

@@ -2,15 +2,21 @@
 // for each query point, the parameters, points and distance of the global
 // minimum of the distance to the geometry, certified by branch and bound.
 //
-// The geometry is cut into (rational) Bezier pieces (bezier_pieces.h), kept
-// in homogeneous form. For one query q every piece carries a lower bound of
-// its distance to q from the hull of its control points: the larger of the
-// distance to their bounding box and min_i e . (q - P_i), e the unit vector
-// from the control point nearest q to q (second order in the piece's size;
-// a rational piece needs positive weights for the hull property, and one
-// with a weight 0 gets the bound 0 and is halved first).
-// Pieces are taken in the order of their bounds (docs/references.md,
-// 'Closest points by branch and bound'):
+// The geometry is cut into (rational) Bezier pieces (DecomposeCurve in
+// curve.h, DecomposeSurface in surface.h), kept in homogeneous form. For
+// one query q every piece carries a lower bound of its distance to q from
+// the hull of its control points: the larger of the distance to their
+// bounding box and min_i e . (q - P_i), e the unit vector from the control
+// point nearest q to q (second order in the piece's size; a rational piece
+// needs positive weights for the hull property, and one with a weight 0
+// gets the bound 0 and is halved first).
+// A polynomial curve part is bounded instead by the smallest Bernstein
+// coefficient of |C(s) - q|^2 / 2, a polynomial of twice the degree.
+// The piece nearest q by the bounding box of its control points is examined
+// first; every other piece whose box or enclosing ball is farther than the
+// best distance it sets is never looked at. The rest are taken in the order
+// of their bounds (docs/references.md, 'Closest points by branch and
+// bound'):
 //   - the best distance found so far, `best`, starts from the pieces' end
 //     points (curves) and corners (surfaces), which lie on the geometry;
 //   - a piece whose bound exceeds best + tolerance cannot hold a minimum
@@ -18,9 +24,13 @@
 //   - otherwise projected Newton, clamped to the piece's parameter box, runs
 //     from the better of its best corner and its control point nearest to q
 //     (the active-set step handles minima on the box's edges and corners);
+//   - on a polynomial curve part whose squared distance is strictly convex
+//     (the second differences of its coefficients are positive) the
+//     quadratic lower bound about Newton's point certifies the part at once:
+//     it holds a single minimum, and its bound is within rounding of it;
 //   - a piece whose bound is within `tolerance` of the best value found on
-//     it, and whose control points span at most
-//     L = 16 max(separation, tolerance, sqrt(tolerance * best)), is
+//     it, and which is such a convex part or whose control points span at
+//     most L = 16 max(separation, tolerance, sqrt(tolerance * best)), is
 //     resolved; any other is halved by de Casteljau (a surface in the
 //     direction of its longer control polygon) and its halves go back.
 //     The size limit keeps two minima within tolerance of the best in
@@ -52,8 +62,8 @@
 // Triangular patches are searched through their degenerate tensor form and
 // answer barycentric (u, v) (or Cartesian points of their domain triangle).
 //
-// Thread-safe; queries run in chunks on the context's pool and allocate per
-// chunk.
+// Thread-safe; the pieces' bounds are prepared once per batch, queries run
+// in chunks on the context's pool and allocate per chunk.
 #ifndef FREEFORM_CORE_CLOSEST_POINT_H_
 #define FREEFORM_CORE_CLOSEST_POINT_H_
 

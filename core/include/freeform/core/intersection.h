@@ -1,9 +1,10 @@
 // Intersections of two curves and of a curve with a surface, by recursive
 // subdivision with hull pruning and Newton refinement.
 //
-// Both inputs are cut into (rational) Bezier pieces (bezier_pieces.h) in
-// homogeneous form, and pairs of parts are examined from a stack
-// (docs/references.md, 'Intersections by subdivision'):
+// Both inputs are cut into (rational) Bezier pieces (DecomposeCurve in
+// curve.h, DecomposeSurface in surface.h) in homogeneous form, and pairs
+// of parts are examined from a stack (docs/references.md, 'Intersections by
+// subdivision'):
 //   - a pair is dropped when the bounding boxes of the parts' control
 //     points are more than `tolerance` apart, or when a fat line (slab)
 //     separates them: the slab of one part's control points across its

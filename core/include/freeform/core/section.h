@@ -2,11 +2,12 @@
 // curves where a surface meets the hyperplane n . x = n . p, as polylines
 // whose vertices lie on the section.
 //
-// The surface is cut into (rational) Bezier pieces (bezier_pieces.h). On a
-// piece the signed distance times the weight, g = n . (w P) - (n . p) w, is
-// a scalar polynomial Bezier patch whose coefficients are those of the net,
-// and the section is its zero set (docs/references.md, 'Plane sections of
-// Bezier patches'). The parameter square is split as a quadtree:
+// The surface is cut into (rational) Bezier pieces (DecomposeSurface in
+// surface.h). On a piece the signed distance times the weight,
+// g = n . (w P) - (n . p) w, is a scalar polynomial Bezier patch whose
+// coefficients are those of the net, and the section is its zero set
+// (docs/references.md, 'Plane sections of Bezier patches'). The parameter
+// square is split as a quadtree:
 //   - a cell whose coefficients all have one strict sign holds no section
 //     point (convex hull property);
 //   - a cell whose coefficients rise (or fall) strictly along u holds the
@@ -38,6 +39,7 @@
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
 #include "freeform/core/cancellation.h"
+#include "freeform/core/geometry_data.h"
 #include "freeform/core/surface.h"
 
 namespace freeform {
@@ -55,6 +57,13 @@ struct SectionOptions {
   // The most quadtree cells examined (RESOURCE_EXHAUSTED naming "max_cells"
   // beyond): bounds the work.
   size_t max_cells = size_t{1} << 20;
+  // When positive, every polyline is also fitted by a cubic B-spline (a
+  // lower degree for fewer than 4 vertices) that passes within this
+  // distance of each of its vertices at their chord-length parameters:
+  // least squares through the vertices (ApproximateCurve, the ends
+  // interpolated), the control points doubled until the largest residual
+  // is within it, up to interpolation through every vertex. Finite, >= 0.
+  double fit_tolerance = 0.0;
 };
 
 // Polylines: polyline k has the vertices offsets[k] .. offsets[k + 1] - 1;
@@ -67,15 +76,17 @@ struct Sections {
   std::vector<double> points;
   std::vector<double> parameters;
   std::vector<uint8_t> closed;
+  // With fit_tolerance > 0: curves[k] is the B-spline of polyline k (a
+  // closed polyline gives a curve whose ends meet); else empty.
+  std::vector<BSplineCurveData> curves;
 };
 
 // IntersectSurfacePlane returns the section of a valid surface by the
 // hyperplane through `plane_point` with normal `plane_normal` (both of the
 // surface's dimension). Fails with INVALID_ARGUMENT naming "plane_point" or
 // "plane_normal" (size, not finite, a zero normal: "plane_normal"),
-// "tolerance", RESOURCE_EXHAUSTED naming "max_points" or "max_cells", and
-// with the token's CANCELLED / DEADLINE_EXCEEDED. B-spline fitting of the
-// sections is not offered yet.
+// "tolerance", "fit_tolerance", RESOURCE_EXHAUSTED naming "max_points" or
+// "max_cells", and with the token's CANCELLED / DEADLINE_EXCEEDED.
 absl::StatusOr<Sections> IntersectSurfacePlane(
     const Surface& surface, absl::Span<const double> plane_point,
     absl::Span<const double> plane_normal, const SectionOptions& options = {},

@@ -12,6 +12,8 @@
 #ifndef FREEFORM_CORE_SURFACE_H_
 #define FREEFORM_CORE_SURFACE_H_
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <variant>
@@ -21,6 +23,8 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "absl/types/span.h"
+#include "freeform/core/cancellation.h"
+#include "freeform/core/subdivision.h"
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
 #include "freeform/core/thread_pool.h"
@@ -136,12 +140,46 @@ absl::Status EvaluateSurface(const Surface& surface,
                              SurfaceOutput partials, absl::Span<double> normals,
                              const ExecutionContext& context = {});
 
+// The (rational) Bezier pieces of a surface of any kind, as DecomposeSurface
+// returns them: pieces.patches[i * (pieces.breakpoints_v.size() - 1) + j] is
+// the surface on [breakpoints_u[i], breakpoints_u[i + 1]] x
+// [breakpoints_v[j], breakpoints_v[j + 1]] reparameterized to [0, 1]^2. A
+// triangular patch is one piece, its degenerate tensor form, on {0, 1}^2.
+struct SurfaceDecomposition {
+  BezierPatchDecomposition pieces;
+  bool triangular = false;
+  // The triangular patch's domain triangle (6 values), or empty.
+  std::vector<double> domain_triangle;
+};
+
+// DecomposeSurface returns the Bezier pieces of a valid surface: a tensor
+// Bezier surface (also the bicubic interpolating and Hermite patches) is its
+// own piece; a B-spline (NURBS) surface is DecomposeBSplineSurface. A
+// triangular patch of degree n becomes the degenerate tensor patch of
+// degrees (n, n) of S(s, (1 - s) t) on [0, 1]^2 (docs/references.md, 'A
+// triangular patch as a degenerate tensor patch'): with u = s,
+// v = (1 - s) t, w = (1 - s)(1 - t), row i of the net is the row
+// P(i, j, n - i - j), j = 0..n - i, of the triangle raised by i degrees
+// (ElevateBezierCurve), and the edge s = 1 collapses to the corner
+// P(n, 0, 0). Fails only with the token's CANCELLED / DEADLINE_EXCEEDED.
+absl::StatusOr<SurfaceDecomposition> DecomposeSurface(
+    const Surface& surface, const CancellationToken* cancel = nullptr);
+
+// SurfacePieceParameters returns the surface parameters, as EvaluateSurface
+// takes them, of the point (s, t) in [0, 1]^2 of piece `index`: the affine
+// image in the piece's span rectangle (exact at its corners), or for a
+// triangular patch the barycentric (u, v) = (s, (1 - s) t), or the point
+// u A + v B + w C of its domain triangle.
+std::array<double, 2> SurfacePieceParameters(
+    const SurfaceDecomposition& decomposition, size_t index, double s,
+    double t);
+
 // SurfacePieceValues returns an upper bound, known before any work, of the
-// doubles of the surface's (rational) Bezier pieces (coordinates, weights
-// and breakpoints): one per span rectangle of a B-spline surface, the net
-// of a Bezier surface, and the degenerate tensor net of degrees (n, n) of a
-// triangular patch of degree n. The geometric queries cut the surface into
-// these pieces first, so it bounds their working memory. Saturates at
+// doubles DecomposeSurface returns (coordinates, weights and breakpoints):
+// one piece per span rectangle of a B-spline surface, the net of a Bezier
+// surface, the degenerate tensor net of degrees (n, n) of a triangular
+// patch of degree n. The geometric queries cut the surface into these
+// pieces first, so it bounds their working memory. Saturates at
 // UINT64_MAX.
 uint64_t SurfacePieceValues(const Surface& surface);
 

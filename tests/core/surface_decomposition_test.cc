@@ -1,12 +1,12 @@
-#include "freeform/core/bezier_pieces.h"
-
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 #include <vector>
 
-#include "query_shapes.h"
+#include "freeform/core/surface.h"
+#include "freeform/core/tensor_surface.h"
 #include "test_util.h"
 
 namespace freeform {
@@ -14,50 +14,12 @@ namespace {
 
 using testing_util::RandomValues;
 
-// CheckCurvePieces checks that every piece at s is the curve at the
-// piece's parameter for s.
-void CheckCurvePieces(const Curve& curve, size_t expected_pieces) {
-  const absl::StatusOr<BezierDecomposition> pieces = CurveBezierPieces(curve);
-  ASSERT_TRUE(pieces.ok());
-  ASSERT_EQ(pieces->segments.size(), expected_pieces);
-  ASSERT_EQ(pieces->breakpoints.size(), expected_pieces + 1);
-  const int dim = DimensionOf(curve);
-  const std::vector<double> s = {0.0, 0.3, 0.5, 0.9, 1.0};
-  for (size_t k = 0; k < expected_pieces; ++k) {
-    std::vector<double> t;
-    const double a = pieces->breakpoints[k], b = pieces->breakpoints[k + 1];
-    for (double x : s) t.push_back(x == 1.0 ? b : a + x * (b - a));
-    std::vector<double> on_piece(s.size() * dim), on_curve(s.size() * dim);
-    const absl::Span<double> out_piece[] = {absl::MakeSpan(on_piece)};
-    const absl::Span<double> out_curve[] = {absl::MakeSpan(on_curve)};
-    ASSERT_TRUE(
-        EvaluateBezierCurve(pieces->segments[k].view(), s, out_piece).ok());
-    ASSERT_TRUE(EvaluateCurve(curve, t, out_curve).ok());
-    for (size_t i = 0; i < on_piece.size(); ++i) {
-      EXPECT_NEAR(on_piece[i], on_curve[i], 1e-13);
-    }
-  }
-}
-
-TEST(BezierPiecesTest, CurvesOfEveryKind) {
-  std::mt19937_64 rng(1);
-  const std::vector<double> points = RandomValues(rng, 12);
-  CheckCurvePieces(*BezierCurve::Create({{2, points}, {}}), 1);
-  CheckCurvePieces(*BezierCurve::FromPowerForm({3, points}), 1);
-  CheckCurvePieces(*LagrangeCurve::Create({{3, points}, {}}), 1);
-  const std::vector<double> nodes = {0, 1, 3};
-  CheckCurvePieces(
-      *HermiteCurve::Create(
-          {{2, {points.data(), 6}}, {2, {points.data() + 6, 6}}, nodes}),
-      2);
-  const BSplineCurveData circle = testing_util::Circle(2.0, 1.0, 0.0);
-  CheckCurvePieces(*BSplineCurve::Create(circle.view()), 4);
-}
-
+// CheckSurfacePieces checks that every piece at (s, t) is the surface at the
+// piece's parameters for (s, t).
 void CheckSurfacePieces(const Surface& surface, size_t expected_pieces) {
-  const absl::StatusOr<SurfacePieces> pieces = SurfaceBezierPieces(surface);
+  const absl::StatusOr<SurfaceDecomposition> pieces = DecomposeSurface(surface);
   ASSERT_TRUE(pieces.ok());
-  ASSERT_EQ(pieces->patches.size(), expected_pieces);
+  ASSERT_EQ(pieces->pieces.patches.size(), expected_pieces);
   const std::vector<double> st = {0.0, 0.0, 0.3, 0.7, 1.0,
                                   0.5, 0.6, 1.0, 1.0, 1.0};
   const int dim = DimensionOf(surface);
@@ -72,7 +34,7 @@ void CheckSurfacePieces(const Surface& surface, size_t expected_pieces) {
         on_surface(st.size() / 2 * dim);
     const absl::Span<double> out_piece[] = {absl::MakeSpan(on_piece)};
     const absl::Span<double> out_surface[] = {absl::MakeSpan(on_surface)};
-    ASSERT_TRUE(EvaluateBezierSurface(pieces->patches[k].bezier_view(),
+    ASSERT_TRUE(EvaluateBezierSurface(pieces->pieces.patches[k].bezier_view(),
                                       SurfaceSamples::Pairs(st), out_piece)
                     .ok());
     ASSERT_TRUE(
@@ -84,7 +46,7 @@ void CheckSurfacePieces(const Surface& surface, size_t expected_pieces) {
   }
 }
 
-TEST(BezierPiecesTest, SurfacesOfEveryKind) {
+TEST(DecomposeSurface, PiecesAreTheSurfaceOnTheirRectangles) {
   std::mt19937_64 rng(2);
   const std::vector<double> net = RandomValues(rng, 3 * 30);
   const std::vector<double> weights = RandomValues(rng, 30, 0.3, 3.0);
