@@ -18,100 +18,56 @@
 //   freeform decompose [--file REQUEST.json]
 //   freeform subdivide [--file REQUEST.json] [--svg PICTURE.svg]
 //   freeform tessellate [--surface] [--file REQUEST.json]
-//                   [--svg PICTURE.svg | --obj MESH.obj]
+//                   [--svg PICTURE.svg [--combs [--comb-scale S]] |
+//                    --obj MESH.obj]
+//   freeform closest [--surface] [--file REQUEST.json]
+//                   [--points X,Y[,Z];...] [--csv POINTS.csv]
+//                   [--format json|csv]
+//   freeform intersect|bbox [--surface] [--file REQUEST.json]
+//   freeform arc-length|at-length|frames [--file REQUEST.json]
+//   freeform sample-length [--file REQUEST.json] [--count N]
+//                   [--format json|csv]
+//   freeform curvature [--surface] [--file REQUEST.json] [--format json|csv]
+//   freeform section [--file REQUEST.json] [--svg PICTURE.svg]
 //   freeform health [--address HOST:PORT] [--service NAME]
 //
 // Requests are the canonical proto3 JSON of the request message (from a file
-// or stdin); answers are printed as proto3 JSON or CSV. Exit status: 0 on
+// or stdin); answers are printed as proto3 JSON or CSV. The query
+// subcommands (closest ... section) live in cli_queries.cc. Exit status: 0 on
 // success, 1 when the server answers with an error (printed on stderr with
 // its field violations), 2 for unusable input.
-#include <google/protobuf/util/json_util.h>
-
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "CLI/CLI.hpp"
 #include "absl/status/statusor.h"
-#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_split.h"
-#include "absl/strings/strip.h"
+#include "cli_common.h"
+#include "cli_queries.h"
+#include "curvature_comb.h"
 #include "freeform/client.h"
-#include "freeform/core/file.h"
 #include "nlohmann/json.hpp"
 #include "obj_mesh.h"
 #include "svg_drawing.h"
 
 namespace {
 
-struct CommonFlags {
-  std::string address = "localhost:50051";
-  double timeout_seconds = 30;
-  bool use_tls = false;
-  std::string root_ca;
-};
-
-absl::StatusOr<std::string> ReadInput(const std::string& file) {
-  if (file.empty() || file == "-") {
-    return std::string(std::istreambuf_iterator<char>(std::cin), {});
-  }
-  return freeform::ReadFileToString(file);
-}
-
-template <typename Message>
-absl::StatusOr<Message> ParseJson(const std::string& file) {
-  absl::StatusOr<std::string> json = ReadInput(file);
-  if (!json.ok()) return json.status();
-  Message message;
-  google::protobuf::util::JsonParseOptions options;
-  options.ignore_unknown_fields = false;
-  const auto status =
-      google::protobuf::util::JsonStringToMessage(*json, &message, options);
-  if (!status.ok()) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        "the request is not valid JSON for ",
-        Message::descriptor()->full_name(), ": ", status.ToString()));
-  }
-  return message;
-}
-
-std::string ToJson(const google::protobuf::Message& message) {
-  google::protobuf::util::JsonPrintOptions options;
-  options.preserve_proto_field_names = true;
-  std::string json;
-  (void)google::protobuf::util::MessageToJsonString(message, &json, options);
-  return json + "\n";
-}
-
-int ReportError(const absl::Status& status) {
-  std::cerr << "error: " << absl::StatusCodeToString(status.code()) << ": "
-            << status.message() << "\n";
-  for (const freeform::FieldViolation& violation :
-       freeform::FieldViolationsOf(status)) {
-    std::cerr << "  field " << violation.field << ": " << violation.description
-              << "\n";
-  }
-  return 1;
-}
-
-std::unique_ptr<freeform::Client> Connect(const CommonFlags& flags) {
-  freeform::ClientOptions options;
-  options.target = flags.address;
-  options.timeout = std::chrono::milliseconds(
-      static_cast<int64_t>(flags.timeout_seconds * 1000));
-  options.use_tls = flags.use_tls;
-  options.root_ca_file = flags.root_ca;
-  absl::StatusOr<std::unique_ptr<freeform::Client>> client =
-      freeform::Client::Create(options);
-  if (!client.ok()) {
-    ReportError(client.status());
-    return nullptr;
-  }
-  return *std::move(client);
-}
+using freeform::cli::CommonFlags;
+using freeform::cli::Connect;
+using freeform::cli::InputError;
+using freeform::cli::ParseJson;
+using freeform::cli::PrintJson;
+using freeform::cli::ReadCsvRows;
+using freeform::cli::ReadInput;
+using freeform::cli::ReportError;
+using freeform::cli::RunCall;
+using freeform::cli::RunJsonCall;
+using freeform::cli::ToJson;
+using freeform::cli::WriteSvg;
+using CurveStub = freeform::v1::CurveService::Stub;
+using SurfaceStub = freeform::v1::SurfaceService::Stub;
 
 // One CSV row per parameter: index, then each derivative's coordinates.
 void PrintCsv(const freeform::CurveSamples& samples) {
@@ -150,10 +106,7 @@ int RunEval(const CommonFlags& flags, const std::string& file, bool stream,
             const std::string& format) {
   absl::StatusOr<freeform::v1::EvaluateCurveRequest> request =
       ParseJson<freeform::v1::EvaluateCurveRequest>(file);
-  if (!request.ok()) {
-    std::cerr << "error: " << request.status().message() << "\n";
-    return 2;
-  }
+  if (!request.ok()) return InputError(request.status());
   std::unique_ptr<freeform::Client> client = Connect(flags);
   if (client == nullptr) return 2;
   absl::StatusOr<freeform::CurveSamples> samples =
@@ -207,10 +160,7 @@ int RunBasis(const CommonFlags& flags, const std::string& file,
   if (surface) {
     absl::StatusOr<freeform::v1::EvaluateSurfaceBasisRequest> request =
         ParseJson<freeform::v1::EvaluateSurfaceBasisRequest>(file);
-    if (!request.ok()) {
-      std::cerr << "error: " << request.status().message() << "\n";
-      return 2;
-    }
+    if (!request.ok()) return InputError(request.status());
     if ((client = Connect(flags)) == nullptr) return 2;
     absl::StatusOr<freeform::BasisSamples> samples =
         client->EvaluateSurfaceBasis(*request);
@@ -224,10 +174,7 @@ int RunBasis(const CommonFlags& flags, const std::string& file,
   }
   absl::StatusOr<freeform::v1::EvaluateBasisRequest> request =
       ParseJson<freeform::v1::EvaluateBasisRequest>(file);
-  if (!request.ok()) {
-    std::cerr << "error: " << request.status().message() << "\n";
-    return 2;
-  }
+  if (!request.ok()) return InputError(request.status());
   if ((client = Connect(flags)) == nullptr) return 2;
   absl::StatusOr<freeform::BasisSamples> samples =
       client->EvaluateBasis(*request);
@@ -297,29 +244,17 @@ void PrintSurfaceCsv(const freeform::SurfaceEvaluation& evaluation) {
 }
 
 int WriteObj(const freeform::cli::ObjMesh& mesh, const std::string& path) {
-  if (path == "-") {
-    mesh.Write(std::cout);
-    return 0;
-  }
-  std::ofstream out(path);
-  mesh.Write(out);
-  if (!out) {
-    std::cerr << "error: cannot write " << path << "\n";
-    return 2;
-  }
-  std::cerr << "wrote " << path << ": " << mesh.vertex_count() << " vertices, "
-            << mesh.triangle_count() << " triangles\n";
-  return 0;
+  return freeform::cli::WriteOutput(
+      path, [&](std::ostream& out) { mesh.Write(out); },
+      absl::StrCat(": ", mesh.vertex_count(), " vertices, ",
+                   mesh.triangle_count(), " triangles"));
 }
 
 int RunSurface(const CommonFlags& flags, const std::string& file, bool stream,
                const std::string& format, const std::string& obj) {
   absl::StatusOr<freeform::v1::EvaluateSurfaceRequest> request =
       ParseJson<freeform::v1::EvaluateSurfaceRequest>(file);
-  if (!request.ok()) {
-    std::cerr << "error: " << request.status().message() << "\n";
-    return 2;
-  }
+  if (!request.ok()) return InputError(request.status());
   if (!obj.empty()) {
     if (!request->parameters().has_grid()) {
       std::cerr << "error: --obj needs grid parameters\n";
@@ -384,10 +319,7 @@ int RunMesh(const CommonFlags& flags, const std::string& patches_file, int grid,
             const std::string& obj) {
   absl::StatusOr<std::vector<freeform::v1::Surface>> surfaces =
       ReadBezierPatches(patches_file);
-  if (!surfaces.ok()) {
-    std::cerr << "error: " << surfaces.status().message() << "\n";
-    return 2;
-  }
+  if (!surfaces.ok()) return InputError(surfaces.status());
   std::unique_ptr<freeform::Client> client = Connect(flags);
   if (client == nullptr) return 2;
   freeform::cli::ObjMesh mesh;
@@ -413,62 +345,6 @@ int RunMesh(const CommonFlags& flags, const std::string& patches_file, int grid,
                  evaluation->normals);
   }
   return WriteObj(mesh, obj);
-}
-
-// Sends the JSON request in `file` with `call` and prints the response as
-// JSON.
-template <typename Request, typename Response>
-int RunJsonCall(
-    const CommonFlags& flags, const std::string& file,
-    absl::StatusOr<Response> (freeform::Client::*call)(const Request&)) {
-  absl::StatusOr<Request> request = ParseJson<Request>(file);
-  if (!request.ok()) {
-    std::cerr << "error: " << request.status().message() << "\n";
-    return 2;
-  }
-  std::unique_ptr<freeform::Client> client = Connect(flags);
-  if (client == nullptr) return 2;
-  absl::StatusOr<Response> response = ((*client).*call)(*request);
-  if (!response.ok()) return ReportError(response.status());
-  std::cout << ToJson(*response);
-  return 0;
-}
-
-// Reads points from CSV: one point per line, coordinates separated by
-// commas; blank lines, '#' comments and a non-numeric header are skipped.
-absl::StatusOr<std::vector<std::vector<double>>> ReadCsvRows(
-    const std::string& file) {
-  absl::StatusOr<std::string> text = ReadInput(file);
-  if (!text.ok()) return text.status();
-  std::vector<std::vector<double>> rows;
-  std::istringstream lines(*text);
-  std::string line;
-  for (int number = 1; std::getline(lines, line); ++number) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<double> row;
-    bool numeric = true;
-    for (absl::string_view field : absl::StrSplit(line, ',')) {
-      double value = 0;
-      if (!absl::SimpleAtod(absl::StripAsciiWhitespace(field), &value)) {
-        numeric = false;
-        break;
-      }
-      row.push_back(value);
-    }
-    if (!numeric) {
-      if (rows.empty()) continue;  // a header
-      return absl::InvalidArgumentError(
-          absl::StrCat(file, ":", number, ": not a row of numbers"));
-    }
-    if (!rows.empty() && row.size() != rows.front().size()) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          file, ":", number, ": ", row.size(),
-          " values where earlier rows have ", rows.front().size()));
-    }
-    rows.push_back(std::move(row));
-  }
-  if (rows.empty()) return absl::InvalidArgumentError(file + ": no points");
-  return rows;
 }
 
 struct CsvInterpolation {
@@ -531,24 +407,20 @@ absl::StatusOr<freeform::v1::InterpolateCurveRequest> CsvRequest(
 int RunInterpolate(const CommonFlags& flags, const std::string& file,
                    bool surface, const CsvInterpolation& csv) {
   if (surface) {
-    return RunJsonCall(flags, file, &freeform::Client::InterpolateSurface);
+    return RunJsonCall(flags, file, &SurfaceStub::Interpolate);
   }
   if (csv.csv.empty()) {
-    return RunJsonCall(flags, file, &freeform::Client::InterpolateCurve);
+    return RunJsonCall(flags, file, &CurveStub::Interpolate);
   }
   absl::StatusOr<freeform::v1::InterpolateCurveRequest> request =
       CsvRequest(csv);
-  if (!request.ok()) {
-    std::cerr << "error: " << request.status().message() << "\n";
-    return 2;
-  }
+  if (!request.ok()) return InputError(request.status());
   std::unique_ptr<freeform::Client> client = Connect(flags);
   if (client == nullptr) return 2;
   absl::StatusOr<freeform::v1::InterpolateCurveResponse> response =
       client->InterpolateCurve(*request);
   if (!response.ok()) return ReportError(response.status());
-  std::cout << ToJson(*response);
-  return 0;
+  return PrintJson(*response);
 }
 
 // The control points of a Bezier or B-spline request curve (to draw them).
@@ -562,120 +434,139 @@ absl::Span<const double> ControlPolygon(const freeform::v1::Curve& curve,
                              points.coordinates_size());
 }
 
-int WriteSvg(const freeform::cli::SvgDrawing& drawing,
-             const std::string& path) {
-  if (path == "-") {
-    drawing.Write(std::cout);
-    return 0;
+// The polygon and every level of a subdivision.
+freeform::cli::SvgDrawing DrawSubdivision(
+    const freeform::v1::SubdivideRequest& request,
+    const freeform::v1::SubdivideResponse& result) {
+  freeform::cli::SvgDrawing drawing;
+  const int dimension = static_cast<int>(request.polygon().dimension());
+  drawing.AddPolyline(request.polygon().coordinates(), dimension,
+                      {.color = "#999999",
+                       .width = 1,
+                       .dashed = true,
+                       .dots = true,
+                       .closed = request.closed()});
+  const char* colors[] = {"#d95f02", "#7570b3", "#e7298a", "#66a61e",
+                          "#1f5fbf"};
+  for (int level = 0; level < result.levels_size(); ++level) {
+    const bool last = level + 1 == result.levels_size();
+    drawing.AddPolyline(result.levels(level).coordinates(), dimension,
+                        {.color = last ? "#1f5fbf" : colors[level % 4],
+                         .width = last ? 2.0 : 1.0,
+                         .dashed = false,
+                         .dots = false,
+                         .closed = request.closed()});
   }
-  std::ofstream out(path);
-  drawing.Write(out);
-  if (!out) {
-    std::cerr << "error: cannot write " << path << "\n";
-    return 2;
-  }
-  std::cerr << "wrote " << path << "\n";
-  return 0;
+  return drawing;
 }
 
-int RunTessellate(const CommonFlags& flags, const std::string& file,
-                  bool surface, const std::string& svg,
-                  const std::string& obj) {
-  if (surface) {
-    absl::StatusOr<freeform::v1::TessellateSurfaceRequest> request =
-        ParseJson<freeform::v1::TessellateSurfaceRequest>(file);
-    if (!request.ok()) {
-      std::cerr << "error: " << request.status().message() << "\n";
-      return 2;
-    }
-    if (!obj.empty()) request->set_normals(true);
-    std::unique_ptr<freeform::Client> client = Connect(flags);
-    if (client == nullptr) return 2;
-    absl::StatusOr<freeform::v1::TessellateSurfaceResponse> mesh =
-        client->TessellateSurfaces(*request);
-    if (!mesh.ok()) return ReportError(mesh.status());
-    if (obj.empty()) {
-      std::cout << ToJson(*mesh);
-      return 0;
-    }
-    freeform::cli::ObjMesh out;
-    out.AddTriangles("mesh", mesh->vertices().coordinates(),
-                     mesh->normals().coordinates(), mesh->triangles());
-    return WriteObj(out, obj);
+// The tessellation's output: JSON, or a picture or mesh.
+struct TessellateOutput {
+  std::string svg;
+  std::string obj;
+  bool combs = false;
+  double comb_scale = 0;  // 0: the default
+};
+
+int RunTessellateSurfaces(const CommonFlags& flags, const std::string& file,
+                          const std::string& obj) {
+  return RunCall(
+      flags, file, &SurfaceStub::Tessellate,
+      [&](freeform::v1::TessellateSurfaceRequest& request) {
+        if (!obj.empty()) request.set_normals(true);
+        return absl::OkStatus();
+      },
+      [&](freeform::Client&, const freeform::v1::TessellateSurfaceRequest&,
+          const freeform::v1::TessellateSurfaceResponse& mesh) {
+        if (obj.empty()) return PrintJson(mesh);
+        freeform::cli::ObjMesh out;
+        out.AddTriangles("mesh", mesh.vertices().coordinates(),
+                         mesh.normals().coordinates(), mesh.triangles());
+        return WriteObj(out, obj);
+      });
+}
+
+// --combs draws plane curves only.
+absl::Status CheckCombs(const freeform::v1::TessellateCurveRequest& request,
+                        const TessellateOutput& output) {
+  if (!output.combs) return absl::OkStatus();
+  if (output.svg.empty()) {
+    return absl::InvalidArgumentError("--combs needs --svg");
   }
-  absl::StatusOr<freeform::v1::TessellateCurveRequest> request =
-      ParseJson<freeform::v1::TessellateCurveRequest>(file);
-  if (!request.ok()) {
-    std::cerr << "error: " << request.status().message() << "\n";
-    return 2;
+  const int dimension = freeform::cli::CurveDimension(request.curve());
+  // Without a curve (0) the server's answer names what is missing.
+  if (dimension != 2 && dimension != 0) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("--combs draws curvature combs of 2D curves only; this "
+                     "curve has dimension ",
+                     dimension));
   }
-  std::unique_ptr<freeform::Client> client = Connect(flags);
-  if (client == nullptr) return 2;
-  absl::StatusOr<freeform::v1::TessellateCurveResponse> polyline =
-      client->TessellateCurve(*request);
-  if (!polyline.ok()) return ReportError(polyline.status());
-  if (svg.empty()) {
-    std::cout << ToJson(*polyline);
-    return 0;
-  }
+  return absl::OkStatus();
+}
+
+// The control polygon and the polyline of a tessellated curve.
+freeform::cli::SvgDrawing DrawTessellation(
+    const freeform::v1::TessellateCurveRequest& request,
+    const freeform::v1::TessellateCurveResponse& polyline) {
   freeform::cli::SvgDrawing drawing;
   int dimension = 0;
   const absl::Span<const double> control =
-      ControlPolygon(request->curve(), dimension);
+      ControlPolygon(request.curve(), dimension);
   drawing.AddPolyline(control, dimension,
                       {.color = "#999999",
                        .width = 1,
                        .dashed = true,
                        .dots = true,
-                       .closed = false});
-  drawing.AddPolyline(polyline->points().coordinates(),
-                      static_cast<int>(polyline->points().dimension()),
+                       .closed = false,
+                       .label = "control"});
+  drawing.AddPolyline(polyline.points().coordinates(),
+                      static_cast<int>(polyline.points().dimension()),
                       {.color = "#1f5fbf",
                        .width = 2,
                        .dashed = false,
                        .dots = false,
-                       .closed = false});
-  return WriteSvg(drawing, svg);
+                       .closed = false,
+                       .label = "curve"});
+  return drawing;
+}
+
+int RunTessellateCurve(const CommonFlags& flags, const std::string& file,
+                       const TessellateOutput& output) {
+  return RunCall(
+      flags, file, &CurveStub::Tessellate,
+      [&](freeform::v1::TessellateCurveRequest& request) {
+        return CheckCombs(request, output);
+      },
+      [&](freeform::Client& client,
+          const freeform::v1::TessellateCurveRequest& request,
+          const freeform::v1::TessellateCurveResponse& polyline) {
+        if (output.svg.empty()) return PrintJson(polyline);
+        freeform::cli::SvgDrawing drawing = DrawTessellation(request, polyline);
+        if (output.combs) {
+          const absl::Status comb = freeform::cli::AddCurvatureComb(
+              client, request.curve(), polyline,
+              output.comb_scale > 0 ? std::optional(output.comb_scale)
+                                    : std::nullopt,
+              drawing);
+          if (!comb.ok()) return ReportError(comb);
+        }
+        return WriteSvg(drawing, output.svg);
+      });
 }
 
 int RunSubdivide(const CommonFlags& flags, const std::string& file,
                  const std::string& svg) {
-  absl::StatusOr<freeform::v1::SubdivideRequest> request =
-      ParseJson<freeform::v1::SubdivideRequest>(file);
-  if (!request.ok()) {
-    std::cerr << "error: " << request.status().message() << "\n";
-    return 2;
-  }
-  if (!svg.empty()) request->set_keep_levels(true);
-  std::unique_ptr<freeform::Client> client = Connect(flags);
-  if (client == nullptr) return 2;
-  absl::StatusOr<freeform::v1::SubdivideResponse> result =
-      client->SubdividePolygon(*request);
-  if (!result.ok()) return ReportError(result.status());
-  if (svg.empty()) {
-    std::cout << ToJson(*result);
-    return 0;
-  }
-  freeform::cli::SvgDrawing drawing;
-  const int dimension = static_cast<int>(request->polygon().dimension());
-  drawing.AddPolyline(request->polygon().coordinates(), dimension,
-                      {.color = "#999999",
-                       .width = 1,
-                       .dashed = true,
-                       .dots = true,
-                       .closed = request->closed()});
-  const char* colors[] = {"#d95f02", "#7570b3", "#e7298a", "#66a61e",
-                          "#1f5fbf"};
-  for (int level = 0; level < result->levels_size(); ++level) {
-    const bool last = level + 1 == result->levels_size();
-    drawing.AddPolyline(result->levels(level).coordinates(), dimension,
-                        {.color = last ? "#1f5fbf" : colors[level % 4],
-                         .width = last ? 2.0 : 1.0,
-                         .dashed = false,
-                         .dots = false,
-                         .closed = request->closed()});
-  }
-  return WriteSvg(drawing, svg);
+  return RunCall(
+      flags, file, &CurveStub::Subdivide,
+      [&](freeform::v1::SubdivideRequest& request) {
+        if (!svg.empty()) request.set_keep_levels(true);
+        return absl::OkStatus();
+      },
+      [&](freeform::Client&, const freeform::v1::SubdivideRequest& request,
+          const freeform::v1::SubdivideResponse& result) {
+        return svg.empty() ? PrintJson(result)
+                           : WriteSvg(DrawSubdivision(request, result), svg);
+      });
 }
 
 int RunHealth(const CommonFlags& flags, const std::string& service) {
@@ -685,20 +576,6 @@ int RunHealth(const CommonFlags& flags, const std::string& service) {
   if (!status.ok()) return ReportError(status);
   std::cout << "SERVING\n";
   return 0;
-}
-
-void AddCommonFlags(CLI::App& command, CommonFlags& flags) {
-  command
-      .add_option("-a,--address", flags.address,
-                  "Server address (host:port or any gRPC target)")
-      ->capture_default_str();
-  command
-      .add_option("--timeout", flags.timeout_seconds,
-                  "Deadline of the call in seconds")
-      ->capture_default_str();
-  command.add_flag("--tls", flags.use_tls, "Connect with TLS");
-  command.add_option("--tls_root_ca", flags.root_ca,
-                     "PEM file of the CA that signed the server");
 }
 
 }  // namespace
@@ -846,9 +723,20 @@ int main(int argc, char** argv) {
                          "Tessellate*Request as proto3 JSON");
   tessellate->add_flag("--surface", surface_request,
                        "The request is a TessellateSurfaceRequest");
-  tessellate->add_option("--svg", svg,
+  TessellateOutput tessellation;
+  tessellate->add_option("--svg", tessellation.svg,
                          "Curves: draw the polyline and control polygon");
-  tessellate->add_option("--obj", obj, "Surfaces: write the mesh as OBJ");
+  tessellate->add_option("--obj", tessellation.obj,
+                         "Surfaces: write the mesh as OBJ");
+  tessellate->add_flag("--combs", tessellation.combs,
+                       "With --svg: draw the curvature comb (2D curves)");
+  tessellate
+      ->add_option("--comb-scale", tessellation.comb_scale,
+                   "Tooth length per unit of curvature (default: the "
+                   "longest tooth is 15% of the drawing)")
+      ->check(CLI::PositiveNumber);
+
+  freeform::cli::QueryCommands queries(app, flags);
 
   CLI::App* health =
       app.add_subcommand("health", "Ask the server's health service");
@@ -863,31 +751,30 @@ int main(int argc, char** argv) {
   if (surface->parsed()) return RunSurface(flags, file, stream, format, obj);
   if (elevate->parsed()) {
     return surface_request
-               ? RunJsonCall(flags, file,
-                             &freeform::Client::ElevateSurfaceDegree)
-               : RunJsonCall(flags, file,
-                             &freeform::Client::ElevateCurveDegree);
+               ? RunJsonCall(flags, file, &SurfaceStub::ElevateDegree)
+               : RunJsonCall(flags, file, &CurveStub::ElevateDegree);
   }
   if (reduce->parsed()) {
-    return RunJsonCall(flags, file, &freeform::Client::ReduceCurveDegree);
+    return RunJsonCall(flags, file, &CurveStub::ReduceDegree);
   }
   if (split->parsed()) {
-    return surface_request
-               ? RunJsonCall(flags, file, &freeform::Client::SplitSurface)
-               : RunJsonCall(flags, file, &freeform::Client::SplitCurve);
+    return surface_request ? RunJsonCall(flags, file, &SurfaceStub::Split)
+                           : RunJsonCall(flags, file, &CurveStub::Split);
   }
   if (insert->parsed()) {
-    return surface_request
-               ? RunJsonCall(flags, file, &freeform::Client::InsertSurfaceKnots)
-               : RunJsonCall(flags, file, &freeform::Client::InsertCurveKnots);
+    return surface_request ? RunJsonCall(flags, file, &SurfaceStub::InsertKnots)
+                           : RunJsonCall(flags, file, &CurveStub::InsertKnots);
   }
   if (decompose->parsed()) {
-    return RunJsonCall(flags, file, &freeform::Client::DecomposeCurve);
+    return RunJsonCall(flags, file, &CurveStub::Decompose);
   }
   if (subdivide->parsed()) return RunSubdivide(flags, file, svg);
   if (tessellate->parsed()) {
-    return RunTessellate(flags, file, surface_request, svg, obj);
+    return surface_request
+               ? RunTessellateSurfaces(flags, file, tessellation.obj)
+               : RunTessellateCurve(flags, file, tessellation);
   }
+  if (std::optional<int> status = queries.Run()) return *status;
   if (interpolate->parsed()) {
     return RunInterpolate(flags, file, surface_request, csv);
   }

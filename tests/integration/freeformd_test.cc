@@ -4,19 +4,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "cli_test_util.h"
 #include "freeform/client.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
 #include "server_process.h"
@@ -27,35 +25,6 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string output;  // stdout, then stderr
-};
-
-CommandResult RunCommand(const std::string& command) {
-  CommandResult result;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  size_t read = 0;
-  while ((read = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-    result.output.append(buffer.data(), read);
-  }
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-std::string WriteTempFile(const std::string& contents) {
-  char path[] = "/tmp/freeform_request_XXXXXX";
-  const int fd = mkstemp(path);
-  EXPECT_GE(fd, 0);
-  EXPECT_EQ(write(fd, contents.data(), contents.size()),
-            static_cast<ssize_t>(contents.size()));
-  close(fd);
-  return path;
-}
-
 constexpr char kCubicRequest[] = R"({
   "curve": {"bezier": {"control_points": {
       "dimension": 2, "coordinates": [0, 0, 1, 2, 3, 2, 4, 0]}}},
@@ -63,26 +32,7 @@ constexpr char kCubicRequest[] = R"({
   "derivative_order": 1
 })";
 
-class FreeformdTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    ASSERT_GT(server_.port(), 0) << "freeformd did not report its port";
-    ClientOptions options;
-    options.target = server_.address();
-    options.timeout = std::chrono::seconds(10);
-    auto client = Client::Create(options);
-    ASSERT_TRUE(client.ok()) << client.status();
-    client_ = *std::move(client);
-  }
-
-  std::string Cli(const std::string& arguments) const {
-    return absl::StrCat(FREEFORM_CLI_PATH, " ", arguments, " --address ",
-                        server_.address());
-  }
-
-  ServerProcess server_;
-  std::unique_ptr<Client> client_;
-};
+using FreeformdTest = ServerAndCliTest;
 
 TEST_F(FreeformdTest, ClientEvaluatesTheWorkedCubic) {
   absl::StatusOr<CurveSamples> samples =

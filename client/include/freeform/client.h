@@ -4,8 +4,10 @@
 // round_robin), applies a per-call deadline, retries UNAVAILABLE calls, and
 // returns absl::StatusOr of plain C++ types for the common calls. Errors keep
 // the server's gRPC code; an INVALID_ARGUMENT's google.rpc.BadRequest field
-// violations are available through FieldViolationsOf. For every other RPC
-// use the generated stubs from curves() / surfaces() with NewContext().
+// violations are available through FieldViolationsOf. Every other unary
+// RPC is Unary(&v1::CurveService::Stub::ArcLength, request) (any method of
+// either service's stub); streams use curves() / surfaces() with
+// NewContext().
 //
 // Thread-safe: one Client may serve many threads at once.
 //
@@ -24,6 +26,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -183,6 +186,16 @@ class Client {
     return response;
   }
 
+  // Unary on this client's stub of the method's service, e.g.
+  //   client.Unary(&v1::CurveService::Stub::ArcLength, request);
+  template <typename Stub, typename Request, typename Response>
+  absl::StatusOr<Response> Unary(
+      grpc::Status (Stub::*method)(grpc::ClientContext*, const Request&,
+                                   Response*),
+      const Request& request) {
+    return Unary(StubOf<Stub>(), method, request);
+  }
+
   // The degree and interpolation RPCs.
   absl::StatusOr<v1::ElevateCurveDegreeResponse> ElevateCurveDegree(
       const v1::ElevateCurveDegreeRequest& request) {
@@ -251,6 +264,18 @@ class Client {
   const std::shared_ptr<grpc::Channel>& channel() const { return channel_; }
 
  private:
+  // The stub of `Stub`'s service.
+  template <typename Stub>
+  Stub& StubOf() {
+    if constexpr (std::is_same_v<Stub, v1::CurveService::Stub>) {
+      return *curves_;
+    } else {
+      static_assert(std::is_same_v<Stub, v1::SurfaceService::Stub>,
+                    "a stub of CurveService or SurfaceService");
+      return *surfaces_;
+    }
+  }
+
   ClientOptions options_;
   std::shared_ptr<grpc::Channel> channel_;
   std::unique_ptr<v1::CurveService::Stub> curves_;
