@@ -186,7 +186,9 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
       !status.ok()) {
     return status;
   }
-  const auto [start, end] = EndsOf(request.interval(), DomainOf(*curve));
+  const std::pair<double, double> ends =
+      EndsOf(request.interval(), DomainOf(*curve));
+  const double start = ends.first, end = ends.second;
   return UnaryWork{
       .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
                .heavy = true},
