@@ -23,6 +23,11 @@ constexpr int kMaxNewtonSteps = 100;
 // Parameters solved per chunk of ParametersAtArcLengths.
 constexpr size_t kSolveGrain = 64;
 
+// Two quadrature rules whose values differ by at most this fraction of
+// their value agree to rounding.
+constexpr double kRoundingAgreement =
+    64 * std::numeric_limits<double>::epsilon();
+
 struct Rule {
   std::array<double, kRulePoints> nodes;
   std::array<double, kRulePoints> weights;
@@ -163,10 +168,16 @@ absl::Status AddPiece(double a, double b, double tolerance, double width,
     if (absl::Status status = poll.Done(integrator.Work()); !status.ok()) {
       return status;
     }
-    const bool settled = std::abs(top.whole - (halves[0] + halves[1])) <=
-                             tolerance * (top.b - top.a) / width ||
-                         top.depth >= kMaxArcLengthDepth ||
-                         !(top.a < mid && mid < top.b);
+    // Rules that agree to rounding of their value cannot do better (a
+    // tolerance below what double precision resolves would otherwise
+    // halve every interval kMaxArcLengthDepth times, 2^40 intervals), nor
+    // can rules that overflowed.
+    const double sum = halves[0] + halves[1];
+    const double difference = std::abs(top.whole - sum);
+    const bool settled =
+        difference <= tolerance * (top.b - top.a) / width ||
+        difference <= kRoundingAgreement * sum || !std::isfinite(sum) ||
+        top.depth >= kMaxArcLengthDepth || !(top.a < mid && mid < top.b);
     if (settled) {
       table.ends.push_back(mid);
       table.cumulative.push_back(table.total() + halves[0]);

@@ -422,9 +422,12 @@ Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
     node.diameter = shared != nullptr ? prepared_.diameter[piece]
                                       : internal::BoxDiameter(projected, dim);
     if (!polynomial_curve) {
-      node.bound = std::max(
-          internal::BoxDistance(projected, dim, query_),
-          internal::DirectionalBound(projected, dim, query_, nearest_point));
+      // No control point is nearest when every distance overflows.
+      node.bound = std::max(internal::BoxDistance(projected, dim, query_),
+                            nearest_point == nullptr
+                                ? 0.0
+                                : internal::DirectionalBound(
+                                      projected, dim, query_, nearest_point));
     }
   }
   if (node.corner.distance < best_) {
