@@ -155,6 +155,7 @@ absl::Status AddPiece(double a, double b, double tolerance, double width,
     return status;
   }
   std::vector<Pending> stack = {{a, b, whole, 0}};
+  size_t kept = 0;
   while (!stack.empty()) {
     const Pending top = stack.back();
     stack.pop_back();
@@ -177,8 +178,11 @@ absl::Status AddPiece(double a, double b, double tolerance, double width,
     const bool settled =
         difference <= tolerance * (top.b - top.a) / width ||
         difference <= kRoundingAgreement * sum || !std::isfinite(sum) ||
-        top.depth >= kMaxArcLengthDepth || !(top.a < mid && mid < top.b);
+        top.depth >= kMaxArcLengthDepth ||
+        kept + 2 * stack.size() + 2 >= kMaxArcLengthIntervals ||
+        !(top.a < mid && mid < top.b);
     if (settled) {
+      kept += 2;
       table.ends.push_back(mid);
       table.cumulative.push_back(table.total() + halves[0]);
       table.ends.push_back(top.b);

@@ -12,7 +12,9 @@
 // over the whole interval's) the halves' sum is kept, otherwise each half is
 // refined the same way. The difference estimates the error of the coarser
 // rule, so the kept sums are far more accurate than the tolerance for smooth
-// speeds; an interval is not split beyond kMaxArcLengthDepth halvings, so a
+// speeds. An interval whose rules agree to rounding (64 epsilon of their
+// value) is kept as it is, and a piece is not split beyond
+// kMaxArcLengthDepth halvings or kMaxArcLengthIntervals intervals, so a
 // tolerance below what double precision resolves (about 1e-15 of the
 // length) ends there with the best sum found.
 //
@@ -42,8 +44,11 @@
 namespace freeform {
 
 // The largest number of halvings of a piece of the curve between two
-// breakpoints.
+// breakpoints, and the most intervals one piece is cut into: together they
+// bound the work of a tolerance the piece cannot meet (a speed with a
+// corner finer than double precision resolves, a huge curve).
 inline constexpr int kMaxArcLengthDepth = 40;
+inline constexpr size_t kMaxArcLengthIntervals = 1024;
 
 // ArcLength returns the length of `curve` over [start, end] within
 // `tolerance` (absolute, in the curve's units; see the file comment).
