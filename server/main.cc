@@ -49,6 +49,9 @@ ABSL_FLAG(uint64_t, max_parameters, 10'000'000,
           "Most evaluation parameters per request");
 ABSL_FLAG(uint64_t, max_output_values, 64'000'000,
           "Most output numbers per request (streams included)");
+ABSL_FLAG(uint64_t, max_closest_point_pieces, uint64_t{1} << 26,
+          "Bezier pieces one ClosestPoint call may examine over all its "
+          "queries (each query its share, 16 to 4096)");
 ABSL_FLAG(uint64_t, memory_budget, 768ull << 20,
           "Bytes the process may use: calls together may reserve 3/4 of it "
           "for their answers and work (a call that does not fit gets "
@@ -85,6 +88,8 @@ freeform::server::ServerOptions OptionsFromFlags() {
   limits.max_derivative_order = absl::GetFlag(FLAGS_max_derivative_order);
   limits.max_parameters = absl::GetFlag(FLAGS_max_parameters);
   limits.max_output_values = absl::GetFlag(FLAGS_max_output_values);
+  limits.max_closest_point_pieces =
+      absl::GetFlag(FLAGS_max_closest_point_pieces);
   limits.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget);
   return options;
 }

@@ -15,9 +15,11 @@
 namespace freeform::server {
 namespace {
 
-// The most pieces one closest-point query examines: bounds its work (a
-// query that needs more answers complete = false).
-constexpr size_t kMaxPiecesPerQuery = 4096;
+// The most and the fewest pieces one closest-point query examines (its
+// share of limits.max_closest_point_pieces): a query that needs more
+// answers complete = false.
+constexpr uint64_t kMaxPiecesPerQuery = 4096;
+constexpr uint64_t kMinPiecesPerQuery = 16;
 
 // The most pairs of parts one intersection examines.
 constexpr size_t kMaxIntersectionPairs = size_t{1} << 20;
@@ -107,8 +109,7 @@ absl::StatusOr<ClosestPointOptions> ToCore(
   }
   return ClosestPointOptions{.tolerance = *tolerance,
                              .separation = *separation,
-                             .max_minima = static_cast<int>(max_minima),
-                             .max_pieces = kMaxPiecesPerQuery};
+                             .max_minima = static_cast<int>(max_minima)};
 }
 
 absl::StatusOr<IntersectionOptions> ToCore(
@@ -168,6 +169,9 @@ absl::StatusOr<UnaryWork> PlanClosestPoints(
   }
   absl::StatusOr<ClosestPointOptions> core_options = ToCore(options);
   if (!core_options.ok()) return core_options.status();
+  core_options->max_pieces = static_cast<size_t>(
+      std::clamp<uint64_t>(limits.max_closest_point_pieces / points->size(),
+                           kMinPiecesPerQuery, kMaxPiecesPerQuery));
   // The core's answer keeps max_minima slots per query; the response at
   // most as many.
   const uint64_t values = ClosestPointsValues(

@@ -38,6 +38,11 @@ struct ServiceLimits {
   uint64_t memory_budget_bytes = 768ull << 20;
   // Points per streamed chunk when the request does not say.
   size_t default_stream_chunk = 32768;
+  // Bezier pieces one closest-point call may examine over all its queries
+  // (each query gets its share, between 16 and 4096): bounds the work of
+  // geometry whose hull bounds prune little (extreme weights). A query
+  // that runs out answers complete = false.
+  uint64_t max_closest_point_pieces = uint64_t{1} << 26;
 };
 
 // CheckDimensionLimit returns INVALID_ARGUMENT on "<field>.dimension" unless
