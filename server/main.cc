@@ -51,7 +51,7 @@ ABSL_FLAG(uint64_t, max_output_values, 64'000'000,
           "Most output numbers per request (streams included)");
 ABSL_FLAG(uint64_t, max_closest_point_pieces, uint64_t{1} << 26,
           "Bezier pieces one ClosestPoint call may examine over all its "
-          "queries (each query its share, 16 to 4096)");
+          "queries (each query its share, 1 to 4096)");
 ABSL_FLAG(uint64_t, memory_budget, 768ull << 20,
           "Bytes the process may use: calls together may reserve 3/4 of it "
           "for their answers and work (a call that does not fit gets "

@@ -15,11 +15,10 @@
 namespace freeform::server {
 namespace {
 
-// The most and the fewest pieces one closest-point query examines (its
+// The most pieces one closest-point query examines (at least one, and its
 // share of limits.max_closest_point_pieces): a query that needs more
 // answers complete = false.
 constexpr uint64_t kMaxPiecesPerQuery = 4096;
-constexpr uint64_t kMinPiecesPerQuery = 16;
 
 // The most pairs of parts one intersection examines.
 constexpr size_t kMaxIntersectionPairs = size_t{1} << 20;
@@ -169,9 +168,8 @@ absl::StatusOr<UnaryWork> PlanClosestPoints(
   }
   absl::StatusOr<ClosestPointOptions> core_options = ToCore(options);
   if (!core_options.ok()) return core_options.status();
-  core_options->max_pieces = static_cast<size_t>(
-      std::clamp<uint64_t>(limits.max_closest_point_pieces / points->size(),
-                           kMinPiecesPerQuery, kMaxPiecesPerQuery));
+  core_options->max_pieces = static_cast<size_t>(std::clamp<uint64_t>(
+      limits.max_closest_point_pieces / points->size(), 1, kMaxPiecesPerQuery));
   // The core's answer keeps max_minima slots per query; the response at
   // most as many.
   const uint64_t values = ClosestPointsValues(

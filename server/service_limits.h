@@ -39,7 +39,7 @@ struct ServiceLimits {
   // Points per streamed chunk when the request does not say.
   size_t default_stream_chunk = 32768;
   // Bezier pieces one closest-point call may examine over all its queries
-  // (each query gets its share, between 16 and 4096): bounds the work of
+  // (each query gets its share, between 1 and 4096): bounds the work of
   // geometry whose hull bounds prune little (extreme weights). A query
   // that runs out answers complete = false.
   uint64_t max_closest_point_pieces = uint64_t{1} << 26;
