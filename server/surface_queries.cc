@@ -27,7 +27,7 @@ namespace {
 // The default chordal tolerance of section polylines, and the default cap
 // of their vertices.
 constexpr double kDefaultSectionTolerance = 1e-6;
-constexpr uint64_t kDefaultSectionPoints = uint64_t{1} << 18;
+constexpr uint64_t kDefaultSectionPoints = uint64_t{1} << 16;
 
 // The most quadtree cells one section examines.
 constexpr size_t kMaxSectionCells = size_t{1} << 20;
@@ -172,7 +172,8 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
               options =
                   SectionOptions{.tolerance = *tolerance,
                                  .max_points = static_cast<size_t>(requested),
-                                 .max_cells = kMaxSectionCells},
+                                 .max_cells = kMaxSectionCells,
+                                 .fit_tolerance = *fit_tolerance},
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<Sections> sections = IntersectSurfacePlane(
             surface, point, normal, options, execution.cancellation);

@@ -397,6 +397,8 @@ CallResult SurfaceSection(Client& client, Rng& rng) {
   *request.mutable_surface() = SpherePatch(radius).ToSurface();
   AddValues(Values{0, 0, h}, request.mutable_plane_point());
   AddValues(Values{0, 0, 1}, request.mutable_plane_normal());
+  // Its answer, a few hundred vertices, is planned for this many.
+  request.set_max_points(4096);
   auto answer = client.Unary(client.surfaces(),
                              &v1::SurfaceService::Stub::Section, request);
   Checker check(request, 10);
