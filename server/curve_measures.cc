@@ -89,9 +89,7 @@ absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
                                         v1::ArcLengthResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  absl::StatusOr<double> tolerance =
-      Tolerance(request.has_tolerance(), request.tolerance(),
-                kDefaultQueryTolerance, "tolerance");
+  absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   const uint64_t count =
       std::max<uint64_t>(1, static_cast<uint64_t>(request.intervals_size()));
@@ -127,9 +125,7 @@ absl::StatusOr<UnaryWork> PlanParametersAtArcLength(
     const ServiceLimits& limits, v1::ParametersAtArcLengthResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  absl::StatusOr<double> tolerance =
-      Tolerance(request.has_tolerance(), request.tolerance(),
-                kDefaultQueryTolerance, "tolerance");
+  absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   const uint64_t count = static_cast<uint64_t>(request.lengths_size());
   if (count == 0) {
@@ -169,9 +165,7 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
     v1::SampleByArcLengthResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  absl::StatusOr<double> tolerance =
-      Tolerance(request.has_tolerance(), request.tolerance(),
-                kDefaultQueryTolerance, "tolerance");
+  absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   const uint64_t count = request.count();
   if (count < 2) {

@@ -100,9 +100,7 @@ absl::StatusOr<UnaryWork> PlanBoundingBox(
     v1::BoundingBoxResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  absl::StatusOr<double> tolerance =
-      Tolerance(request.has_tolerance(), request.tolerance(),
-                kDefaultQueryTolerance, "tolerance");
+  absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   absl::StatusOr<uint64_t> work =
       PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");

@@ -40,6 +40,15 @@ absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values,
 absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
                                  absl::string_view field);
 
+// RequestTolerance returns the optional `tolerance` field of a query
+// request (Tolerance, naming "tolerance"), or `fallback` when it is unset.
+template <typename Request>
+absl::StatusOr<double> RequestTolerance(
+    const Request& request, double fallback = kDefaultQueryTolerance) {
+  return Tolerance(request.has_tolerance(), request.tolerance(), fallback,
+                   "tolerance");
+}
+
 // ToCore checks closest-point options (fields under "options.") and fills
 // in their defaults; the pieces one query may examine come from the server.
 absl::StatusOr<ClosestPointOptions> ToCore(

@@ -136,8 +136,7 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
   absl::StatusOr<double> tolerance =
-      Tolerance(request.has_tolerance(), request.tolerance(),
-                kDefaultSectionTolerance, "tolerance");
+      RequestTolerance(request, kDefaultSectionTolerance);
   if (!tolerance.ok()) return tolerance.status();
   absl::StatusOr<double> fit_tolerance =
       Tolerance(request.has_fit_tolerance(), request.fit_tolerance(), 0.0,
@@ -252,9 +251,7 @@ absl::StatusOr<UnaryWork> PlanBoundingBox(
     v1::BoundingBoxResponse& response) {
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
-  absl::StatusOr<double> tolerance =
-      Tolerance(request.has_tolerance(), request.tolerance(),
-                kDefaultQueryTolerance, "tolerance");
+  absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   absl::StatusOr<uint64_t> work =
       PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");

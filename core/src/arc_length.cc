@@ -288,30 +288,42 @@ absl::Status CheckOutputSize(absl::Span<double> parameters, size_t expected) {
       "parameters holds ", parameters.size(), " values, expected ", expected));
 }
 
+// ForEachChunk runs chunk(begin, end) over chunks of [0, count) on the
+// context's pool (small chunks: each item is a whole integration) and
+// returns the first failure of a chunk, or the token's CANCELLED /
+// DEADLINE_EXCEEDED.
+template <typename Chunk>
+absl::Status ForEachChunk(size_t count, const ExecutionContext& context,
+                          Chunk chunk) {
+  ExecutionContext chunks = context;
+  chunks.grain = std::min(context.grain, kSolveGrain);
+  std::mutex mutex;
+  absl::Status failure;
+  absl::Status status = ParallelFor(count, chunks, [&](size_t b, size_t e) {
+    if (absl::Status result = chunk(b, e); !result.ok()) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      failure.Update(result);
+    }
+  });
+  return status.ok() ? failure : status;
+}
+
 // SolveAll writes Solve(targets(i)) into parameters[first + i] for
 // i < count, in chunks on the context's pool.
 template <typename Targets>
 absl::Status SolveAll(const Curve& curve, const LengthTable& table,
                       size_t count, Targets targets, double tolerance,
                       double* parameters, const ExecutionContext& context) {
-  ExecutionContext chunks = context;
-  chunks.grain = std::min(context.grain, kSolveGrain);
-  std::mutex mutex;
-  absl::Status failure;
-  absl::Status status = ParallelFor(count, chunks, [&](size_t b, size_t e) {
+  return ForEachChunk(count, context, [&](size_t b, size_t e) {
     SpeedIntegrator integrator(curve);
     for (size_t i = b; i < e; ++i) {
       absl::StatusOr<double> t =
           Solve(table, targets(i), tolerance, integrator);
-      if (!t.ok()) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        failure.Update(t.status());
-        return;
-      }
+      if (!t.ok()) return t.status();
       parameters[i] = *t;
     }
+    return absl::OkStatus();
   });
-  return status.ok() ? failure : status;
 }
 
 }  // namespace
@@ -372,27 +384,19 @@ absl::Status ArcLengths(const Curve& curve, absl::Span<const double> intervals,
     if (absl::Status status = CheckInterval(curve, intervals[2 * i],
                                             intervals[2 * i + 1], tolerance);
         !status.ok()) {
-      return PrefixFieldPath(status, absl::StrCat("intervals[", i, "]"));
+      return PrefixFieldPath(status, IndexedField("intervals", i));
     }
   }
-  ExecutionContext chunks = context;
-  chunks.grain = std::min(context.grain, kSolveGrain);
-  std::mutex mutex;
-  absl::Status failure;
-  absl::Status status = ParallelFor(count, chunks, [&](size_t b, size_t e) {
+  return ForEachChunk(count, context, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
       absl::StatusOr<LengthTable> table =
           BuildTable(curve, intervals[2 * i], intervals[2 * i + 1], tolerance,
                      context.cancellation);
-      if (!table.ok()) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        failure.Update(table.status());
-        return;
-      }
+      if (!table.ok()) return table.status();
       lengths[i] = table->total();
     }
+    return absl::OkStatus();
   });
-  return status.ok() ? failure : status;
 }
 
 absl::Status ParametersAtArcLengths(const Curve& curve, double start,
