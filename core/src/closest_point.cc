@@ -618,6 +618,13 @@ void Search::Report(size_t r, ClosestPoints& answer) {
   const int dim = pieces_.dimension;
   const int pc = pieces_.parameter_count;
   const size_t slots = static_cast<size_t>(answer.max_minima);
+  if (polished_.empty()) {  // every distance overflowed: no finite minimum
+    answer.counts[r] = 0;
+    answer.complete[r] = 0;
+    answer.distances[r] = kInfinity;
+    answer.lower_bounds[r] = kInfinity;
+    return;
+  }
   const double smallest = polished_.front().distance;
   int kept = 0;
   for (const Candidate& candidate : polished_) {

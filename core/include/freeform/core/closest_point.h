@@ -106,8 +106,10 @@ struct ClosestPoints {
   int max_minima = 0;
   std::vector<double> distances;     // per query: the minimum distance
   std::vector<double> lower_bounds;  // per query: certified lower bound
-  std::vector<int> counts;           // per query: minima returned, >= 1
-  std::vector<uint8_t> complete;     // per query: 1 when all were returned
+  // Per query: minima returned, >= 1 (0, with an infinite distance, only
+  // when every distance overflows the double range).
+  std::vector<int> counts;
+  std::vector<uint8_t> complete;  // per query: 1 when all were returned
   std::vector<double> parameters;
   std::vector<double> points;
 };
