@@ -81,13 +81,15 @@ struct OutputBuffers {
 };
 
 // CheckSumsTo checks that the `functions` values at each of `count`
-// points (values[r * functions + i]) sum to `expected`.
+// points (values[r * functions + i]) sum to `expected`, to a tolerance
+// relative to the sum of their magnitudes or to `scale_floor`, the size of
+// the terms the values were computed from, when that is larger.
 inline void CheckSumsTo(absl::Span<const double> values, size_t count,
                         size_t functions, double expected,
-                        absl::string_view what) {
+                        absl::string_view what, double scale_floor = 0) {
   for (size_t r = 0; r < count; ++r) {
     double sum = 0;
-    double scale = 0;
+    double scale = scale_floor;
     for (size_t i = 0; i < functions; ++i) {
       sum += values[r * functions + i];
       scale += std::abs(values[r * functions + i]);
@@ -98,17 +100,23 @@ inline void CheckSumsTo(absl::Span<const double> values, size_t count,
 
 // CheckBasisTimesPoints checks that `result` (count points of `dimension`)
 // is the basis values (count x functions) times the points (functions x
-// dimension).
+// dimension), to a tolerance relative to the terms' magnitudes or to
+// `basis_scale_floor` (as in CheckSumsTo) times the largest coordinate.
 inline void CheckBasisTimesPoints(absl::Span<const double> result,
                                   absl::Span<const double> basis,
                                   absl::Span<const double> points,
                                   int dimension, size_t count, size_t functions,
-                                  absl::string_view what) {
+                                  absl::string_view what,
+                                  double basis_scale_floor = 0) {
   const size_t d = static_cast<size_t>(dimension);
+  double largest_coordinate = 0;
+  for (const double coordinate : points) {
+    largest_coordinate = std::max(largest_coordinate, std::abs(coordinate));
+  }
   for (size_t r = 0; r < count; ++r) {
     for (size_t j = 0; j < d; ++j) {
       double sum = 0;
-      double scale = 0;
+      double scale = basis_scale_floor * largest_coordinate;
       for (size_t i = 0; i < functions; ++i) {
         const double term = basis[r * functions + i] * points[i * d + j];
         sum += term;
