@@ -231,56 +231,22 @@ absl::StatusOr<UnaryWork> PlanTessellate(
       request.max_points() > 0 ? request.max_points() : limits.max_parameters;
   const uint64_t cap = std::min({requested, uint64_t{limits.max_parameters},
                                  fit, limits.max_output_values / per_point});
-  using Tessellator = absl::AnyInvocable<absl::StatusOr<Polyline>(
-      size_t, const CancellationToken*) const>;
-  // The polyline's points are known to be at most `bound` before the work
-  // (SIZE_MAX when unknown: a rational curve with a weight of 0).
-  struct Tessellation {
-    Tessellator tessellator;
-    size_t bound = SIZE_MAX;
-  };
   const double tolerance = request.tolerance();
   if (!std::isfinite(tolerance) || !(tolerance > 0.0)) {
     return InvalidFieldError(
         "tolerance",
         absl::StrCat("must be positive and finite, got ", tolerance));
   }
-  absl::StatusOr<Tessellation> tessellation =
-      std::visit<absl::StatusOr<Tessellation>>(
-          Overloaded{
-              [&](const BezierCurve& bezier) -> absl::StatusOr<Tessellation> {
-                return Tessellation{
-                    [view = bezier.view(), tolerance](
-                        size_t max_points, const CancellationToken* token) {
-                      return TessellateBezierCurve(view, tolerance, max_points,
-                                                   token);
-                    },
-                    BezierCurvePointBound(bezier.view(), tolerance)};
-              },
-              [&](const BSplineCurve& bspline) -> absl::StatusOr<Tessellation> {
-                return Tessellation{
-                    [view = bspline.view(), tolerance](
-                        size_t max_points, const CancellationToken* token) {
-                      return TessellateBSplineCurve(view, tolerance, max_points,
-                                                    token);
-                    },
-                    BSplineCurvePointBound(bspline.view(), tolerance)};
-              },
-              Refuse<LagrangeCurve, HermiteCurve>{
-                  "curve",
-                  "Tessellate takes a Bezier, power-form or B-spline/NURBS "
-                  "curve"}},
-          *curve);
-  if (!tessellation.ok()) return tessellation.status();
-  const uint64_t values =
-      std::min<uint64_t>(cap, tessellation->bound) * per_point;
+  // The polyline's points are known to be at most `bound` before the work
+  // (SIZE_MAX when unknown: a rational curve with a weight of 0).
+  const size_t bound = CurvePointBound(*curve, tolerance);
+  const uint64_t values = std::min<uint64_t>(cap, bound) * per_point;
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
-      .run = [curve = *std::move(curve),
-              tessellator = std::move(tessellation->tessellator), cap,
+      .run = [curve = *std::move(curve), tolerance, cap,
               &response](const ExecutionContext& execution) -> absl::Status {
-        absl::StatusOr<Polyline> polyline =
-            tessellator(static_cast<size_t>(cap), execution.cancellation);
+        absl::StatusOr<Polyline> polyline = TessellateCurve(
+            curve, tolerance, static_cast<size_t>(cap), execution.cancellation);
         if (!polyline.ok()) return polyline.status();
         response.mutable_points()->set_dimension(
             static_cast<uint32_t>(polyline->dimension));

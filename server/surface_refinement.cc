@@ -5,13 +5,14 @@
 
 #include "absl/strings/str_cat.h"
 #include "convert.h"
+#include "freeform/core/mesh.h"
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
-#include "freeform/core/tessellation.h"
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "queries.h"
 #include "surface_service.h"
 #include "visit.h"
 
@@ -143,31 +144,50 @@ absl::StatusOr<UnaryWork> PlanInsert(
       *surface);
 }
 
-// The Bezier patches to mesh, held by their prepared surfaces, and the
-// mesh's size planned before any work.
+// A mesh request prepared and planned: the surfaces (which the plan reads,
+// so the input is moved, never copied) and the plan.
 struct MeshInput {
   std::vector<Surface> surfaces;
-  std::vector<BezierSurfaceView> patches;
+  std::shared_ptr<const MeshPlan> plan;
   size_t cap = 0;
   MeshSize size;
 
   // Bytes of the answer: per vertex its position, normal, (u, v) and
-  // patch; per triangle three indices.
+  // surface; per triangle three indices.
   uint64_t AnswerBytes() const {
     return size.vertices * uint64_t{8 * (3 + 3 + 2) + 4} +
            size.triangles * uint64_t{3 * 4};
   }
   // Bytes of the mesher's own arrays: the answer's, each vertex's source
-  // and weld entry, and each triangle's patch and corner (u, v).
+  // and weld entry, each triangle's piece and corner (u, v), and the Bezier
+  // pieces of the surfaces.
   uint64_t WorkBytes() const {
     return AnswerBytes() + size.vertices * uint64_t{24 + 16} +
-           size.triangles * uint64_t{4 + 6 * 8};
+           size.triangles * uint64_t{4 + 6 * 8} +
+           SaturatingProduct(PlannedPieceValues(*plan), sizeof(double));
   }
 };
 
 // Bytes of one vertex in an answer, with about two triangles of three
 // indices: what the vertex cap allows for.
 constexpr uint64_t kVertexBytes = 8 * (3 + 3 + 2) + 4 + 2 * 3 * 4;
+
+// DimensionField returns the path of the field that sets the dimension of
+// a surface of the message's kind.
+std::string DimensionField(const v1::Surface& message) {
+  switch (message.kind_case()) {
+    case v1::Surface::kBspline:
+      return "bspline.control_net.dimension";
+    case v1::Surface::kBicubicInterpolating:
+      return "bicubic_interpolating.points.dimension";
+    case v1::Surface::kBicubicHermite:
+      return "bicubic_hermite.positions.dimension";
+    case v1::Surface::kTriangularBezier:
+      return "triangular_bezier.control_points.dimension";
+    default:
+      return "bezier.control_net.dimension";
+  }
+}
 
 absl::StatusOr<MeshInput> PrepareMesh(
     const v1::TessellateSurfaceRequest& request, const ServiceLimits& limits,
@@ -182,28 +202,38 @@ absl::StatusOr<MeshInput> PrepareMesh(
     absl::StatusOr<Surface> surface =
         PrepareSurface(request.surfaces(i), limits, field);
     if (!surface.ok()) return surface.status();
-    absl::StatusOr<BezierSurfaceView> patch =
-        std::visit<absl::StatusOr<BezierSurfaceView>>(
-            Overloaded{
-                [](const BezierSurface& bezier) { return bezier.view(); },
-                Refuse<BSplineSurface, TriangularPatch>{
-                    field,
-                    "Tessellate takes tensor Bezier, bicubic "
-                    "interpolating and bicubic Hermite patches"}},
-            *surface);
-    if (!patch.ok()) return patch.status();
-    input.patches.push_back(*patch);
+    if (DimensionOf(*surface) != 3) {
+      return InvalidFieldError(
+          absl::StrCat(field, ".", DimensionField(request.surfaces(i))),
+          "surfaces must be 3D to be meshed");
+    }
     input.surfaces.push_back(*std::move(surface));
+  }
+  // Zero is the proto's default, so a limit that is there must be positive.
+  if (request.has_max_edge_length() && !(request.max_edge_length() > 0.0)) {
+    return InvalidFieldError("max_edge_length", "must be positive and finite");
   }
   const uint64_t requested = request.max_vertices() > 0 ? request.max_vertices()
                                                         : limits.max_parameters;
   input.cap = static_cast<size_t>(
       std::min({requested, uint64_t{limits.max_parameters},
                 limits.max_output_values / 16, message_limit / kVertexBytes}));
-  absl::StatusOr<MeshSize> size =
-      BezierPatchesMeshBound(input.patches, request.tolerance(), input.cap);
-  if (!size.ok()) return size.status();
-  input.size = *size;
+  absl::StatusOr<std::shared_ptr<const MeshPlan>> plan = PlanMesh(
+      input.surfaces,
+      {.tolerance = request.tolerance(),
+       .max_edge_length =
+           request.has_max_edge_length() ? request.max_edge_length() : 0.0,
+       .max_vertices = input.cap});
+  if (!plan.ok()) return plan.status();
+  input.plan = *std::move(plan);
+  // The Bezier pieces the mesher cuts the surfaces into.
+  if (absl::Status status =
+          PieceWorkBytes(PlannedPieceValues(*input.plan), limits, "surfaces")
+              .status();
+      !status.ok()) {
+    return status;
+  }
+  input.size = PlannedMeshSize(*input.plan);
   return input;
 }
 
@@ -272,8 +302,7 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Tessellate(
             .run = [input = *std::move(input), request, response](
                        const ExecutionContext& execution) -> absl::Status {
               absl::StatusOr<Mesh> mesh =
-                  TessellateBezierPatches(input.patches, request->tolerance(),
-                                          input.cap, execution.cancellation);
+                  TessellatePlanned(*input.plan, execution.cancellation);
               if (!mesh.ok()) return mesh.status();
               FillMesh(*mesh, request->normals(), 0, mesh->vertices.size() / 3,
                        0, mesh->triangles.size() / 3, *response);
@@ -319,8 +348,7 @@ SurfaceServiceImpl::TessellateStream(
                         request](const ExecutionContext& execution)
                 -> absl::StatusOr<size_t> {
               absl::StatusOr<Mesh> made =
-                  TessellateBezierPatches(shared->patches, request->tolerance(),
-                                          shared->cap, execution.cancellation);
+                  TessellatePlanned(*shared->plan, execution.cancellation);
               if (!made.ok()) return made.status();
               *mesh = *std::move(made);
               const size_t vertices = mesh->vertices.size() / 3;

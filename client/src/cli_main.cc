@@ -19,7 +19,7 @@
 //   freeform subdivide [--file REQUEST.json] [--svg PICTURE.svg]
 //   freeform tessellate [--surface] [--file REQUEST.json]
 //                   [--svg PICTURE.svg [--combs [--comb-scale S]] |
-//                    --obj MESH.obj]
+//                    --obj MESH.obj | --stl MESH.stl]
 //   freeform closest [--surface] [--file REQUEST.json]
 //                   [--points X,Y[,Z];...] [--csv POINTS.csv]
 //                   [--format json|csv]
@@ -50,6 +50,7 @@
 #include "freeform/client.h"
 #include "nlohmann/json.hpp"
 #include "obj_mesh.h"
+#include "stl_mesh.h"
 #include "svg_drawing.h"
 
 namespace {
@@ -464,12 +465,14 @@ freeform::cli::SvgDrawing DrawSubdivision(
 struct TessellateOutput {
   std::string svg;
   std::string obj;
+  std::string stl;
   bool combs = false;
   double comb_scale = 0;  // 0: the default
 };
 
 int RunTessellateSurfaces(const CommonFlags& flags, const std::string& file,
-                          const std::string& obj) {
+                          const TessellateOutput& output) {
+  const std::string& obj = output.obj;
   return RunCall(
       flags, file, &SurfaceStub::Tessellate,
       [&](freeform::v1::TessellateSurfaceRequest& request) {
@@ -478,6 +481,15 @@ int RunTessellateSurfaces(const CommonFlags& flags, const std::string& file,
       },
       [&](freeform::Client&, const freeform::v1::TessellateSurfaceRequest&,
           const freeform::v1::TessellateSurfaceResponse& mesh) {
+        if (!output.stl.empty()) {
+          return freeform::cli::WriteOutput(
+              output.stl,
+              [&](std::ostream& out) {
+                freeform::cli::WriteBinaryStl(mesh.vertices().coordinates(),
+                                              mesh.triangles(), out);
+              },
+              absl::StrCat(": ", mesh.triangles_size() / 3, " triangles"));
+        }
         if (obj.empty()) return PrintJson(mesh);
         freeform::cli::ObjMesh out;
         out.AddTriangles("mesh", mesh.vertices().coordinates(),
@@ -726,8 +738,12 @@ int main(int argc, char** argv) {
   TessellateOutput tessellation;
   tessellate->add_option("--svg", tessellation.svg,
                          "Curves: draw the polyline and control polygon");
-  tessellate->add_option("--obj", tessellation.obj,
-                         "Surfaces: write the mesh as OBJ");
+  tessellate
+      ->add_option("--obj", tessellation.obj,
+                   "Surfaces: write the mesh as OBJ ('-': stdout)")
+      ->excludes(tessellate->add_option(
+          "--stl", tessellation.stl,
+          "Surfaces: write the mesh as binary STL ('-': stdout)"));
   tessellate->add_flag("--combs", tessellation.combs,
                        "With --svg: draw the curvature comb (2D curves)");
   tessellate
@@ -770,9 +786,8 @@ int main(int argc, char** argv) {
   }
   if (subdivide->parsed()) return RunSubdivide(flags, file, svg);
   if (tessellate->parsed()) {
-    return surface_request
-               ? RunTessellateSurfaces(flags, file, tessellation.obj)
-               : RunTessellateCurve(flags, file, tessellation);
+    return surface_request ? RunTessellateSurfaces(flags, file, tessellation)
+                           : RunTessellateCurve(flags, file, tessellation);
   }
   if (std::optional<int> status = queries.Run()) return *status;
   if (interpolate->parsed()) {

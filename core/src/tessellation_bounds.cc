@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "absl/types/span.h"
+#include "freeform/core/subdivision.h"
 #include "freeform/core/tessellation.h"
+#include "variant_dispatch.h"
 
 namespace freeform {
 namespace {
@@ -36,10 +38,20 @@ size_t ToBound(double points) {
   return static_cast<size_t>(points);
 }
 
+// Norm returns |a|, scaled so that squares of tiny values (homogeneous
+// points of subnormal weights) do not underflow to 0 nor huge ones
+// overflow.
 double Norm(const double* a, int dimension) {
+  double largest = 0.0;
+  for (int j = 0; j < dimension; ++j)
+    largest = std::max(largest, std::abs(a[j]));
+  if (largest == 0.0 || !std::isfinite(largest)) return largest;
   double sum = 0.0;
-  for (int j = 0; j < dimension; ++j) sum += a[j] * a[j];
-  return std::sqrt(sum);
+  for (int j = 0; j < dimension; ++j) {
+    const double scaled = a[j] / largest;
+    sum += scaled * scaled;
+  }
+  return largest * std::sqrt(sum);
 }
 
 // Differences returns the control points of a B-spline's derivative
@@ -206,6 +218,33 @@ size_t BSplineCurvePointBound(const BSplineCurveView& curve, double tolerance) {
     segments += PieceSegments(p, piece_second, tolerance);
   }
   return ToBound(segments + 1.0);
+}
+
+size_t CurvePointBound(const Curve& curve, double tolerance) {
+  return std::visit(
+      internal::Overloaded{
+          [&](const BezierCurve& bezier) {
+            return BezierCurvePointBound(bezier.view(), tolerance);
+          },
+          [&](const BSplineCurve& bspline) {
+            return BSplineCurvePointBound(bspline.view(), tolerance);
+          },
+          [&](const auto&) {
+            absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve);
+            if (!pieces.ok()) return kNoBound;
+            // Each piece's polyline starts where the previous one ends.
+            size_t points = 1;
+            for (const BezierCurveData& piece : pieces->segments) {
+              const size_t bound =
+                  BezierCurvePointBound(piece.view(), tolerance);
+              if (bound == kNoBound || bound > kNoBound - points) {
+                return kNoBound;
+              }
+              points += bound - 1;
+            }
+            return points;
+          }},
+      curve);
 }
 
 }  // namespace freeform

@@ -13,17 +13,15 @@
 #include <utility>
 #include <vector>
 
+#include "freeform/core/curve.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
-#include "teapot.h"
 #include "test_util.h"
 
 namespace freeform {
 namespace {
 
-using testing_util::Patches;
 using testing_util::RandomValues;
-using testing_util::ReadTeapot;
 
 double Distance(const double* a, const double* b, int dimension) {
   double d2 = 0.0;
@@ -420,6 +418,80 @@ TEST(TessellationTest, RationalPointBoundsHoldForRandomCurves) {
   EXPECT_GT(splines_checked, 40);
 }
 
+// A rational curve does not change when all its weights are scaled, and
+// neither may its point bound: subnormal weights (the fuzzer's 1e-310) once
+// squared to 0 in the bound's norms and gave 2 points for a polyline of
+// 178.
+TEST(TessellationTest, RationalPointBoundIsScaleInvariant) {
+  const std::vector<double> points = {1.00006103515625, 0, 0, 1, -1, 0};
+  const std::vector<double> tiny = {
+      7.87861249229048e-310, 1.65706651316478e-309, 3.42277921082698e-310};
+  std::vector<double> normal;
+  for (const double w : tiny) normal.push_back(std::ldexp(w, 1000));
+  const double tolerance = 4.9591355495905987e-05;
+  const BezierCurveView subnormal_curve{
+      .control_points = {.dimension = 2, .coordinates = points},
+      .weights = tiny};
+  const BezierCurveView scaled_curve{
+      .control_points = {.dimension = 2, .coordinates = points},
+      .weights = normal};
+  const size_t bound = BezierCurvePointBound(subnormal_curve, tolerance);
+  EXPECT_EQ(bound, BezierCurvePointBound(scaled_curve, tolerance));
+  const absl::StatusOr<Polyline> polyline =
+      TessellateBezierCurve(subnormal_curve, tolerance, 1 << 20);
+  ASSERT_TRUE(polyline.ok()) << polyline.status();
+  EXPECT_GE(bound, polyline->parameters.size());
+}
+
+// Every curve kind tessellates: a Hermite curve with the values and slopes
+// of (t, t^3) is y = x^3 and a Lagrange curve through (t, t^2) is y = x^2,
+// so the distance to a point of it bounds each polyline point's distance; the
+// point bound holds.
+TEST(TessellationTest, HermiteAndLagrangeCurves) {
+  constexpr double kTolerance = 1e-5;
+  const std::vector<double> nodes = {-1.0, 0.0, 0.3, 1.0};
+  std::vector<double> cubic_points, tangents, parabola_points;
+  for (const double t : nodes) {
+    cubic_points.insert(cubic_points.end(), {t, t * t * t});
+    tangents.insert(tangents.end(), {1.0, 3 * t * t});
+    parabola_points.insert(parabola_points.end(), {t, t * t});
+  }
+  const absl::StatusOr<HermiteCurve> hermite = HermiteCurve::Create(
+      {.points = {.dimension = 2, .coordinates = cubic_points},
+       .tangents = {.dimension = 2, .coordinates = tangents},
+       .nodes = nodes});
+  const absl::StatusOr<LagrangeCurve> lagrange = LagrangeCurve::Create(
+      {.points = {.dimension = 2, .coordinates = parabola_points},
+       .nodes = nodes});
+  ASSERT_TRUE(hermite.ok() && lagrange.ok());
+  const std::pair<Curve, int> cases[] = {{*hermite, 3}, {*lagrange, 2}};
+  for (const auto& [curve, power] : cases) {
+    const absl::StatusOr<Polyline> polyline =
+        TessellateCurve(curve, kTolerance, 1 << 20);
+    ASSERT_TRUE(polyline.ok()) << polyline.status();
+    const std::vector<double>& t = polyline->parameters;
+    const std::vector<double>& xy = polyline->points;
+    EXPECT_GE(CurvePointBound(curve, kTolerance), t.size());
+    EXPECT_EQ(t.front(), -1.0);
+    EXPECT_EQ(t.back(), 1.0);
+    for (size_t k = 0; k < t.size(); ++k) {
+      EXPECT_NEAR(xy[2 * k], t[k], 1e-15);
+      EXPECT_NEAR(xy[2 * k + 1], std::pow(t[k], power), 1e-14);
+      if (k == 0) continue;
+      EXPECT_LT(t[k - 1], t[k]);
+      for (const double f : {0.25, 0.5, 0.75}) {
+        const double x = (1 - f) * xy[2 * k - 2] + f * xy[2 * k];
+        const double y = (1 - f) * xy[2 * k - 1] + f * xy[2 * k + 1];
+        EXPECT_LE(testing_util::DistanceToPowerCurve(x, y, power), kTolerance);
+      }
+    }
+    // The Hermite curve's nodes end its pieces: they are polyline points.
+    for (const double node : power == 3 ? nodes : std::vector<double>{}) {
+      EXPECT_TRUE(std::find(t.begin(), t.end(), node) != t.end()) << node;
+    }
+  }
+}
+
 TEST(TessellationTest, CurveErrors) {
   const std::vector<double> points = {0, 0, 1, 2, 2, 0, 3, 1};
   const BezierCurveView curve{
@@ -456,310 +528,6 @@ TEST(TessellationTest, CurveErrors) {
   ASSERT_TRUE(constant_polyline.ok()) << constant_polyline.status();
   EXPECT_EQ(constant_polyline->parameters, (std::vector<double>{1, 3}));
   EXPECT_EQ(constant_polyline->points, (std::vector<double>{2, 5, 2, 5}));
-}
-
-// ------------------------------------------------------------ surfaces --
-
-// SurfacePoint evaluates patch at (u, v), with S_u x S_v in `normal`.
-std::array<double, 3> SurfacePoint(const BezierSurfaceView& patch, double u,
-                                   double v,
-                                   std::array<double, 3>* normal = nullptr) {
-  const std::vector<double> uv = {u, v};
-  std::vector<std::vector<double>> buffers(3, std::vector<double>(3));
-  std::vector<absl::Span<double>> output(buffers.begin(), buffers.end());
-  EXPECT_TRUE(
-      EvaluateBezierSurface(patch, SurfaceSamples::Pairs(uv), output).ok());
-  if (normal != nullptr) {
-    const std::vector<double>& a = buffers[1];
-    const std::vector<double>& b = buffers[2];
-    *normal = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-               a[0] * b[1] - a[1] * b[0]};
-  }
-  return {buffers[0][0], buffers[0][1], buffers[0][2]};
-}
-
-// The sides of every patch whose control points no other patch side has
-// (in either direction): (patch, side) with side 0..3 = v=0, u=1, v=1, u=0.
-std::map<std::pair<uint32_t, int>, bool> UnsharedSides(const Patches& patches) {
-  std::map<std::vector<double>, int> uses;
-  std::map<std::pair<uint32_t, int>, std::vector<double>> keys;
-  for (uint32_t i = 0; i < patches.nets.size(); ++i) {
-    const int nu = patches.counts[i][0], nv = patches.counts[i][1];
-    for (int side = 0; side < 4; ++side) {
-      std::vector<std::array<double, 3>> points;
-      const int count = side % 2 == 0 ? nu : nv;
-      for (int k = 0; k < count; ++k) {
-        const int row = side == 0 || side == 2 ? k : side == 1 ? nu - 1 : 0;
-        const int col = side == 1 || side == 3 ? k : side == 2 ? nv - 1 : 0;
-        const double* p = &patches.nets[i][3 * (row * nv + col)];
-        points.push_back({p[0], p[1], p[2]});
-      }
-      std::vector<std::array<double, 3>> reversed(points.rbegin(),
-                                                  points.rend());
-      const auto& key = std::min(points, reversed);
-      std::vector<double> flat;
-      for (const auto& p : key) flat.insert(flat.end(), p.begin(), p.end());
-      ++uses[flat];
-      keys[{i, side}] = flat;
-    }
-  }
-  std::map<std::pair<uint32_t, int>, bool> unshared;
-  for (const auto& [side, key] : keys) unshared[side] = uses[key] == 1;
-  return unshared;
-}
-
-// SideOf returns the patch side both (u, v) lie on, or -1.
-int SideOf(const double* a, const double* b) {
-  if (a[1] == 0 && b[1] == 0) return 0;
-  if (a[0] == 1 && b[0] == 1) return 1;
-  if (a[1] == 1 && b[1] == 1) return 2;
-  if (a[0] == 0 && b[0] == 0) return 3;
-  return -1;
-}
-
-struct MeshFigures {
-  size_t boundary_edges = 0;
-  size_t misoriented_edges = 0;
-  double worst_error = 0.0;
-};
-
-// CheckMesh checks the mathematics of a mesh of `patches`: vertices and
-// triangle corners on their patches, the surface within `tolerance` of
-// every triangle (at its centroid, edge midpoints and three inner points,
-// through the corners' (u, v)), unit normals, triangles counter-clockwise
-// about S_u x S_v, every edge used by at most two triangles, edges used
-// once only on patch sides no other patch shares, and no vertex inside a
-// boundary edge (no T-junction).
-MeshFigures CheckMesh(const Patches& patches, const Mesh& mesh,
-                      double tolerance) {
-  const std::vector<BezierSurfaceView> views = patches.Views();
-  const size_t vertex_count = mesh.vertices.size() / 3;
-  EXPECT_EQ(mesh.normals.size(), 3 * vertex_count);
-  EXPECT_EQ(mesh.patch.size(), vertex_count);
-  EXPECT_EQ(mesh.uv.size(), 2 * vertex_count);
-  const size_t triangle_count = mesh.triangles.size() / 3;
-  EXPECT_EQ(mesh.triangle_patch.size(), triangle_count);
-  EXPECT_EQ(mesh.corner_uv.size(), 6 * triangle_count);
-  for (size_t r = 0; r < vertex_count; ++r) {
-    const auto p =
-        SurfacePoint(views[mesh.patch[r]], mesh.uv[2 * r], mesh.uv[2 * r + 1]);
-    EXPECT_LE(Distance(p.data(), &mesh.vertices[3 * r], 3), 1e-12) << r;
-    EXPECT_NEAR(std::hypot(mesh.normals[3 * r], mesh.normals[3 * r + 1],
-                           mesh.normals[3 * r + 2]),
-                1.0, 1e-12)
-        << r;
-  }
-  MeshFigures figures;
-  std::map<std::pair<uint32_t, uint32_t>, int> directed;
-  std::map<std::pair<uint32_t, uint32_t>, std::vector<size_t>> edges;
-  const std::vector<std::array<double, 3>> weights = {
-      {1 / 3.0, 1 / 3.0, 1 / 3.0},
-      {0.5, 0.5, 0},
-      {0, 0.5, 0.5},
-      {0.5, 0, 0.5},
-      {2 / 3.0, 1 / 6.0, 1 / 6.0},
-      {1 / 6.0, 2 / 3.0, 1 / 6.0},
-      {1 / 6.0, 1 / 6.0, 2 / 3.0}};
-  for (size_t t = 0; t < triangle_count; ++t) {
-    const BezierSurfaceView& patch = views[mesh.triangle_patch[t]];
-    const uint32_t* corner = &mesh.triangles[3 * t];
-    const double* uv = &mesh.corner_uv[6 * t];
-    for (int k = 0; k < 3; ++k) {
-      const auto p = SurfacePoint(patch, uv[2 * k], uv[2 * k + 1]);
-      EXPECT_LE(Distance(p.data(), &mesh.vertices[3 * corner[k]], 3), 1e-12);
-      ++directed[{corner[k], corner[(k + 1) % 3]}];
-      edges[std::minmax(corner[k], corner[(k + 1) % 3])].push_back(t);
-    }
-    for (const auto& w : weights) {
-      double mesh_point[3] = {0, 0, 0};
-      double u = 0, v = 0;
-      for (int k = 0; k < 3; ++k) {
-        for (int x = 0; x < 3; ++x) {
-          mesh_point[x] += w[k] * mesh.vertices[3 * corner[k] + x];
-        }
-        u += w[k] * uv[2 * k];
-        v += w[k] * uv[2 * k + 1];
-      }
-      const auto p = SurfacePoint(patch, u, v);
-      const double error = Distance(p.data(), mesh_point, 3);
-      figures.worst_error = std::max(figures.worst_error, error);
-    }
-    // Orientation: the parameter triangle is counter-clockwise, which makes
-    // the space triangle turn about S_u x S_v.
-    const double area_uv =
-        (uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]);
-    EXPECT_GT(area_uv, 0.0) << t;
-    std::array<double, 3> n;
-    SurfacePoint(patch, (uv[0] + uv[2] + uv[4]) / 3,
-                 (uv[1] + uv[3] + uv[5]) / 3, &n);
-    const double* a = &mesh.vertices[3 * corner[0]];
-    const double* b = &mesh.vertices[3 * corner[1]];
-    const double* c = &mesh.vertices[3 * corner[2]];
-    const double e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    const double g[3] = {e1[1] * e2[2] - e1[2] * e2[1],
-                         e1[2] * e2[0] - e1[0] * e2[2],
-                         e1[0] * e2[1] - e1[1] * e2[0]};
-    EXPECT_GT(g[0] * n[0] + g[1] * n[1] + g[2] * n[2], 0.0) << t;
-  }
-  EXPECT_LE(figures.worst_error, tolerance * (1 + 1e-9));
-  const std::map<std::pair<uint32_t, int>, bool> unshared =
-      UnsharedSides(patches);
-  for (const auto& [edge, triangles] : edges) {
-    EXPECT_LE(triangles.size(), 2u);
-    if (triangles.size() == 2 && directed[edge] != 1) {
-      ++figures.misoriented_edges;
-    }
-    if (triangles.size() != 1) continue;
-    ++figures.boundary_edges;
-    // A boundary edge lies on an unshared side of its triangle's patch.
-    const size_t t = triangles[0];
-    const double* uv = &mesh.corner_uv[6 * t];
-    int ka = 0, kb = 0;
-    for (int k = 0; k < 3; ++k) {
-      if (mesh.triangles[3 * t + k] == edge.first) ka = k;
-      if (mesh.triangles[3 * t + k] == edge.second) kb = k;
-    }
-    const int side = SideOf(uv + 2 * ka, uv + 2 * kb);
-    EXPECT_NE(side, -1) << "boundary edge inside patch " << t;
-    if (side == -1) continue;
-    EXPECT_TRUE(unshared.at({mesh.triangle_patch[t], side}))
-        << "crack along a shared side, triangle " << t;
-    // No T-junction: no vertex strictly inside a boundary edge.
-    const double* a = &mesh.vertices[3 * edge.first];
-    const double* b = &mesh.vertices[3 * edge.second];
-    const double length = Distance(a, b, 3);
-    for (size_t r = 0; r < vertex_count; ++r) {
-      const double* p = &mesh.vertices[3 * r];
-      const double da = Distance(p, a, 3), db = Distance(p, b, 3);
-      if (da < 1e-9 * length || db < 1e-9 * length) continue;
-      EXPECT_GT(DistanceToSegment(p, a, b, 3), 1e-9 * length) << r;
-    }
-  }
-  // Welded: no two vertices coincide.
-  std::vector<std::array<double, 3>> sorted;
-  for (size_t r = 0; r < vertex_count; ++r) {
-    sorted.push_back({mesh.vertices[3 * r], mesh.vertices[3 * r + 1],
-                      mesh.vertices[3 * r + 2]});
-  }
-  std::sort(sorted.begin(), sorted.end());
-  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end());
-  return figures;
-}
-
-TEST(TessellationTest, UtahTeapotIsWatertightAndWithinTolerance) {
-  const Patches teapot = ReadTeapot();
-  ASSERT_EQ(teapot.nets.size(), 32u);
-  const std::vector<BezierSurfaceView> views = teapot.Views();
-  constexpr double kTolerance = 1e-3;
-  const auto start = std::chrono::steady_clock::now();
-  const absl::StatusOr<Mesh> mesh =
-      TessellateBezierPatches(views, kTolerance, 1 << 22);
-  const double ms = std::chrono::duration<double, std::milli>(
-                        std::chrono::steady_clock::now() - start)
-                        .count();
-  ASSERT_TRUE(mesh.ok()) << mesh.status();
-  const MeshFigures figures = CheckMesh(teapot, *mesh, kTolerance);
-  std::printf(
-      "teapot at %g: %zu vertices, %zu triangles, %.2f ms; worst sampled "
-      "error %.3g, %zu boundary edges, %zu edges not oriented "
-      "consistently\n",
-      kTolerance, mesh->vertices.size() / 3, mesh->triangles.size() / 3, ms,
-      figures.worst_error, figures.boundary_edges, figures.misoriented_edges);
-  EXPECT_GT(figures.boundary_edges, 0u);  // rim, spout and handle ends
-  // Coarser tolerance, fewer vertices; finer, more.
-  const size_t coarse =
-      TessellateBezierPatches(views, 1e-2, 1 << 22)->vertices.size();
-  EXPECT_LT(coarse, mesh->vertices.size());
-  // The planned size bounds the mesh, and not loosely: welding only merges
-  // the vertices of the few patch sides that meet without sharing control
-  // points.
-  const absl::StatusOr<MeshSize> bound =
-      BezierPatchesMeshBound(views, kTolerance, 1 << 22);
-  ASSERT_TRUE(bound.ok()) << bound.status();
-  EXPECT_GE(bound->vertices, mesh->vertices.size() / 3);
-  EXPECT_LE(bound->vertices, 2 * mesh->vertices.size() / 3);
-  EXPECT_GE(bound->triangles, mesh->triangles.size() / 3);
-  EXPECT_LE(bound->triangles, 2 * mesh->triangles.size() / 3);
-  EXPECT_EQ(BezierPatchesMeshBound(views, kTolerance, 100).status().code(),
-            absl::StatusCode::kResourceExhausted);
-}
-
-// Two patches of different degrees sharing a side in opposite directions:
-// A's side v = 1 is B's side u = 0 reversed.
-Patches TwoPatches() {
-  Patches patches;
-  std::vector<double> a;
-  for (int i = 0; i < 4; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      a.insert(a.end(), {static_cast<double>(i), static_cast<double>(j),
-                         0.3 * std::sin(i * 1.3 + j * 0.7)});
-    }
-  }
-  std::vector<double> b;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 4; ++j) {
-      if (i == 0) {
-        const double* p = &a[3 * ((3 - j) * 4 + 3)];
-        b.insert(b.end(), p, p + 3);
-      } else {
-        b.insert(b.end(), {3.0 - j, 3.0 + 1.5 * i, 0.8 * std::cos(i + j)});
-      }
-    }
-  }
-  patches.nets = {a, b};
-  patches.counts = {{4, 4}, {3, 4}};
-  return patches;
-}
-
-TEST(TessellationTest, SharedReversedSideIsWelded) {
-  const Patches patches = TwoPatches();
-  for (double tolerance : {1e-1, 1e-3, 1e-4}) {
-    const absl::StatusOr<Mesh> mesh =
-        TessellateBezierPatches(patches.Views(), tolerance, 1 << 22);
-    ASSERT_TRUE(mesh.ok()) << mesh.status();
-    const MeshFigures figures = CheckMesh(patches, *mesh, tolerance);
-    EXPECT_EQ(figures.misoriented_edges, 0u);
-    // Vertices on the shared curve appear once and are used by both.
-    std::map<uint32_t, std::array<bool, 2>> on_shared;
-    for (size_t t = 0; t < mesh->triangle_patch.size(); ++t) {
-      const uint32_t patch = mesh->triangle_patch[t];
-      for (int k = 0; k < 3; ++k) {
-        const double* uv = &mesh->corner_uv[6 * t + 2 * k];
-        if ((patch == 0 && uv[1] == 1) || (patch == 1 && uv[0] == 0)) {
-          on_shared[mesh->triangles[3 * t + k]][patch] = true;
-        }
-      }
-    }
-    ASSERT_GE(on_shared.size(), 2u);
-    for (const auto& [vertex, used] : on_shared) {
-      EXPECT_TRUE(used[0] && used[1]) << vertex;
-    }
-  }
-}
-
-TEST(TessellationTest, PatchErrors) {
-  Patches patches = TwoPatches();
-  std::vector<BezierSurfaceView> views = patches.Views();
-  EXPECT_EQ(TessellateBezierPatches(views, 1e-4, 10).status().code(),
-            absl::StatusCode::kResourceExhausted);
-  EXPECT_EQ(FieldPathOf(TessellateBezierPatches(views, 0.0, 100).status()),
-            "tolerance");
-  const std::vector<double> weights(12, 1.0);
-  views[1].weights = weights;
-  EXPECT_EQ(FieldPathOf(TessellateBezierPatches(views, 1e-3, 1000).status()),
-            "surfaces[1].bezier.weights");
-  views[1].weights = {};
-  views[0].control_net.dimension = 2;
-  views[0].control_net.count_v = 6;
-  EXPECT_EQ(FieldPathOf(TessellateBezierPatches(views, 1e-3, 1000).status()),
-            "surfaces[0].bezier.control_net.dimension");
-  CancellationToken token;
-  token.Cancel();
-  EXPECT_EQ(TessellateBezierPatches(patches.Views(), 1e-3, 1 << 20, &token)
-                .status()
-                .code(),
-            absl::StatusCode::kCancelled);
 }
 
 }  // namespace

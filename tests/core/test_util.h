@@ -1,14 +1,34 @@
-// Small helpers shared by the core tests: random data, random knot vectors,
-// evenly spaced parameters and a long-double Bezier reference.
+// Small helpers shared by the core tests (and a few service tests):
+// random data, random knot vectors, evenly spaced parameters, a long-double
+// Bezier reference and distances to power curves.
 #ifndef FREEFORM_TESTS_CORE_TEST_UTIL_H_
 #define FREEFORM_TESTS_CORE_TEST_UTIL_H_
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <random>
 #include <vector>
 
 namespace freeform::testing_util {
+
+// DistanceToPowerCurve bounds the distance from (x, y) to the curve
+// (s, s^power) from above: the distance to its point nearest after Newton
+// steps on the squared distance from s = x.
+inline double DistanceToPowerCurve(double x, double y, int power) {
+  double s = x;
+  for (int step = 0; step < 8; ++step) {
+    const double f = std::pow(s, power);
+    const double df = power * std::pow(s, power - 1);
+    const double ddf = power * (power - 1) * std::pow(s, power - 2);
+    const double gradient = (s - x) + (f - y) * df;
+    const double curvature = 1 + df * df + (f - y) * ddf;
+    if (!(curvature > 0)) break;
+    s -= gradient / curvature;
+  }
+  return std::min(std::hypot(s - x, std::pow(s, power) - y),
+                  std::fabs(y - std::pow(x, power)));
+}
 
 // RandomValues returns `count` values drawn uniformly from [lo, hi).
 inline std::vector<double> RandomValues(std::mt19937_64& rng, size_t count,

@@ -8,6 +8,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -397,6 +401,48 @@ TEST_F(CliQueriesTest, CombsRefuseCurvesThatAreNotPlanar) {
   EXPECT_THAT(result.output, HasSubstr("2D curves only"));
   EXPECT_THAT(result.output, HasSubstr("dimension 3"));
   unlink(file.c_str());
+}
+
+// tessellate --surface --stl writes the closed NURBS torus of
+// examples/torus_mesh.json (radii 3 and 1) as binary STL: 84 + 50 bytes per
+// triangle, every vertex on the torus (to float precision), unit facet
+// normals pointing out of the tube or into it consistently.
+TEST_F(CliQueriesTest, MeshesATorusAsBinaryStl) {
+  const std::string path = WriteTempFile("");
+  const CommandResult result = RunCommand(
+      Cli(absl::StrCat("tessellate --surface --file ",
+                       Example("torus_mesh.json"), " --stl ", path)));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::ifstream file(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(file)),
+                          std::istreambuf_iterator<char>());
+  ASSERT_GE(bytes.size(), 84u);
+  uint32_t count = 0;
+  std::memcpy(&count, bytes.data() + 80, 4);
+  EXPECT_GT(count, 1000u);
+  ASSERT_EQ(bytes.size(), 84u + 50u * count);
+  int outward = 0;
+  for (uint32_t t = 0; t < count; ++t) {
+    float values[12];
+    std::memcpy(values, bytes.data() + 84 + 50 * t, sizeof values);
+    EXPECT_NEAR(std::hypot(values[0], values[1], values[2]), 1.0, 1e-6);
+    double centroid[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+      const float* p = values + 3 + 3 * k;
+      EXPECT_NEAR(std::hypot(std::hypot(p[0], p[1]) - 3.0, p[2]), 1.0, 1e-5);
+      for (int x = 0; x < 3; ++x) centroid[x] += p[x] / 3;
+    }
+    // Away from the tube's centre circle, or towards it.
+    const double ring = std::hypot(centroid[0], centroid[1]);
+    const double away[3] = {centroid[0] - 3.0 * centroid[0] / ring,
+                            centroid[1] - 3.0 * centroid[1] / ring,
+                            centroid[2]};
+    outward +=
+        away[0] * values[0] + away[1] * values[1] + away[2] * values[2] > 0
+            ? 1
+            : -1;
+  }
+  EXPECT_EQ(std::abs(outward), static_cast<int>(count));
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // patch at its (u, v), normals are the unit S_u x S_v, triangles are
 // counter-clockwise about it and within the tolerance of the surface
 // (linear interpolation over each parameter triangle, the mesher's bound in
-// freeform/core/tessellation.h), and the mesh is one welded disk: each edge
+// freeform/core/mesh.h), and the mesh is one welded disk: each edge
 // shared by at most two triangles in opposite directions and Euler
 // characteristic V - E + F = 1, also for two patches that share an edge.
 #include <algorithm>

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "freeform/core/mesh.h"
 #include "freeform/core/tessellation.h"
 #include "in_process_server.h"
 #include "teapot.h"
@@ -410,15 +411,18 @@ v1::TessellateSurfaceRequest MeshOver(size_t cap) {
                  {i / 3.0, j / 3.0, (i % 3 != 0 && j % 3 != 0) ? 1.0 : 0.0});
     }
   }
-  const BezierSurfaceView view{.control_net = {.dimension = 3,
-                                               .count_u = 4,
-                                               .count_v = 4,
-                                               .coordinates = net},
-                               .weights = {}};
+  const absl::StatusOr<BezierSurface> surface =
+      BezierSurface::Create({.control_net = {.dimension = 3,
+                                             .count_u = 4,
+                                             .count_v = 4,
+                                             .coordinates = net},
+                             .weights = {}});
+  EXPECT_TRUE(surface.ok());
+  const Surface surfaces[] = {*surface};
   const double tolerance = LargestToleranceOver(cap, 60, [&](double candidate) {
-    absl::StatusOr<MeshSize> size =
-        BezierPatchesMeshBound({&view, 1}, candidate, UINT32_MAX);
-    return size.ok() ? size->vertices : SIZE_MAX;
+    absl::StatusOr<std::shared_ptr<const MeshPlan>> plan = PlanMesh(
+        surfaces, {.tolerance = candidate, .max_vertices = UINT32_MAX});
+    return plan.ok() ? PlannedMeshSize(**plan).vertices : SIZE_MAX;
   });
   v1::TessellateSurfaceRequest request;
   v1::ControlNet* patch =

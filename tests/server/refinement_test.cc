@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "../core/test_util.h"
 #include "in_process_server.h"
 #include "teapot.h"
 
@@ -212,6 +213,186 @@ TEST_F(RefinementTest, TessellatesTheTeapot) {
   request.set_tolerance(-1);
   ExpectInvalid(client_->TessellateSurfaces(request).status(), "tolerance",
                 true);
+}
+
+// Lagrange and Hermite curves are tessellated through their Bezier pieces:
+// a Lagrange curve through (t, t^2) is the parabola y = x^2 and a Hermite
+// curve with the values and slopes of (t, t^3) is y = x^3, so the distance
+// to a point of it bounds the distance from every polyline point to it.
+TEST_F(RefinementTest, TessellatesLagrangeAndHermiteCurves) {
+  constexpr double kTolerance = 1e-4;
+  v1::TessellateCurveRequest lagrange;
+  v1::LagrangeCurve* parabola = lagrange.mutable_curve()->mutable_lagrange();
+  parabola->mutable_points()->set_dimension(2);
+  for (const double t : {-1.0, -0.2, 0.5, 1.0}) {
+    Append(parabola->mutable_points()->mutable_coordinates(), {t, t * t});
+    parabola->add_nodes(t);
+  }
+  lagrange.set_tolerance(kTolerance);
+  v1::TessellateCurveRequest hermite;
+  v1::HermiteCurve* cubic = hermite.mutable_curve()->mutable_hermite();
+  cubic->mutable_points()->set_dimension(2);
+  cubic->mutable_tangents()->set_dimension(2);
+  for (const double t : {-1.0, 0.0, 0.3, 1.0}) {
+    Append(cubic->mutable_points()->mutable_coordinates(), {t, t * t * t});
+    Append(cubic->mutable_tangents()->mutable_coordinates(), {1.0, 3 * t * t});
+    cubic->add_nodes(t);
+  }
+  hermite.set_tolerance(kTolerance);
+  const std::pair<v1::TessellateCurveRequest*, int> cases[] = {{&lagrange, 2},
+                                                               {&hermite, 3}};
+  for (const auto& [request, power] : cases) {
+    absl::StatusOr<v1::TessellateCurveResponse> polyline =
+        client_->TessellateCurve(*request);
+    ASSERT_TRUE(polyline.ok()) << polyline.status();
+    const auto& xy = polyline->points().coordinates();
+    ASSERT_GT(polyline->parameters_size(), 10);
+    EXPECT_EQ(polyline->parameters(0), -1.0);
+    EXPECT_EQ(polyline->parameters(polyline->parameters_size() - 1), 1.0);
+    for (int k = 0; k < polyline->parameters_size(); ++k) {
+      // Each vertex is the curve point at its parameter, (t, t^power).
+      const double t = polyline->parameters(k);
+      EXPECT_NEAR(xy[2 * k], t, 1e-15);
+      EXPECT_NEAR(xy[2 * k + 1], std::pow(t, power), 1e-14);
+      if (k == 0) continue;
+      EXPECT_GT(t, polyline->parameters(k - 1));
+      for (const double f : {0.25, 0.5, 0.75}) {
+        const double x = (1 - f) * xy[2 * k - 2] + f * xy[2 * k];
+        const double y = (1 - f) * xy[2 * k - 1] + f * xy[2 * k + 1];
+        EXPECT_LE(testing_util::DistanceToPowerCurve(x, y, power), kTolerance)
+            << k;
+      }
+    }
+  }
+}
+
+// A NURBS torus (the tube circle turned a full turn, nine-point quadratic
+// circles both ways) meshed by the server: every vertex on the torus, and
+// the mesh closed, every edge used by exactly two triangles.
+v1::TessellateSurfaceRequest TorusRequest(double major, double minor) {
+  const double s = std::numbers::sqrt2 / 2;
+  const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
+  const double cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
+  const double cw[9] = {1, s, 1, s, 1, s, 1, s, 1};
+  v1::TessellateSurfaceRequest request;
+  v1::BSplineSurface* torus = request.add_surfaces()->mutable_bspline();
+  torus->set_degree_u(2);
+  torus->set_degree_v(2);
+  torus->mutable_control_net()->set_dimension(3);
+  torus->mutable_control_net()->set_count_u(9);
+  torus->mutable_control_net()->set_count_v(9);
+  for (int i = 0; i < 9; ++i) {
+    const double rho = major + minor * cx[i], z = minor * cy[i];
+    for (int j = 0; j < 9; ++j) {
+      Append(torus->mutable_control_net()->mutable_coordinates(),
+             {rho * cx[j], rho * cy[j], z});
+      torus->add_weights(cw[i] * cw[j]);
+    }
+  }
+  for (const double knot :
+       {0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0}) {
+    torus->add_knots_u(knot);
+    torus->add_knots_v(knot);
+  }
+  return request;
+}
+
+TEST_F(RefinementTest, TessellatesAClosedNurbsTorus) {
+  v1::TessellateSurfaceRequest request = TorusRequest(3.0, 1.0);
+  request.set_tolerance(1e-3);
+  request.set_normals(true);
+  absl::StatusOr<v1::TessellateSurfaceResponse> mesh =
+      client_->TessellateSurfaces(request);
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  const auto& xyz = mesh->vertices().coordinates();
+  const size_t vertices = static_cast<size_t>(xyz.size() / 3);
+  ASSERT_EQ(mesh->uv_size(), static_cast<int>(2 * vertices));
+  for (size_t r = 0; r < vertices; ++r) {
+    const double* p = &xyz[static_cast<int>(3 * r)];
+    EXPECT_NEAR(std::hypot(std::hypot(p[0], p[1]) - 3.0, p[2]), 1.0, 1e-12);
+  }
+  std::map<std::pair<uint32_t, uint32_t>, int> edges;
+  for (int t = 0; t < mesh->triangles_size(); t += 3) {
+    for (int e = 0; e < 3; ++e) {
+      const uint32_t a = mesh->triangles(t + e);
+      const uint32_t b = mesh->triangles(t + (e + 1) % 3);
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  for (const auto& [edge, uses] : edges) EXPECT_EQ(uses, 2);
+  // Closed and of genus 1: V - E + F = 0.
+  EXPECT_EQ(static_cast<long>(vertices) - static_cast<long>(edges.size()) +
+                mesh->triangles_size() / 3,
+            0);
+
+  request.set_max_edge_length(0.5);
+  absl::StatusOr<v1::TessellateSurfaceResponse> limited =
+      client_->TessellateSurfaces(request);
+  ASSERT_TRUE(limited.ok()) << limited.status();
+  const auto& lxyz = limited->vertices().coordinates();
+  for (int t = 0; t < limited->triangles_size(); t += 3) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = 3 * static_cast<int>(limited->triangles(t + e));
+      const int b = 3 * static_cast<int>(limited->triangles(t + (e + 1) % 3));
+      EXPECT_LE(std::hypot(lxyz[a] - lxyz[b], lxyz[a + 1] - lxyz[b + 1],
+                           lxyz[a + 2] - lxyz[b + 2]),
+                0.5);
+    }
+  }
+  request.set_max_edge_length(0);
+  ExpectInvalid(client_->TessellateSurfaces(request).status(),
+                "max_edge_length", true);
+  request.clear_max_edge_length();
+  request.mutable_surfaces(0)->mutable_bspline()->set_weights(40, 0.0);
+  ExpectInvalid(client_->TessellateSurfaces(request).status(),
+                "surfaces[0].bspline.weights[40]", true);
+}
+
+TEST_F(RefinementTest, TessellatesTriangularAndHermitePatchesTogether) {
+  v1::TessellateSurfaceRequest request;
+  v1::TriangularBezierPatch* triangle =
+      request.add_surfaces()->mutable_triangular_bezier();
+  triangle->set_degree(2);
+  triangle->mutable_control_points()->set_dimension(3);
+  Append(triangle->mutable_control_points()->mutable_coordinates(),
+         {0, 0, 0, 1, 0, 1, 2, 0, 0, 0, 1, 1, 1, 1, 1, 0, 2, 0});
+  v1::BicubicHermitePatch* hermite =
+      request.add_surfaces()->mutable_bicubic_hermite();
+  hermite->mutable_positions()->set_dimension(3);
+  hermite->mutable_positions()->set_count_u(2);
+  hermite->mutable_positions()->set_count_v(2);
+  Append(hermite->mutable_positions()->mutable_coordinates(),
+         {3, 0, 0, 3, 1, 0, 4, 0, 0, 4, 1, 1});
+  for (v1::ControlNet* derivatives :
+       {hermite->mutable_derivatives_u(), hermite->mutable_derivatives_v()}) {
+    const bool along_u = derivatives == hermite->mutable_derivatives_u();
+    derivatives->set_dimension(3);
+    derivatives->set_count_u(2);
+    derivatives->set_count_v(2);
+    for (int k = 0; k < 4; ++k) {
+      Append(derivatives->mutable_coordinates(),
+             {along_u ? 1.0 : 0.0, along_u ? 0.0 : 1.0, 0.5});
+    }
+  }
+  request.set_tolerance(1e-3);
+  absl::StatusOr<v1::TessellateSurfaceResponse> mesh =
+      client_->TessellateSurfaces(request);
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  std::set<uint32_t> surfaces(mesh->surface_index().begin(),
+                              mesh->surface_index().end());
+  EXPECT_EQ(surfaces, (std::set<uint32_t>{0, 1}));
+  // The triangular patch's vertices have barycentric (u, v) in its domain.
+  for (int r = 0; r < mesh->surface_index_size(); ++r) {
+    if (mesh->surface_index(r) != 0) continue;
+    const double u = mesh->uv(2 * r), v = mesh->uv(2 * r + 1);
+    EXPECT_GE(u, 0.0);
+    EXPECT_GE(v, 0.0);
+    EXPECT_LE(u + v, 1.0 + 1e-15);
+  }
+  triangle->mutable_control_points()->set_dimension(2);
+  triangle->mutable_control_points()->mutable_coordinates()->Truncate(12);
+  ExpectInvalid(client_->TessellateSurfaces(request).status(),
+                "surfaces[0].triangular_bezier.control_points.dimension", true);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// Tessellation: polylines for curves and triangle meshes for Bezier patches,
-// within a given distance of the exact geometry.
+// Tessellation of curves: polylines within a given distance of the exact
+// curve.
 //
 // Curves are refined by recursive subdivision with a flatness test
 // ("subdivide until flat, then draw the chord"; docs/references.md,
@@ -21,27 +21,7 @@
 // argument per level), so unclamped knot vectors work too. Flatness
 // converges quadratically: a polyline needs O(1/sqrt(tolerance)) points.
 //
-// Patches are meshed over a uniform interior grid surrounded by a ring that
-// conforms to boundary samples. The grid spacing h_u = 1/n_u, h_v = 1/n_v
-// comes from the second-difference bounds of the control net (Filip,
-// Magedson and Markot, "Surface algorithms using bounds on derivatives",
-// CAGD 3, 1986): |S_uu| <= M_uu = p (p - 1) max |D2_u P|, |S_vv| <= M_vv =
-// q (q - 1) max |D2_v P|, |S_uv| <= M_uv = p q max |D_u D_v P|. Linear
-// interpolation over a parameter triangle whose u and v extents are at most
-// e_u and e_v is within (e_u^2 M_uu + 2 e_u e_v M_uv + e_v^2 M_vv) / 8 of the
-// surface (Taylor's theorem at the point, with sum_i l_i (u_i - u)^2 <=
-// e_u^2 / 4 for barycentric weights l_i). Every triangle here has extents at
-// most h_u and h_v (grid cells, and ring triangles zipped between the grid
-// and boundary samples at most h apart), and n_u = ceil(sqrt((M_uu + M_uv) /
-// (4 tolerance))) (likewise n_v) makes that at most `tolerance`, using
-// 2 e_u e_v <= e_u^2 + e_v^2. Each patch side is a boundary curve sampled
-// uniformly; sides with identical control points (in either direction) are
-// found by exact comparison and share one sampling whose segment count is the
-// largest any of their patches needs, quantized as k / n from both sides, so
-// their vertices are the same vertices and the mesh is watertight. A side
-// whose control points all coincide (the lid apex of the Utah teapot) is one
-// vertex. Finally vertices within 1e-12 of the control points' scale are
-// welded and triangles that became degenerate are dropped.
+// Surfaces are meshed by mesh.h.
 //
 // All functions are thread-safe and allocate per call.
 #ifndef FREEFORM_CORE_TESSELLATION_H_
@@ -56,7 +36,7 @@
 #include "freeform/core/bezier.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/cancellation.h"
-#include "freeform/core/tensor_surface.h"
+#include "freeform/core/curve.h"
 
 namespace freeform {
 
@@ -91,6 +71,17 @@ absl::StatusOr<Polyline> TessellateBezierCurve(
 // at both ends of the domain.)
 absl::StatusOr<Polyline> TessellateBSplineCurve(
     const BSplineCurveView& curve, double tolerance, size_t max_points,
+    const CancellationToken* cancel = nullptr);
+
+// TessellateCurve tessellates a curve of any kind with the same guarantee:
+// Bezier and power-form curves as TessellateBezierCurve (on the curve's
+// domain), B-spline and NURBS curves as TessellateBSplineCurve, and
+// Lagrange and Hermite curves through their Bezier pieces (DecomposeCurve:
+// LagrangeToBezier, the cubic segments of a Hermite curve) refined on their
+// breakpoint intervals, with every point evaluated on the curve itself.
+// Parameters are the curve's own. Fails as those do.
+absl::StatusOr<Polyline> TessellateCurve(
+    const Curve& curve, double tolerance, size_t max_points,
     const CancellationToken* cancel = nullptr);
 
 // Bounds on the size of a polyline before it is made, so a server knows
@@ -128,55 +119,10 @@ size_t BezierCurvePointBound(const BezierCurveView& curve, double tolerance);
 // TessellateBSplineCurve.
 size_t BSplineCurvePointBound(const BSplineCurveView& curve, double tolerance);
 
-// A triangle mesh of Bezier patches.
-struct Mesh {
-  // Vertex r at vertices[3 r .. 3 r + 2], its unit normal at normals[3 r..].
-  std::vector<double> vertices;
-  std::vector<double> normals;
-  // Triangle t is vertices triangles[3 t .. 3 t + 2], counter-clockwise
-  // about S_u x S_v of its patch.
-  std::vector<uint32_t> triangles;
-  // The patch and (u, v) = uv[2 r], uv[2 r + 1] where vertex r was evaluated
-  // (the first patch that produced it; a vertex shared by patches lies on
-  // all of them).
-  std::vector<uint32_t> patch;
-  std::vector<double> uv;
-  // Per triangle: its patch, and its three corners' (u, v) in that patch
-  // (6 values per triangle), so attributes can be interpolated per patch.
-  std::vector<uint32_t> triangle_patch;
-  std::vector<double> corner_uv;
-};
-
-// TessellateBezierPatches returns a watertight mesh within `tolerance` of
-// the 3D polynomial Bezier patches (any degrees; see the file comment).
-// Normals are ComputeUnitNormals of the owning patch (limits from inside
-// the patch at collapsed sides). Fails with INVALID_ARGUMENT naming
-// "surfaces[i].bezier.<field>" for an invalid patch, a dimension other than
-// 3 ("surfaces[i].bezier.control_net.dimension") or weights (rational
-// patches are not supported: "surfaces[i].bezier.weights"), "tolerance" as
-// for curves (also below the resolution of a patch's coordinates),
-// RESOURCE_EXHAUSTED naming "tolerance" when more than `max_vertices` vertices
-// would be generated (counted before welding, which only merges vertices
-// that coincide without sharing control points), and with the token's
-// CANCELLED / DEADLINE_EXCEEDED (checked between patches).
-absl::StatusOr<Mesh> TessellateBezierPatches(
-    absl::Span<const BezierSurfaceView> patches, double tolerance,
-    size_t max_vertices, const CancellationToken* cancel = nullptr);
-
-// The size of a mesh, known before it is made.
-struct MeshSize {
-  size_t vertices = 0;
-  size_t triangles = 0;
-};
-
-// BezierPatchesMeshBound returns at least the number of vertices and of
-// triangles TessellateBezierPatches(patches, tolerance, max_vertices)
-// makes: the mesh is planned before any vertex is made. Fails as
-// TessellateBezierPatches does for invalid patches or tolerance, or a mesh
-// over max_vertices. Costs one pass over the control nets.
-absl::StatusOr<MeshSize> BezierPatchesMeshBound(
-    absl::Span<const BezierSurfaceView> patches, double tolerance,
-    size_t max_vertices);
+// CurvePointBound is BezierCurvePointBound for TessellateCurve: the sum of
+// the bounds of a Lagrange or Hermite curve's Bezier pieces (it cuts them,
+// at O(degree^2) cost for a Lagrange curve).
+size_t CurvePointBound(const Curve& curve, double tolerance);
 
 }  // namespace freeform
 

@@ -1,0 +1,474 @@
+// TessellatePlanned of mesh.h: the pieces of a MeshPlan cut from their
+// surfaces, meshed over their grids and rings, evaluated, and welded.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "freeform/core/mesh.h"
+#include "freeform/core/normals.h"
+#include "freeform/core/status.h"
+#include "freeform/core/surface_output.h"
+#include "mesh_plan.h"
+
+namespace freeform {
+namespace {
+
+using internal::EdgePlan;
+using internal::kBottom;
+using internal::kLeft;
+using internal::kRight;
+using internal::kTop;
+using internal::PiecePlan;
+using Point3 = std::array<double, 3>;
+
+// A place in one piece's parameter square and the vertex there.
+struct Sample {
+  uint32_t vertex = 0;
+  double u = 0.0;
+  double v = 0.0;
+};
+
+// Where a vertex was evaluated: a piece and (s, t) in its square.
+struct VertexSource {
+  uint32_t piece = 0;
+  double u = 0.0;
+  double v = 0.0;
+};
+
+double Norm3(double x, double y, double z) {
+  return std::sqrt(x * x + y * y + z * z);
+}
+
+// Along returns the coordinate of a sample along the perimeter of the
+// square, counter-clockwise from (0, 0): side k covers [k, k + 1].
+double Along(int side, const Sample& s) {
+  return side + (side == kBottom  ? s.u
+                 : side == kRight ? s.v
+                 : side == kTop   ? 1.0 - s.u
+                                  : 1.0 - s.v);
+}
+
+// The mesh under construction, before evaluation and welding.
+class MeshBuilder {
+ public:
+  explicit MeshBuilder(const MeshPlan& plan)
+      : plan_(plan),
+        corners_(plan.pieces.size()),
+        edge_vertices_(plan.edges.size()) {}
+
+  // Decompose cuts every surface into its Bezier pieces.
+  absl::Status Decompose(const CancellationToken* cancel);
+  // Build creates the vertices and triangles of every piece.
+  absl::Status Build(const CancellationToken* cancel);
+  // Evaluate computes positions and normals on each vertex's piece.
+  absl::Status Evaluate(const CancellationToken* cancel);
+  // Finish welds coincident vertices and returns the mesh.
+  Mesh Finish();
+
+ private:
+  BezierSurfaceView PieceView(uint32_t piece) const {
+    const PiecePlan& plan = plan_.pieces[piece];
+    return decompositions_[plan.surface]
+        .pieces.patches[plan.piece]
+        .bezier_view();
+  }
+  std::array<double, 2> SurfaceParameters(uint32_t piece, double s,
+                                          double t) const {
+    const PiecePlan& plan = plan_.pieces[piece];
+    return SurfacePieceParameters(decompositions_[plan.surface], plan.piece, s,
+                                  t);
+  }
+  uint32_t CornerVertex(uint32_t piece, int corner);
+  uint32_t NewVertex(uint32_t piece, double u, double v);
+  std::vector<Sample> SideSamples(uint32_t piece, int side);
+  std::vector<std::pair<Sample, double>> OuterLoop(uint32_t piece);
+  std::vector<std::pair<Sample, double>> InnerLoop(
+      uint32_t piece, const std::vector<uint32_t>& grid);
+  void AddTriangle(uint32_t piece, const Sample& a, const Sample& b,
+                   const Sample& c);
+  void ZipRing(uint32_t piece,
+               const std::vector<std::pair<Sample, double>>& outer,
+               const std::vector<std::pair<Sample, double>>& inner);
+  void BuildPiece(uint32_t piece);
+
+  const MeshPlan& plan_;
+  std::vector<SurfaceDecomposition> decompositions_;
+  // Per piece: its corner vertices (0,0), (1,0), (1,1), (0,1).
+  std::vector<std::array<uint32_t, 4>> corners_;
+  // Per edge: segments + 1 vertices in its canonical direction (created
+  // by the first piece that uses it).
+  std::vector<std::vector<uint32_t>> edge_vertices_;
+  std::map<Point3, uint32_t> corner_index_;
+  std::vector<VertexSource> sources_;
+  std::vector<double> positions_;
+  std::vector<double> normals_;
+  std::vector<uint32_t> triangles_;
+  std::vector<uint32_t> triangle_piece_;
+  std::vector<double> corner_uv_;
+};
+
+absl::Status MeshBuilder::Decompose(const CancellationToken* cancel) {
+  decompositions_.reserve(plan_.surfaces.size());
+  for (const Surface& surface : plan_.surfaces) {
+    absl::StatusOr<SurfaceDecomposition> decomposition =
+        DecomposeSurface(surface, cancel);
+    if (!decomposition.ok()) return decomposition.status();
+    decompositions_.push_back(*std::move(decomposition));
+  }
+  return absl::OkStatus();
+}
+
+uint32_t MeshBuilder::NewVertex(uint32_t piece, double u, double v) {
+  sources_.push_back({piece, u, v});
+  return static_cast<uint32_t>(sources_.size() - 1);
+}
+
+// CornerVertex returns the vertex at a corner of a piece: the corner
+// control point, which the piece interpolates, shared by every piece with a
+// corner there.
+uint32_t MeshBuilder::CornerVertex(uint32_t piece, int corner) {
+  const ControlNetView& net = PieceView(piece).control_net;
+  const int i = corner == 1 || corner == 2 ? net.count_u - 1 : 0;
+  const int j = corner >= 2 ? net.count_v - 1 : 0;
+  const double* p = net.point(i, j);
+  auto [it, inserted] = corner_index_.emplace(
+      Point3{p[0], p[1], p[2]}, static_cast<uint32_t>(sources_.size()));
+  if (inserted) NewVertex(piece, i == 0 ? 0.0 : 1.0, j == 0 ? 0.0 : 1.0);
+  return it->second;
+}
+
+// SideSamples returns the samples of a side at t = m / n, m = 0..n, in the
+// direction of increasing parameter. The vertices belong to the side's
+// edge, numbered in its canonical direction, so pieces that share the edge
+// share them. A collapsed side is one vertex sampled as densely as the
+// piece's grid, which keeps the fan triangles at its apex small in
+// parameter space.
+std::vector<Sample> MeshBuilder::SideSamples(uint32_t piece, int side) {
+  const PiecePlan& plan = plan_.pieces[piece];
+  const std::array<uint32_t, 4>& corner = corners_[piece];
+  const EdgePlan& edge = plan_.edges[static_cast<size_t>(plan.edge[side])];
+  std::vector<uint32_t>& vertices =
+      edge_vertices_[static_cast<size_t>(plan.edge[side])];
+  const bool along_u = side == kBottom || side == kTop;
+  const bool reversed = plan.reversed[side];
+  const int start_corner = side == kBottom  ? 0
+                           : side == kRight ? 1
+                           : side == kTop   ? 3
+                                            : 0;
+  const int end_corner = side == kBottom  ? 1
+                         : side == kRight ? 2
+                         : side == kTop   ? 2
+                                          : 3;
+  const double fixed = side == kRight || side == kTop ? 1.0 : 0.0;
+  const int n =
+      edge.collapsed ? (along_u ? plan.grid_u : plan.grid_v) : edge.segments;
+  if (vertices.empty() && !edge.collapsed) {
+    vertices.resize(static_cast<size_t>(n) + 1);
+    vertices.front() = reversed ? corner[end_corner] : corner[start_corner];
+    vertices.back() = reversed ? corner[start_corner] : corner[end_corner];
+    for (int k = 1; k < n; ++k) {
+      const double t = static_cast<double>(reversed ? n - k : k) / n;
+      vertices[k] =
+          along_u ? NewVertex(piece, t, fixed) : NewVertex(piece, fixed, t);
+    }
+  }
+  std::vector<Sample> samples(static_cast<size_t>(n) + 1);
+  for (int m = 0; m <= n; ++m) {
+    const double t = static_cast<double>(m) / n;
+    const uint32_t vertex =
+        edge.collapsed ? corner[start_corner] : vertices[reversed ? n - m : m];
+    samples[m] = along_u ? Sample{vertex, t, fixed} : Sample{vertex, fixed, t};
+  }
+  return samples;
+}
+
+// OuterLoop returns the boundary samples counter-clockwise from (0, 0),
+// each with its perimeter coordinate theta in [0, 4]; corners appear at the
+// end of one side and the start of the next.
+std::vector<std::pair<Sample, double>> MeshBuilder::OuterLoop(uint32_t piece) {
+  std::vector<std::pair<Sample, double>> loop;
+  for (int side = 0; side < 4; ++side) {
+    std::vector<Sample> samples = SideSamples(piece, side);
+    const size_t n = samples.size() - 1;
+    const bool backward = side == kTop || side == kLeft;
+    for (size_t m = 0; m <= n; ++m) {
+      const Sample& s = samples[backward ? n - m : m];
+      loop.push_back({s, Along(side, s)});
+    }
+  }
+  return loop;
+}
+
+// InnerLoop returns the boundary of the interior grid (nodes 1..grid-1 each
+// way) counter-clockwise, each node with the perimeter coordinate of the
+// outer loop's side it faces (its u or v along that side), so the zipper
+// pairs samples that are at most one spacing apart in u and in v, also at
+// the corners (where the inner corner appears once for each side).
+std::vector<std::pair<Sample, double>> MeshBuilder::InnerLoop(
+    uint32_t piece, const std::vector<uint32_t>& grid) {
+  const int nu = plan_.pieces[piece].grid_u;
+  const int nv = plan_.pieces[piece].grid_v;
+  auto node = [&](int i, int j) {
+    return Sample{grid[static_cast<size_t>(i - 1) * (nv - 1) + (j - 1)],
+                  static_cast<double>(i) / nu, static_cast<double>(j) / nv};
+  };
+  std::vector<std::pair<Sample, double>> loop;
+  auto add_side = [&](int side, int count, auto at) {
+    for (int k = 0; k < count; ++k) {
+      const Sample s = at(k);
+      loop.push_back({s, Along(side, s)});
+    }
+  };
+  // Each side from its start corner to its end corner; a single node is
+  // both (count 2 then repeats it).
+  add_side(kBottom, std::max(2, nu - 1),
+           [&](int k) { return node(std::min(1 + k, nu - 1), 1); });
+  add_side(kRight, std::max(2, nv - 1),
+           [&](int k) { return node(nu - 1, std::min(1 + k, nv - 1)); });
+  add_side(kTop, std::max(2, nu - 1),
+           [&](int k) { return node(std::max(nu - 1 - k, 1), nv - 1); });
+  add_side(kLeft, std::max(2, nv - 1),
+           [&](int k) { return node(1, std::max(nv - 1 - k, 1)); });
+  return loop;
+}
+
+void MeshBuilder::AddTriangle(uint32_t piece, const Sample& a, const Sample& b,
+                              const Sample& c) {
+  if (a.vertex == b.vertex || b.vertex == c.vertex || a.vertex == c.vertex) {
+    return;
+  }
+  for (const Sample* s : {&a, &b, &c}) {
+    triangles_.push_back(s->vertex);
+    corner_uv_.push_back(s->u);
+    corner_uv_.push_back(s->v);
+  }
+  triangle_piece_.push_back(piece);
+}
+
+// ZipRing triangulates the ring between the outer and inner loops by
+// merging them in order of theta (a "zipper"): each step advances the loop
+// whose next sample comes first, so every triangle spans at most about one
+// sample spacing of each loop.
+void MeshBuilder::ZipRing(uint32_t piece,
+                          const std::vector<std::pair<Sample, double>>& outer,
+                          const std::vector<std::pair<Sample, double>>& inner) {
+  size_t i = 0;
+  size_t j = 0;
+  while (i + 1 < outer.size() || j + 1 < inner.size()) {
+    const bool advance_outer =
+        j + 1 == inner.size() ||
+        (i + 1 < outer.size() && outer[i + 1].second <= inner[j + 1].second);
+    if (advance_outer) {
+      AddTriangle(piece, outer[i].first, outer[i + 1].first, inner[j].first);
+      ++i;
+    } else {
+      AddTriangle(piece, outer[i].first, inner[j + 1].first, inner[j].first);
+      ++j;
+    }
+  }
+}
+
+void MeshBuilder::BuildPiece(uint32_t piece) {
+  for (int corner = 0; corner < 4; ++corner) {
+    corners_[piece][corner] = CornerVertex(piece, corner);
+  }
+  const int nu = plan_.pieces[piece].grid_u;
+  const int nv = plan_.pieces[piece].grid_v;
+  std::vector<uint32_t> grid;
+  grid.reserve(static_cast<size_t>(nu - 1) * (nv - 1));
+  for (int i = 1; i < nu; ++i) {
+    for (int j = 1; j < nv; ++j) {
+      grid.push_back(NewVertex(piece, static_cast<double>(i) / nu,
+                               static_cast<double>(j) / nv));
+    }
+  }
+  ZipRing(piece, OuterLoop(piece), InnerLoop(piece, grid));
+  auto node = [&](int i, int j) {
+    return Sample{grid[static_cast<size_t>(i - 1) * (nv - 1) + (j - 1)],
+                  static_cast<double>(i) / nu, static_cast<double>(j) / nv};
+  };
+  for (int i = 1; i + 1 < nu; ++i) {
+    for (int j = 1; j + 1 < nv; ++j) {
+      AddTriangle(piece, node(i, j), node(i + 1, j), node(i + 1, j + 1));
+      AddTriangle(piece, node(i, j), node(i + 1, j + 1), node(i, j + 1));
+    }
+  }
+}
+
+absl::Status MeshBuilder::Build(const CancellationToken* cancel) {
+  sources_.reserve(plan_.size.vertices);
+  triangles_.reserve(3 * plan_.size.triangles);
+  for (uint32_t piece = 0; piece < plan_.pieces.size(); ++piece) {
+    if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
+      return status;
+    }
+    BuildPiece(piece);
+  }
+  return absl::OkStatus();
+}
+
+absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
+  std::vector<std::vector<uint32_t>> owned(plan_.pieces.size());
+  for (uint32_t r = 0; r < sources_.size(); ++r) {
+    owned[sources_[r].piece].push_back(r);
+  }
+  positions_.resize(3 * sources_.size());
+  normals_.resize(3 * sources_.size());
+  constexpr int kOrder = 2;  // second partials for degenerate normals
+  std::vector<double> uv;
+  std::vector<std::vector<double>> buffers(PartialCount(kOrder));
+  std::vector<double> normals;
+  for (uint32_t piece = 0; piece < plan_.pieces.size(); ++piece) {
+    if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
+      return status;
+    }
+    const std::vector<uint32_t>& vertices = owned[piece];
+    if (vertices.empty()) continue;
+    uv.clear();
+    for (uint32_t r : vertices) {
+      uv.push_back(sources_[r].u);
+      uv.push_back(sources_[r].v);
+    }
+    std::vector<absl::Span<double>> output;
+    for (std::vector<double>& buffer : buffers) {
+      buffer.resize(3 * vertices.size());
+      output.push_back(absl::MakeSpan(buffer));
+    }
+    const SurfaceSamples samples = SurfaceSamples::Pairs(uv);
+    absl::Status status =
+        EvaluateBezierSurface(PieceView(piece), samples, output);
+    normals.resize(3 * vertices.size());
+    if (status.ok()) {
+      status = ComputeUnitNormals(output, samples, BezierSurfaceDomain(),
+                                  absl::MakeSpan(normals));
+    }
+    if (!status.ok()) return status;
+    for (size_t k = 0; k < vertices.size(); ++k) {
+      for (int x = 0; x < 3; ++x) {
+        positions_[3 * vertices[k] + x] = buffers[0][3 * k + x];
+        normals_[3 * vertices[k] + x] = normals[3 * k + x];
+      }
+    }
+  }
+  return absl::OkStatus();
+}
+
+// WeldMap returns, for every vertex, the first vertex within `epsilon` of
+// it (itself when none), found by hashing into cells of size epsilon and
+// searching the 27 neighbouring cells.
+std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
+                              double epsilon) {
+  const size_t count = positions.size() / 3;
+  std::vector<uint32_t> target(count);
+  using Cell = std::array<int64_t, 3>;
+  struct CellHash {
+    size_t operator()(const Cell& c) const {
+      return static_cast<size_t>(static_cast<uint64_t>(c[0]) * 73856093u ^
+                                 static_cast<uint64_t>(c[1]) * 19349663u ^
+                                 static_cast<uint64_t>(c[2]) * 83492791u);
+    }
+  };
+  std::unordered_map<Cell, std::vector<uint32_t>, CellHash> cells;
+  auto cell_of = [&](size_t r) {
+    std::array<int64_t, 3> cell;
+    for (int x = 0; x < 3; ++x) {
+      cell[x] =
+          static_cast<int64_t>(std::floor(positions[3 * r + x] / epsilon));
+    }
+    return cell;
+  };
+  for (size_t r = 0; r < count; ++r) {
+    target[r] = static_cast<uint32_t>(r);
+    const std::array<int64_t, 3> cell = cell_of(r);
+    bool found = false;
+    for (int dx = -1; dx <= 1 && !found; ++dx) {
+      for (int dy = -1; dy <= 1 && !found; ++dy) {
+        for (int dz = -1; dz <= 1 && !found; ++dz) {
+          auto it = cells.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+          if (it == cells.end()) continue;
+          for (uint32_t other : it->second) {
+            if (Norm3(positions[3 * r] - positions[3 * other],
+                      positions[3 * r + 1] - positions[3 * other + 1],
+                      positions[3 * r + 2] - positions[3 * other + 2]) <=
+                epsilon) {
+              target[r] = other;
+              found = true;
+              break;
+            }
+          }
+        }
+      }
+    }
+    if (!found) cells[cell].push_back(static_cast<uint32_t>(r));
+  }
+  return target;
+}
+
+Mesh MeshBuilder::Finish() {
+  const double epsilon = std::max(1e-12 * plan_.scale, 1e-300);
+  const std::vector<uint32_t> target = WeldMap(positions_, epsilon);
+  Mesh mesh;
+  std::vector<uint32_t> index(target.size());
+  for (size_t r = 0; r < target.size(); ++r) {
+    if (target[r] != r) continue;
+    index[r] = static_cast<uint32_t>(mesh.patch.size());
+    mesh.vertices.insert(mesh.vertices.end(), positions_.begin() + 3 * r,
+                         positions_.begin() + 3 * r + 3);
+    mesh.normals.insert(mesh.normals.end(), normals_.begin() + 3 * r,
+                        normals_.begin() + 3 * r + 3);
+    const VertexSource& source = sources_[r];
+    mesh.patch.push_back(plan_.pieces[source.piece].surface);
+    const std::array<double, 2> uv =
+        SurfaceParameters(source.piece, source.u, source.v);
+    mesh.uv.insert(mesh.uv.end(), uv.begin(), uv.end());
+  }
+  for (size_t t = 0; t < triangle_piece_.size(); ++t) {
+    std::array<uint32_t, 3> corners;
+    for (int k = 0; k < 3; ++k) {
+      corners[k] = index[target[triangles_[3 * t + k]]];
+    }
+    if (corners[0] == corners[1] || corners[1] == corners[2] ||
+        corners[0] == corners[2]) {
+      continue;  // collapsed by welding
+    }
+    mesh.triangles.insert(mesh.triangles.end(), corners.begin(), corners.end());
+    const uint32_t piece = triangle_piece_[t];
+    mesh.triangle_patch.push_back(plan_.pieces[piece].surface);
+    for (int k = 0; k < 3; ++k) {
+      const std::array<double, 2> uv = SurfaceParameters(
+          piece, corner_uv_[6 * t + 2 * k], corner_uv_[6 * t + 2 * k + 1]);
+      mesh.corner_uv.insert(mesh.corner_uv.end(), uv.begin(), uv.end());
+    }
+  }
+  return mesh;
+}
+
+}  // namespace
+
+absl::StatusOr<Mesh> TessellatePlanned(const MeshPlan& plan,
+                                       const CancellationToken* cancel) {
+  MeshBuilder builder(plan);
+  absl::Status status = builder.Decompose(cancel);
+  if (status.ok()) status = builder.Build(cancel);
+  if (status.ok()) status = builder.Evaluate(cancel);
+  if (!status.ok()) return status;
+  return builder.Finish();
+}
+
+absl::StatusOr<Mesh> TessellateSurfaces(absl::Span<const Surface> surfaces,
+                                        const MeshOptions& options,
+                                        const CancellationToken* cancel) {
+  absl::StatusOr<std::shared_ptr<const MeshPlan>> plan =
+      PlanMesh(surfaces, options, cancel);
+  if (!plan.ok()) return plan.status();
+  return TessellatePlanned(**plan, cancel);
+}
+
+}  // namespace freeform

@@ -1,0 +1,64 @@
+// The checks that curve tessellation and surface meshing share: the
+// tolerance is positive, finite and resolvable in double precision on the
+// geometry, and a result over its size limit is refused naming the
+// tolerance, which is what makes a tessellation large.
+#ifndef FREEFORM_CORE_SRC_TESSELLATION_CHECKS_H_
+#define FREEFORM_CORE_SRC_TESSELLATION_CHECKS_H_
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
+#include "absl/types/span.h"
+#include "freeform/core/status.h"
+
+namespace freeform::internal {
+
+// The smallest tolerance, relative to the control points' largest
+// coordinate, that subdivision can meet in double precision.
+inline constexpr double kResolution = 0x1p-48;
+
+// ValidatePositive checks that `field` holds a positive finite value.
+inline absl::Status ValidatePositive(double value, absl::string_view field) {
+  if (!std::isfinite(value) || !(value > 0.0)) {
+    return InvalidFieldError(field, "must be positive and finite");
+  }
+  return absl::OkStatus();
+}
+
+inline absl::Status ValidateTolerance(double tolerance) {
+  return ValidatePositive(tolerance, "tolerance");
+}
+
+// CheckResolvable refuses a tolerance below what double precision resolves
+// on geometry of the size of `coordinates`: no subdivision could meet it,
+// and trying would only end at the size limit. Lines (degree < 2) are flat
+// at any tolerance.
+inline absl::Status CheckResolvable(double tolerance,
+                                    absl::Span<const double> coordinates,
+                                    int degree) {
+  if (degree < 2) return absl::OkStatus();
+  double size = 0.0;
+  for (const double c : coordinates) size = std::max(size, std::abs(c));
+  if (tolerance >= kResolution * size) return absl::OkStatus();
+  return InvalidFieldError(
+      "tolerance", absl::StrCat(tolerance,
+                                " is below what double precision resolves on "
+                                "geometry of size ",
+                                size, " (about ", kResolution * size, ")"));
+}
+
+// TessellationTooLarge is RESOURCE_EXHAUSTED naming the tolerance for a
+// tessellation needing more than `limit` of `what` (points, vertices).
+inline absl::Status TessellationTooLarge(absl::string_view what, size_t limit) {
+  return ExhaustedFieldError(
+      "tolerance", absl::StrCat("the tessellation needs more than ", limit, " ",
+                                what, " at this tolerance"));
+}
+
+}  // namespace freeform::internal
+
+#endif  // FREEFORM_CORE_SRC_TESSELLATION_CHECKS_H_
