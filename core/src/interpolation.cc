@@ -11,6 +11,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/cancellation.h"
+#include "freeform/core/lagrange.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
 
@@ -291,6 +292,21 @@ absl::Status ValidateParameters(absl::Span<const double> parameters) {
     }
   }
   return absl::OkStatus();
+}
+
+// ExplicitParameters returns the caller's parameters: one per point, finite
+// and strictly increasing.
+absl::StatusOr<std::vector<double>> ExplicitParameters(
+    absl::Span<const double> parameters, size_t count) {
+  if (parameters.size() != count) {
+    return InvalidFieldError(
+        "parameters", absl::StrCat("needs one parameter per point (", count,
+                                   "), got ", parameters.size()));
+  }
+  if (absl::Status status = ValidateParameters(parameters); !status.ok()) {
+    return status;
+  }
+  return std::vector<double>(parameters.begin(), parameters.end());
 }
 
 absl::Status ValidateDegree(int degree, absl::string_view field) {
@@ -779,6 +795,25 @@ absl::Status ValidateDerivative(absl::Span<const double> value,
   return ValidateFinite(value, field);
 }
 
+// ValidateEndDerivatives checks the end derivatives given to InterpolateCurve:
+// `dimension` finite values each, and degree >= 2.
+absl::Status ValidateEndDerivatives(const CurveInterpolationOptions& options,
+                                    int dimension) {
+  for (const auto& [value, field] :
+       {std::pair{options.start_derivative, "start_derivative"},
+        std::pair{options.end_derivative, "end_derivative"}}) {
+    if (value.empty()) continue;
+    if (absl::Status status = ValidateDerivative(value, field, dimension, true);
+        !status.ok()) {
+      return status;
+    }
+    if (options.degree < 2) {
+      return InvalidFieldError(field, "end derivatives need degree >= 2");
+    }
+  }
+  return absl::OkStatus();
+}
+
 // ClampedKnots returns x_0 (x4), x_1, ..., x_{n-1}, x_n (x4) without the
 // interior abscissas listed in `skip` (not-a-knot).
 std::vector<double> CubicKnots(absl::Span<const double> x, bool not_a_knot) {
@@ -961,6 +996,202 @@ absl::StatusOr<double> SurfaceResidual(const SurfaceInterpolation& result,
   return max;
 }
 
+// ------------------------------ knots at the parameters (OpenCASCADE) --
+// docs/references.md, 'Interpolation with knots at the parameters
+// (OpenCASCADE rule)'.
+
+// LagrangeSlope returns the derivative at `at` of the Lagrange polynomial
+// through the `count` points from `first` at their parameters t.
+Matrix LagrangeSlope(const PointsView& points, absl::Span<const double> t,
+                     size_t first, size_t count, double at) {
+  const absl::Span<const double> nodes = t.subspan(first, count);
+  const std::vector<double> weights = BarycentricWeights(nodes);
+  std::vector<double> basis(2 * count), scratch(2);
+  LagrangeBasis(nodes, weights, at, 1, absl::MakeSpan(scratch),
+                absl::MakeSpan(basis));
+  const size_t d = static_cast<size_t>(points.dimension);
+  Matrix slope(d, 0.0);
+  for (size_t i = 0; i < count; ++i) {
+    const double* point = points.point(first + i);
+    for (size_t c = 0; c < d; ++c) slope[c] += basis[count + i] * point[c];
+  }
+  return slope;
+}
+
+double SumOfAbsolutes(absl::Span<const double> values) {
+  double sum = 0;
+  for (double value : values) sum += std::abs(value);
+  return sum;
+}
+
+// EndSlope returns the derivative condition at the start (or end) of the
+// open sequence at t: the given derivative; scaled by |L'|_1 / |given|_1
+// with L the Lagrange polynomial through the first min(N, 3) points,
+// evaluated at that end (GeomAPI_Interpolate's ScaleTangents, which takes
+// the first points for every tangent); or, when not given, the derivative
+// of the Lagrange polynomial through the min(N, 4) points at that end.
+absl::StatusOr<Matrix> EndSlope(const PointsView& points,
+                                absl::Span<const double> t,
+                                absl::Span<const double> given, bool at_end,
+                                bool scale, absl::string_view field) {
+  const double at = at_end ? t.back() : t.front();
+  if (given.empty()) {
+    const size_t count = std::min<size_t>(t.size(), 4);
+    return LagrangeSlope(points, t, at_end ? t.size() - count : 0, count, at);
+  }
+  Matrix slope(given.begin(), given.end());
+  if (!scale) return slope;
+  const double length = SumOfAbsolutes(given);
+  if (!(length > 0)) {
+    return InvalidFieldError(field,
+                             "a zero vector has no direction to scale "
+                             "(scale_end_derivatives)");
+  }
+  const double ratio = SumOfAbsolutes(LagrangeSlope(
+                           points, t, 0, std::min<size_t>(t.size(), 3), at)) /
+                       length;
+  for (double& value : slope) value *= ratio;
+  return slope;
+}
+
+// AtParametersDegree returns the degree of GeomAPI_Interpolate's curve: 1
+// for two points and 2 for three open points without derivatives, else 3.
+int AtParametersDegree(size_t count, const CurveInterpolationOptions& options) {
+  if (!options.start_derivative.empty() || !options.end_derivative.empty() ||
+      count > 3) {
+    return 3;
+  }
+  if (count == 2) return 1;
+  return options.closed ? 3 : 2;
+}
+
+absl::Status ValidateAtParameters(const PointsView& points,
+                                  const CurveInterpolationOptions& options) {
+  if (absl::Status status = ValidatePoints(points, "points", 2); !status.ok()) {
+    return status;
+  }
+  if (options.closed && !options.end_derivative.empty()) {
+    return InvalidFieldError(
+        "end_derivative",
+        "a closed curve takes its one derivative, where it closes, in "
+        "start_derivative");
+  }
+  if (options.parameters.empty() &&
+      options.parameterization == Parameterization::kUniversal) {
+    return InvalidFieldError(
+        "parameterization",
+        "kUniversal fixes its own knots; the kAtParameters knot rule takes "
+        "chord length, centripetal, uniform or explicit parameters");
+  }
+  const int degree = AtParametersDegree(points.size(), options);
+  if (options.degree != degree) {
+    return InvalidFieldError(
+        "degree",
+        absl::StrCat("the kAtParameters knot rule needs degree ", degree,
+                     " for these ", points.size(),
+                     " points and derivatives, got ", options.degree));
+  }
+  return ValidateEndDerivatives(options, points.dimension);
+}
+
+// InterpolateOpenAtParameters: the polygon (degree 1), the parabola
+// (degree 2, knots t_0 (x3), t_2 (x3)) or the clamped cubic with a knot at
+// every parameter and the two end derivatives.
+absl::StatusOr<CurveInterpolation> InterpolateOpenAtParameters(
+    const PointsView& points, const CurveInterpolationOptions& options) {
+  absl::StatusOr<std::vector<double>> t =
+      options.parameters.empty()
+          ? OpenParameters(points, options.parameterization)
+          : ExplicitParameters(options.parameters, points.size());
+  if (!t.ok()) return t.status();
+  const int p = options.degree;
+  if (p < 3) {
+    std::vector<double> knots(static_cast<size_t>(p) + 1, t->front());
+    knots.insert(knots.end(), static_cast<size_t>(p) + 1, t->back());
+    absl::StatusOr<Matrix> control =
+        SolveOpen(points, p, knots, *t, {}, {}, options.cancel);
+    if (!control.ok()) return control.status();
+    return Finish(
+        MakeCurve(p, points.dimension, *std::move(control), std::move(knots)),
+        *std::move(t), points, options.cancel);
+  }
+  absl::StatusOr<Matrix> start =
+      EndSlope(points, *t, options.start_derivative, false,
+               options.scale_end_derivatives, "start_derivative");
+  if (!start.ok()) return start.status();
+  absl::StatusOr<Matrix> end =
+      EndSlope(points, *t, options.end_derivative, true,
+               options.scale_end_derivatives, "end_derivative");
+  if (!end.ok()) return end.status();
+  return InterpolateCubicSpline(points, *t, SplineEnd::kClamped, *start, *end,
+                                options.cancel);
+}
+
+// InterpolateClosedAtParameters: GeomAPI_Interpolate's periodic curve, a
+// cubic on the periodic knots t_0, t_0, t_1, ..., t_{N-1} (period T)
+// solved as an open system with C(t_0) = C(t_N) = Q_0 and C'(t_0) =
+// C'(t_N) = the start derivative, whose solution is the periodic one: its
+// poles N+1, N+2 repeat 0, 1.
+// Two points without a derivative give the closed polygon.
+absl::StatusOr<CurveInterpolation> InterpolateClosedAtParameters(
+    const PointsView& points, const CurveInterpolationOptions& options) {
+  absl::StatusOr<std::vector<double>> t = ClosedParameters(points, options);
+  if (!t.ok()) return t.status();
+  const size_t n = points.size(), d = static_cast<size_t>(points.dimension);
+  const int p = options.degree;
+  const int before = p == 1 ? 1 : 2;  // knots before t_0
+  PeriodicKnots kappa{.base = std::vector<double>(t->begin(), t->end() - 1),
+                      .period = t->back() - t->front()};
+  if (p == 3) kappa.base.insert(kappa.base.begin(), t->front());
+  // N + 3 poles for the cubic (N + 1 knots a period, t_0 doubled), 3 for
+  // the polygon.
+  const size_t poles = kappa.base.size() + static_cast<size_t>(p + 1 - before);
+  std::vector<double> knots(poles + static_cast<size_t>(p) + 1);
+  for (size_t i = 0; i < knots.size(); ++i) {
+    knots[i] = kappa(static_cast<long>(i) - before);
+  }
+  // The domain ends at t_N itself (t_0 + T may differ in the last bit).
+  std::fill_n(
+      knots.begin() + static_cast<ptrdiff_t>(kappa.base.size()) + before,
+      before, t->back());
+  Matrix closing(points.coordinates.begin(), points.coordinates.end());
+  closing.insert(closing.end(), points.point(0), points.point(0) + d);
+  Matrix control;
+  if (p == 1) {
+    control = std::move(closing);
+  } else {
+    const absl::Span<const double> open = absl::MakeConstSpan(*t).subspan(0, n);
+    absl::StatusOr<Matrix> slope =
+        EndSlope(points, open, options.start_derivative, false,
+                 options.scale_end_derivatives, "start_derivative");
+    if (!slope.ok()) return slope.status();
+    const EndCondition seam{.order = 1, .value = *slope};
+    absl::StatusOr<Matrix> solved =
+        SolveOpen({.dimension = points.dimension, .coordinates = closing}, p,
+                  knots, *t, seam, seam, options.cancel);
+    if (!solved.ok()) return solved.status();
+    control = *std::move(solved);
+    // The last two poles equal the first two up to rounding; as
+    // OpenCASCADE, keep the first ones, so the curve closes exactly.
+    std::copy_n(control.begin(), 2 * d,
+                control.end() - 2 * static_cast<ptrdiff_t>(d));
+  }
+  t->pop_back();
+  return Finish(
+      MakeCurve(p, points.dimension, std::move(control), std::move(knots)),
+      *std::move(t), points, options.cancel);
+}
+
+absl::StatusOr<CurveInterpolation> InterpolateAtParameters(
+    const PointsView& points, const CurveInterpolationOptions& options) {
+  if (absl::Status status = ValidateAtParameters(points, options);
+      !status.ok()) {
+    return status;
+  }
+  return options.closed ? InterpolateClosedAtParameters(points, options)
+                        : InterpolateOpenAtParameters(points, options);
+}
+
 }  // namespace
 
 absl::StatusOr<std::vector<double>> InterpolationParameters(
@@ -976,6 +1207,14 @@ absl::StatusOr<std::vector<double>> InterpolationParameters(
 
 absl::StatusOr<CurveInterpolation> InterpolateCurve(
     const PointsView& points, const CurveInterpolationOptions& options) {
+  if (options.knot_rule == KnotRule::kAtParameters) {
+    return InterpolateAtParameters(points, options);
+  }
+  if (options.scale_end_derivatives) {
+    return InvalidFieldError(
+        "scale_end_derivatives",
+        "only the kAtParameters knot rule scales end derivatives");
+  }
   const int p = options.degree;
   if (absl::Status status = ValidateCurveData(points, p); !status.ok()) {
     return status;
@@ -983,17 +1222,9 @@ absl::StatusOr<CurveInterpolation> InterpolateCurve(
   if (options.closed) return InterpolateClosed(points, options);
   const bool has_start = !options.start_derivative.empty();
   const bool has_end = !options.end_derivative.empty();
-  for (const auto& [value, field] :
-       {std::pair{options.start_derivative, "start_derivative"},
-        std::pair{options.end_derivative, "end_derivative"}}) {
-    if (absl::Status status =
-            ValidateDerivative(value, field, points.dimension, true);
-        !value.empty() && !status.ok()) {
-      return status;
-    }
-    if (!value.empty() && p < 2) {
-      return InvalidFieldError(field, "end derivatives need degree >= 2");
-    }
+  if (absl::Status status = ValidateEndDerivatives(options, points.dimension);
+      !status.ok()) {
+    return status;
   }
   const int count = static_cast<int>(points.size()) + has_start + has_end;
   std::vector<double> t;
@@ -1001,17 +1232,10 @@ absl::StatusOr<CurveInterpolation> InterpolateCurve(
       options.parameters.empty() &&
       options.parameterization == Parameterization::kUniversal;
   if (!options.parameters.empty()) {
-    if (options.parameters.size() != points.size()) {
-      return InvalidFieldError(
-          "parameters",
-          absl::StrCat("needs one parameter per point (", points.size(),
-                       "), got ", options.parameters.size()));
-    }
-    if (absl::Status status = ValidateParameters(options.parameters);
-        !status.ok()) {
-      return status;
-    }
-    t.assign(options.parameters.begin(), options.parameters.end());
+    absl::StatusOr<std::vector<double>> given =
+        ExplicitParameters(options.parameters, points.size());
+    if (!given.ok()) return given.status();
+    t = *std::move(given);
   } else if (universal) {
     // The maxima of every basis function except the derivative rows'.
     const std::vector<double> maxima = UniversalParameters(count, p);
@@ -1102,24 +1326,11 @@ absl::StatusOr<CurveApproximation> ApproximateCurve(
         absl::StrCat("must lie in [degree + 1, point count] = [", p + 1, ", ",
                      m + 1, "], got ", control_point_count));
   }
-  std::vector<double> t;
-  if (!parameters.empty()) {
-    if (parameters.size() != points.size()) {
-      return InvalidFieldError(
-          "parameters",
-          absl::StrCat("needs one parameter per point (", points.size(),
-                       "), got ", parameters.size()));
-    }
-    if (absl::Status status = ValidateParameters(parameters); !status.ok()) {
-      return status;
-    }
-    t.assign(parameters.begin(), parameters.end());
-  } else {
-    absl::StatusOr<std::vector<double>> computed =
-        InterpolationParameters(points, p, parameterization);
-    if (!computed.ok()) return computed.status();
-    t = *std::move(computed);
-  }
+  absl::StatusOr<std::vector<double>> computed =
+      parameters.empty() ? InterpolationParameters(points, p, parameterization)
+                         : ExplicitParameters(parameters, points.size());
+  if (!computed.ok()) return computed.status();
+  std::vector<double> t = *std::move(computed);
   // Knots by eq. 9.69: every knot span holds at least one parameter.
   std::vector<double> knots(static_cast<size_t>(p) + 1, t.front());
   const double spacing = static_cast<double>(m + 1) / (n - p + 1);
@@ -1204,6 +1415,11 @@ absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
     const ControlNetView& points, int degree_u, int degree_v,
     Parameterization parameterization, KnotRule knot_rule,
     const CancellationToken* cancel) {
+  if (knot_rule == KnotRule::kAtParameters) {
+    return InvalidFieldError(
+        "knot_rule",
+        "kAtParameters needs end derivatives, which surfaces do not take");
+  }
   if (absl::Status status = ValidateDegree(degree_u, "degree_u");
       !status.ok()) {
     return status;

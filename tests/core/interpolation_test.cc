@@ -5,11 +5,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdio>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "freeform/core/bspline.h"
+#include "freeform/core/lagrange.h"
 #include "freeform/core/status.h"
 #include "freeform/core/tensor_surface.h"
 
@@ -723,6 +727,512 @@ TEST(InterpolateSurfaceTest, Errors) {
                                  KnotRule::kAveraging)
                   .status(),
               "points");
+}
+
+// ------------------------------- knots at the parameters (OpenCASCADE) --
+// docs/references.md,
+// 'Interpolation with knots at the parameters (OpenCASCADE rule)'.
+
+#include "occt_interpolate_reference.inc"
+
+// The derivative at x of the polynomial through (nodes[i], values[i]), by
+// the product rule on the Lagrange basis: sum_i values[i] sum_{k != i}
+// 1 / (t_i - t_k) prod_{j != i, k} (x - t_j) / (t_i - t_j).
+double LagrangeDerivative(const std::vector<double>& nodes,
+                          const std::vector<double>& values, double x) {
+  double derivative = 0;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    double basis = 0;
+    for (size_t k = 0; k < nodes.size(); ++k) {
+      if (k == i) continue;
+      double product = 1 / (nodes[i] - nodes[k]);
+      for (size_t j = 0; j < nodes.size(); ++j) {
+        if (j != i && j != k) product *= (x - nodes[j]) / (nodes[i] - nodes[j]);
+      }
+      basis += product;
+    }
+    derivative += basis * values[i];
+  }
+  return derivative;
+}
+
+// LagrangeSlope differentiates, coordinate by coordinate, the polynomial
+// through the points first..first+count-1 at their parameters.
+std::vector<double> LagrangeSlope(const std::vector<double>& points,
+                                  const std::vector<double>& t, int dimension,
+                                  size_t first, size_t count, double x) {
+  const std::vector<double> nodes(
+      t.begin() + static_cast<ptrdiff_t>(first),
+      t.begin() + static_cast<ptrdiff_t>(first + count));
+  std::vector<double> slope;
+  for (int c = 0; c < dimension; ++c) {
+    std::vector<double> values;
+    for (size_t k = first; k < first + count; ++k) {
+      values.push_back(
+          points[k * static_cast<size_t>(dimension) + static_cast<size_t>(c)]);
+    }
+    slope.push_back(LagrangeDerivative(nodes, values, x));
+  }
+  return slope;
+}
+
+std::vector<double> Times(double factor, std::vector<double> values) {
+  for (double& value : values) value *= factor;
+  return values;
+}
+
+// The control points `count` to the end of `curve` (flat).
+std::vector<double> LastPoles(const BSplineCurveData& curve, size_t count) {
+  const size_t d = static_cast<size_t>(curve.dimension);
+  return std::vector<double>(
+      curve.coordinates.end() - static_cast<ptrdiff_t>(count * d),
+      curve.coordinates.end());
+}
+
+// Runs InterpolateCurve on a reference case as a caller migrating from
+// GeomAPI_Interpolate would: the same points and parameters (chord lengths
+// normalized to [0, 1] when OpenCASCADE computed them, so an unscaled
+// tangent D becomes L D, L the polygon's length = OpenCASCADE's last knot).
+absl::StatusOr<CurveInterpolation> InterpolateReferenceCase(
+    const OcctInterpolateCase& c, std::vector<double>& start,
+    std::vector<double>& end) {
+  const double length =
+      c.parameters.empty() ? c.knots.back() - c.knots.front() : 1.0;
+  const double factor = c.scale ? 1.0 : length;
+  start = Times(factor, c.start_tangent);
+  end = Times(factor, c.end_tangent);
+  return InterpolateCurve({.dimension = c.dimension, .coordinates = c.points},
+                          {.degree = c.degree,
+                           .parameters = c.parameters,
+                           .knot_rule = KnotRule::kAtParameters,
+                           .start_derivative = start,
+                           .end_derivative = end,
+                           .scale_end_derivatives = c.scale,
+                           .closed = c.closed});
+}
+
+TEST(AtParametersTest, ReproducesOpenCascade) {
+  ASSERT_EQ(OcctInterpolateCases().size(), 90u);
+  double worst_pole = 0, worst_knot = 0;
+  for (const OcctInterpolateCase& c : OcctInterpolateCases()) {
+    SCOPED_TRACE(c.name);
+    std::vector<double> start, end;
+    absl::StatusOr<CurveInterpolation> result =
+        InterpolateReferenceCase(c, start, end);
+    ASSERT_TRUE(result.ok()) << result.status();
+    const BSplineCurveData& curve = result->curve;
+    EXPECT_EQ(curve.degree, c.degree);
+    // A closed curve repeats its first degree - multiplicity(t_0) + 1
+    // poles (2 for the cubic, 1 for the polygon).
+    const size_t d = static_cast<size_t>(c.dimension);
+    const size_t repeats =
+        c.closed ? static_cast<size_t>(c.degree + 1 - c.multiplicities[0]) : 0;
+    ASSERT_EQ(curve.coordinates.size(), c.poles.size() + repeats * d);
+    std::vector<double> poles = c.poles;
+    poles.insert(poles.end(), c.poles.begin(),
+                 c.poles.begin() + static_cast<ptrdiff_t>(repeats * d));
+    const double pole_error =
+        MaxDifference(curve.coordinates, poles) / MaxAbs(c.poles);
+    EXPECT_LT(pole_error, 1e-9);
+    worst_pole = std::max(worst_pole, pole_error);
+    // Knots: OpenCASCADE's are ours mapped affinely from our domain
+    // [u_p, u_{n+1}] to its (the identity for given parameters).
+    ASSERT_EQ(curve.knots.size(), c.flat_knots.size());
+    const size_t p = static_cast<size_t>(c.degree);
+    const size_t last = curve.knots.size() - 1 - p;
+    const double scale = (c.flat_knots[last] - c.flat_knots[p]) /
+                         (curve.knots[last] - curve.knots[p]);
+    std::vector<double> mapped;
+    for (double knot : curve.knots) {
+      mapped.push_back(c.flat_knots[p] + scale * (knot - curve.knots[p]));
+    }
+    const double knot_error =
+        MaxDifference(mapped, c.flat_knots) / MaxAbs(c.flat_knots);
+    EXPECT_LT(knot_error, 1e-9);
+    worst_knot = std::max(worst_knot, knot_error);
+    EXPECT_LT(result->max_residual, 1e-9 * MaxAbs(c.points));
+  }
+  std::printf("worst relative pole difference %.3g, knot difference %.3g\n",
+              worst_pole, worst_knot);
+}
+
+// The kAtParameters curve through `points` at the parameters t.
+absl::StatusOr<CurveInterpolation> AtParameters(
+    const std::vector<double>& points, int dimension,
+    const std::vector<double>& t, absl::Span<const double> start,
+    absl::Span<const double> end, bool scale) {
+  return InterpolateCurve({.dimension = dimension, .coordinates = points},
+                          {.parameters = t,
+                           .knot_rule = KnotRule::kAtParameters,
+                           .start_derivative = start,
+                           .end_derivative = end,
+                           .scale_end_derivatives = scale});
+}
+
+// The five planar points of 'Worked example: a cubic B-spline through five
+// planar points' at OpenCASCADE's parameters, their chord lengths 0, 5, 9,
+// 14, 17: the estimated end tangents are the derivatives of the Lagrange
+// cubics through the first and the last four points, worked by hand in
+// docs/references.md.
+TEST(AtParametersTest, FivePlanarPointsWorkedExample) {
+  const std::vector<double> t = {0, 5, 9, 14, 17};
+  absl::StatusOr<CurveInterpolation> given =
+      InterpolateCurve({.dimension = 2, .coordinates = kExercise5},
+                       {.parameters = t, .knot_rule = KnotRule::kAtParameters});
+  ASSERT_TRUE(given.ok()) << given.status();
+  EXPECT_THAT(given->curve.knots,
+              ElementsAre(0, 0, 0, 0, 5, 9, 14, 17, 17, 17, 17));
+  ASSERT_EQ(given->curve.coordinates.size(), 14u);
+  const std::vector<double> start = {694.0 / 315, 56.0 / 45};
+  const std::vector<double> end = {103.0 / 360, -341.0 / 360};
+  // The hand values agree with the product-rule derivative.
+  EXPECT_LT(MaxDifference(LagrangeSlope(kExercise5, t, 2, 0, 4, 0), start),
+            1e-15);
+  EXPECT_LT(MaxDifference(LagrangeSlope(kExercise5, t, 2, 1, 4, 17), end),
+            1e-15);
+  const std::vector<std::vector<double>> derivatives =
+      Evaluate(given->curve, {0, 17}, 2);
+  EXPECT_LT(MaxDifference(derivatives[1], {start[0], start[1], end[0], end[1]}),
+            1e-14);
+  // P_1 = Q_0 + (5/3) C'(0), P_5 = Q_4 - (3/3) C'(17); P_2..P_4 solve the
+  // rows C(5) = Q_1, C(9) = Q_2, C(14) = Q_3 (exact fractions in
+  // docs/references.md).
+  // clang-format off
+  const std::vector<double> poles = {
+      0, 0,
+      694.0 / 189, 56.0 / 27,
+      37961681.0 / 8633520, 5461219.0 / 1233360,
+      -16594429.0 / 8633520, 5691449.0 / 1233360,
+      -2245282.0 / 539595, 55202.0 / 77085,
+      -1543.0 / 360, -739.0 / 360,
+      -4, -3};
+  // clang-format on
+  EXPECT_LT(MaxDifference(given->curve.coordinates, poles), 1e-14);
+  EXPECT_LT(given->max_residual, 1e-14);
+
+  // Chord length normalized by L = 17: knots / 17, the same poles.
+  absl::StatusOr<CurveInterpolation> normalized =
+      InterpolateCurve({.dimension = 2, .coordinates = kExercise5},
+                       {.knot_rule = KnotRule::kAtParameters});
+  ASSERT_TRUE(normalized.ok()) << normalized.status();
+  EXPECT_LT(MaxDifference(normalized->curve.knots,
+                          Times(1.0 / 17, given->curve.knots)),
+            1e-15);
+  EXPECT_LT(
+      MaxDifference(normalized->curve.coordinates, given->curve.coordinates),
+      1e-13);
+}
+
+// With four points both estimated tangents are derivatives of the one
+// cubic through them, which then satisfies every condition: the rule
+// returns that cubic (compared with Neville's algorithm everywhere).
+TEST(AtParametersTest, FourPointsGiveTheLagrangeCubic) {
+  std::mt19937_64 rng(41);
+  for (int dimension : {1, 2, 3}) {
+    const std::vector<double> points = SmoothPoints(rng, 4, dimension, false);
+    absl::StatusOr<CurveInterpolation> result =
+        InterpolateCurve({.dimension = dimension, .coordinates = points},
+                         {.knot_rule = KnotRule::kAtParameters});
+    ASSERT_TRUE(result.ok()) << result.status();
+    std::vector<double> samples;
+    for (int k = 0; k <= 40; ++k) samples.push_back(k / 40.0);
+    const std::vector<double> values = Evaluate(result->curve, samples, 1)[0];
+    std::vector<double> cubic(values.size()), scratch(points.size());
+    for (size_t k = 0; k < samples.size(); ++k) {
+      NevilleEvaluate(
+          {.dimension = dimension, .coordinates = points}, result->parameters,
+          samples[k], absl::MakeSpan(scratch),
+          absl::MakeSpan(cubic).subspan(k * static_cast<size_t>(dimension),
+                                        static_cast<size_t>(dimension)));
+    }
+    EXPECT_LT(MaxDifference(values, cubic) / MaxAbs(points), 1e-13);
+  }
+}
+
+// Three points without tangents: the parabola (one Bezier segment) with
+// C(s) = Q_1 at s = (t_1 - t_0) / (t_2 - t_0), whose middle control point
+// is P_1 = (Q_1 - (1 - s)^2 Q_0 - s^2 Q_2) / (2 s (1 - s)).
+TEST(AtParametersTest, ThreePointsGiveTheParabola) {
+  const std::vector<double> points = {0, 0, 3, 4, 7, 1};  // chords 5, 5
+  absl::StatusOr<CurveInterpolation> result =
+      InterpolateCurve({.dimension = 2, .coordinates = points},
+                       {.degree = 2, .knot_rule = KnotRule::kAtParameters});
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_THAT(result->curve.knots, ElementsAre(0, 0, 0, 1, 1, 1));
+  // s = 1/2: P_1 = 2 Q_1 - (Q_0 + Q_2) / 2 = (2.5, 7.5).
+  EXPECT_LT(MaxDifference(result->curve.coordinates, {0, 0, 2.5, 7.5, 7, 1}),
+            1e-14);
+  const std::vector<double> t = {1, 2, 5};  // s = 1/4
+  result = InterpolateCurve(
+      {.dimension = 2, .coordinates = points},
+      {.degree = 2, .parameters = t, .knot_rule = KnotRule::kAtParameters});
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_THAT(result->curve.knots, ElementsAre(1, 1, 1, 5, 5, 5));
+  // (Q_1 - (9/16) Q_0 - (1/16) Q_2) / (3/8) = (41/16, 63/16) (8/3)
+  // = (41/6, 21/2).
+  EXPECT_LT(MaxDifference(result->curve.coordinates,
+                          {0, 0, 41.0 / 6, 21.0 / 2, 7, 1}),
+            1e-14);
+}
+
+// Two points: the segment, or with tangents the Hermite cubic
+// Q_0, Q_0 + h D_0 / 3, Q_1 - h D_1 / 3, Q_1 (h = t_1 - t_0 = 5). Scaled
+// tangents get the length of the chord's slope (3, 4) / 5 in the 1-norm:
+// |(0.6, 0.8, 0)|_1 / |D|_1 = 1.4 / 3.5 = 0.4 for both.
+TEST(AtParametersTest, TwoPointsGiveTheSegmentOrTheHermiteCubic) {
+  const std::vector<double> points = {0, 0, 0, 3, 4, 0};
+  const std::vector<double> t = {0, 5};
+  absl::StatusOr<CurveInterpolation> line = InterpolateCurve(
+      {.dimension = 3, .coordinates = points},
+      {.degree = 1, .parameters = t, .knot_rule = KnotRule::kAtParameters});
+  ASSERT_TRUE(line.ok()) << line.status();
+  EXPECT_THAT(line->curve.knots, ElementsAre(0, 0, 5, 5));
+  EXPECT_EQ(line->curve.coordinates, points);
+  const std::vector<double> d0 = {1, 2, -0.5}, d1 = {-2, 0.5, 1};
+  for (bool scale : {false, true}) {
+    absl::StatusOr<CurveInterpolation> hermite =
+        AtParameters(points, 3, t, d0, d1, scale);
+    ASSERT_TRUE(hermite.ok()) << hermite.status();
+    EXPECT_THAT(hermite->curve.knots, ElementsAre(0, 0, 0, 0, 5, 5, 5, 5));
+    const std::vector<double> expected =
+        scale ? std::vector<double>{0,        0,        0,        2.0 / 3,
+                                    4.0 / 3,  -1.0 / 3, 13.0 / 3, 11.0 / 3,
+                                    -2.0 / 3, 3,        4,        0}
+              : std::vector<double>{0,        0,        0,        5.0 / 3,
+                                    10.0 / 3, -5.0 / 6, 19.0 / 3, 19.0 / 6,
+                                    -5.0 / 3, 3,        4,        0};
+    EXPECT_LT(MaxDifference(hermite->curve.coordinates, expected), 1e-14);
+  }
+  // One tangent given: the other is the chord's slope (3, 4, 0) / 5.
+  absl::StatusOr<CurveInterpolation> one_sided =
+      AtParameters(points, 3, t, d0, {}, false);
+  ASSERT_TRUE(one_sided.ok()) << one_sided.status();
+  EXPECT_LT(
+      MaxDifference(LastPoles(one_sided->curve, 2), {2, 8.0 / 3, 0, 3, 4, 0}),
+      1e-14);
+}
+
+// OpenCASCADE scales both tangents with the parabola through the FIRST three
+// points: (0,0), (1,1), (2,4) at 0, 1, 2 lie on (t, t^2), slope (1, 2t),
+// |.|_1 = 1 at t = 0 and 9 at the end t = 4 (not the parabola through the
+// last three points, whose slope there is (1, -3.5)). So D_0 = (0, 2)
+// becomes (0, 1) and D_1 = (3, -1) becomes (9/4)(3, -1).
+TEST(AtParametersTest, ScaledTangentsUseTheFirstThreePoints) {
+  const std::vector<double> points = {0, 0, 1, 1, 2, 4, 3, 5, 4, 3};
+  const std::vector<double> t = {0, 1, 2, 3, 4};
+  const std::vector<double> d0 = {0, 2}, d1 = {3, -1};
+  for (bool scale : {false, true}) {
+    absl::StatusOr<CurveInterpolation> result =
+        AtParameters(points, 2, t, d0, d1, scale);
+    ASSERT_TRUE(result.ok()) << result.status();
+    const std::vector<double> expected =
+        scale ? std::vector<double>{0, 1, 27.0 / 4, -9.0 / 4}
+              : std::vector<double>{0, 2, 3, -1};
+    EXPECT_LT(MaxDifference(Evaluate(result->curve, {0, 4}, 2)[1], expected),
+              1e-13);
+  }
+}
+
+// Random data, every parameterization the rule takes: the knots are the
+// parameters (t_0 and t_{N-1} four times), N + 2 poles, the curve passes
+// through every point at its parameter, and its end derivatives are the
+// given ones or the slopes of the Lagrange cubics through the end points.
+TEST(AtParametersTest, KnotsAreTheParametersAndEndsAreMatched) {
+  std::mt19937_64 rng(43);
+  for (int count : {4, 5, 10, 50, 500}) {
+    for (int dimension : {1, 2, 3}) {
+      for (Parameterization parameterization :
+           {Parameterization::kChordLength, Parameterization::kCentripetal,
+            Parameterization::kUniform}) {
+        for (bool given : {false, true}) {
+          SCOPED_TRACE(testing::Message()
+                       << count << " points, dimension " << dimension << ", "
+                       << static_cast<int>(parameterization) << ", " << given);
+          const std::vector<double> points =
+              SmoothPoints(rng, count, dimension, false);
+          const std::vector<double> d0 =
+              given ? Random(rng, static_cast<size_t>(dimension))
+                    : std::vector<double>();
+          const std::vector<double> d1 =
+              given ? Random(rng, static_cast<size_t>(dimension))
+                    : std::vector<double>();
+          absl::StatusOr<CurveInterpolation> result =
+              InterpolateCurve({.dimension = dimension, .coordinates = points},
+                               {.parameterization = parameterization,
+                                .knot_rule = KnotRule::kAtParameters,
+                                .start_derivative = d0,
+                                .end_derivative = d1});
+          ASSERT_TRUE(result.ok()) << result.status();
+          const std::vector<double>& t = result->parameters;
+          std::vector<double> knots(3, t.front());
+          knots.insert(knots.end(), t.begin(), t.end());
+          knots.insert(knots.end(), 3, t.back());
+          EXPECT_EQ(result->curve.knots, knots);
+          EXPECT_EQ(result->curve.coordinates.size(),
+                    static_cast<size_t>((count + 2) * dimension));
+          EXPECT_LT(RelativeMiss(result->curve, t, points), 1e-12);
+          const size_t n = static_cast<size_t>(count);
+          std::vector<double> ends =
+              given ? d0 : LagrangeSlope(points, t, dimension, 0, 4, 0.0);
+          const std::vector<double> end =
+              given ? d1 : LagrangeSlope(points, t, dimension, n - 4, 4, 1.0);
+          ends.insert(ends.end(), end.begin(), end.end());
+          const std::vector<double> slopes =
+              Evaluate(result->curve, {0.0, 1.0}, 2)[1];
+          EXPECT_LT(MaxDifference(slopes, ends) / MaxAbs(ends), 1e-10);
+        }
+      }
+    }
+  }
+}
+
+// The same data at its unnormalized chord lengths (OpenCASCADE's
+// parameters) and normalized to [0, 1]: scaled and estimated tangents give
+// the same poles without conversion, and the knots differ by the factor L.
+TEST(AtParametersTest, NormalizingTheParametersKeepsThePoles) {
+  std::mt19937_64 rng(47);
+  const std::vector<double> points = SmoothPoints(rng, 12, 3, false);
+  std::vector<double> lengths = {0};
+  for (size_t k = 1; k < 12; ++k) {
+    double square = 0;
+    for (size_t c = 0; c < 3; ++c) {
+      const double step = points[3 * k + c] - points[3 * k + c - 3];
+      square += step * step;
+    }
+    lengths.push_back(lengths.back() + std::sqrt(square));
+  }
+  const std::vector<double> d0 = {1, -1, 0.5};
+  for (bool scale : {false, true}) {
+    const std::vector<double> start = scale ? d0 : std::vector<double>();
+    absl::StatusOr<CurveInterpolation> raw =
+        InterpolateCurve({.dimension = 3, .coordinates = points},
+                         {.parameters = lengths,
+                          .knot_rule = KnotRule::kAtParameters,
+                          .start_derivative = start,
+                          .scale_end_derivatives = scale});
+    absl::StatusOr<CurveInterpolation> normalized =
+        InterpolateCurve({.dimension = 3, .coordinates = points},
+                         {.knot_rule = KnotRule::kAtParameters,
+                          .start_derivative = start,
+                          .scale_end_derivatives = scale});
+    ASSERT_TRUE(raw.ok()) << raw.status();
+    ASSERT_TRUE(normalized.ok()) << normalized.status();
+    EXPECT_LT(
+        MaxDifference(raw->curve.coordinates, normalized->curve.coordinates) /
+            MaxAbs(points),
+        1e-13);
+    EXPECT_LT(MaxDifference(raw->curve.knots,
+                            Times(lengths.back(), normalized->curve.knots)),
+              1e-12);
+  }
+}
+
+// Closed curves: knots t_{N-2} - T, t_{N-1} - T, t_0, t_0, t_1, ...,
+// t_{N-1}, t_N, t_N, t_1 + T, t_2 + T, the first two poles repeated at the
+// end (a periodic B-spline), every point interpolated, and where the curve
+// closes it returns to Q_0 with the same first derivative (the given one,
+// or the slope of the cubic through the first four points).
+TEST(AtParametersTest, ClosedCurvesAreC1WhereTheyClose) {
+  std::mt19937_64 rng(53);
+  for (int count : {3, 4, 5, 12, 100}) {
+    for (int dimension : {2, 3}) {
+      for (bool given : {false, true}) {
+        SCOPED_TRACE(testing::Message() << count << " points, dimension "
+                                        << dimension << ", " << given);
+        const std::vector<double> points =
+            SmoothPoints(rng, count, dimension, true);
+        const std::vector<double> d0 =
+            given ? Random(rng, static_cast<size_t>(dimension))
+                  : std::vector<double>();
+        absl::StatusOr<CurveInterpolation> result =
+            InterpolateCurve({.dimension = dimension, .coordinates = points},
+                             {.knot_rule = KnotRule::kAtParameters,
+                              .start_derivative = d0,
+                              .closed = true});
+        ASSERT_TRUE(result.ok()) << result.status();
+        const std::vector<double>& t = result->parameters;
+        const size_t n = static_cast<size_t>(count);
+        ASSERT_EQ(t.size(), n);
+        std::vector<double> knots = {t[n - 2] - 1, t[n - 1] - 1, 0};
+        knots.insert(knots.end(), t.begin(), t.end());
+        knots.insert(knots.end(), {1, 1, 1 + t[1], 1 + t[2]});
+        EXPECT_LT(MaxDifference(result->curve.knots, knots), 1e-15);
+        const size_t d = static_cast<size_t>(dimension);
+        ASSERT_EQ(result->curve.coordinates.size(), (n + 3) * d);
+        EXPECT_EQ(LastPoles(result->curve, 2),
+                  std::vector<double>(result->curve.coordinates.begin(),
+                                      result->curve.coordinates.begin() +
+                                          static_cast<ptrdiff_t>(2 * d)));
+        EXPECT_LT(RelativeMiss(result->curve, t, points), 1e-12);
+        const std::vector<std::vector<double>> seam =
+            Evaluate(result->curve, {0.0, 1.0}, 2);
+        std::vector<double> twice(points.begin(),
+                                  points.begin() + static_cast<ptrdiff_t>(d));
+        twice.insert(twice.end(), twice.begin(), twice.end());
+        EXPECT_LT(MaxDifference(seam[0], twice) / MaxAbs(points), 1e-12);
+        std::vector<double> slope =
+            given ? d0
+                  : LagrangeSlope(points, t, dimension, 0,
+                                  std::min<size_t>(n, 4), 0.0);
+        slope.insert(slope.end(), slope.begin(), slope.end());
+        EXPECT_LT(MaxDifference(seam[1], slope) / MaxAbs(slope), 1e-10);
+      }
+    }
+  }
+  // Two points: the closed polygon Q_0, Q_1, Q_0 of degree 1.
+  const std::vector<double> two = {0, 0, 3, 4};
+  absl::StatusOr<CurveInterpolation> polygon = InterpolateCurve(
+      {.dimension = 2, .coordinates = two},
+      {.degree = 1, .knot_rule = KnotRule::kAtParameters, .closed = true});
+  ASSERT_TRUE(polygon.ok()) << polygon.status();
+  EXPECT_THAT(polygon->curve.knots, ElementsAre(-0.5, 0, 0.5, 1, 1.5));
+  EXPECT_THAT(polygon->curve.coordinates, ElementsAre(0, 0, 3, 4, 0, 0));
+}
+
+TEST(AtParametersTest, Errors) {
+  const std::vector<double> four = {0, 0, 1, 1, 2, 0, 3, 1};
+  const PointsView points{.dimension = 2, .coordinates = four};
+  const CurveInterpolationOptions rule{.knot_rule = KnotRule::kAtParameters};
+  CurveInterpolationOptions options = rule;
+  options.degree = 2;
+  ExpectField(InterpolateCurve(points, options).status(), "degree");
+  const PointsView three{.dimension = 2,
+                         .coordinates = absl::MakeSpan(four).subspan(0, 6)};
+  ExpectField(InterpolateCurve(three, rule).status(), "degree");  // needs 2
+  const PointsView one{.dimension = 2,
+                       .coordinates = absl::MakeSpan(four).subspan(0, 2)};
+  ExpectField(InterpolateCurve(one, rule).status(), "points.coordinates");
+  options = rule;
+  options.parameterization = Parameterization::kUniversal;
+  ExpectField(InterpolateCurve(points, options).status(), "parameterization");
+  const std::vector<double> d = {1, 0}, zero = {0, 0}, short_d = {1};
+  options = rule;
+  options.closed = true;
+  options.end_derivative = d;
+  ExpectField(InterpolateCurve(points, options).status(), "end_derivative");
+  options = rule;
+  options.start_derivative = short_d;
+  ExpectField(InterpolateCurve(points, options).status(), "start_derivative");
+  options = rule;
+  options.end_derivative = zero;
+  EXPECT_TRUE(InterpolateCurve(points, options).ok());  // a zero derivative
+  options.scale_end_derivatives = true;  // has no direction to scale
+  ExpectField(InterpolateCurve(points, options).status(), "end_derivative");
+  options = CurveInterpolationOptions{};
+  options.scale_end_derivatives = true;
+  ExpectField(InterpolateCurve(points, options).status(),
+              "scale_end_derivatives");
+  const std::vector<double> bad_t = {0, 1, 1, 2};
+  options = rule;
+  options.parameters = bad_t;
+  ExpectField(InterpolateCurve(points, options).status(), "parameters[2]");
+  const std::vector<double> grid(3 * 4 * 4, 1.0);
+  ExpectField(
+      InterpolateSurface(
+          {.dimension = 3, .count_u = 4, .count_v = 4, .coordinates = grid}, 3,
+          3, Parameterization::kUniform, KnotRule::kAtParameters)
+          .status(),
+      "knot_rule");
 }
 
 }  // namespace

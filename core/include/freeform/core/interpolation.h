@@ -8,11 +8,12 @@
 // collocation matrix N_{i,p}(t_k) is banded and, for increasing parameters,
 // totally nonnegative, so it is solved in O(n) by a banded LU without pivoting
 // (de Boor and Pinkus, Numer. Math. 27, 1977). Closed curves give a periodic
-// B-spline (cyclic banded system). Cubic splines with the classic end
-// conditions (de Boor, "A Practical Guide to Splines", ch. IV), least-squares
-// approximation (A9.7) and surface interpolation through a grid (A9.4) come
-// back as ordinary B-spline data, so every other operation works on the
-// results.
+// B-spline (cyclic banded system). KnotRule::kAtParameters reproduces
+// OpenCASCADE's GeomAPI_Interpolate (knots at the parameters, estimated or
+// given end tangents). Cubic splines with the classic end conditions (de
+// Boor, "A Practical Guide to Splines", ch. IV), least-squares approximation
+// (A9.7) and surface interpolation through a grid (A9.4) come back as
+// ordinary B-spline data, so every other operation works on the results.
 //
 // Example, a cubic through five planar points (docs/references.md,
 // 'Worked example: a cubic B-spline through five planar points'):
@@ -62,6 +63,18 @@ enum class KnotRule {
   kAveraging,
   // Equally spaced on [t_0, t_n].
   kUniform,
+  // OpenCASCADE's GeomAPI_Interpolate rule (docs/references.md,
+  // 'Interpolation with knots at the parameters (OpenCASCADE rule)'): for N
+  // points at t_0 < ... < t_{N-1} the knots are the parameters, t_0 (x4),
+  // t_1, ..., t_{N-2}, t_{N-1} (x4), of a cubic with N + 2 control points,
+  // the two extra equations being the end derivatives C'(t_0), C'(t_{N-1}).
+  // An end derivative not given is estimated: the derivative at that end of
+  // the Lagrange cubic through the four end points at their parameters (the
+  // parabola through all three when N = 3, the line when N = 2). Without
+  // end derivatives, two points give the line (degree 1) and three the
+  // parabola (degree 2, no interior knot), as OpenCASCADE does. Closed
+  // curves: see InterpolateCurve. Only InterpolateCurve takes this rule.
+  kAtParameters,
 };
 
 // InterpolationParameters returns one parameter per point of an open curve,
@@ -90,9 +103,19 @@ struct CurveInterpolationOptions {
   // Each empty or `dimension` values: the first derivative C'(t_0) / C'(t_n).
   // Each adds one control point (A9.2-style extra equation, knots by
   // averaging over the parameters with t_0 / t_n doubled); needs degree >= 2
-  // and an open curve.
+  // and an open curve. With KnotRule::kAtParameters they are the rule's end
+  // derivatives, estimated when empty, and a closed curve takes
+  // start_derivative as C'(t_0) where it closes.
   absl::Span<const double> start_derivative = {};
   absl::Span<const double> end_derivative = {};
+  // Only with KnotRule::kAtParameters: take the given end derivatives as
+  // directions and set their lengths as GeomAPI_Interpolate::Load(...,
+  // Scale = true) does: D times |L'|_1 / |D|_1 (1-norms, the sums of
+  // absolute coordinates), with L the parabola through the first three
+  // points (the line through two) evaluated at the derivative's end, at
+  // t_{N-1} for the end derivative too. False (Scale = false) takes them as
+  // they are.
+  bool scale_end_derivatives = false;
   // Interpolate a closed curve through the points (the first point is not
   // repeated at the end).
   bool closed = false;
@@ -126,6 +149,31 @@ struct CurveInterpolation {
 // "start_derivative" / "end_derivative" (size, not finite, degree 1 or
 // closed) and "points.coordinates[k]" for a repeated point (chord length,
 // centripetal).
+//
+// With KnotRule::kAtParameters (GeomAPI_Interpolate; docs/references.md,
+// 'Interpolation with knots at the parameters (OpenCASCADE rule)') the
+// degree must be the rule's: 3, or 1 for two points and 2 for three points
+// when no end derivative is given. Parameters are chord length (the
+// default), centripetal, uniform or explicit, normalized to [0, 1] when
+// computed: the knots are then OpenCASCADE's (cumulative chord lengths)
+// divided by the polygon's length L and the control points are the same,
+// provided a derivative D given to OpenCASCADE with Scale = false is given
+// here as L D (estimated and scaled derivatives need no conversion); pass
+// OpenCASCADE's parameters explicitly to get its knots too. A closed curve
+// (GeomAPI_Interpolate with PeriodicFlag) is a cubic whose knots are the
+// N + 1 parameters of the closed sequence, t_0 doubled: N + 3 control
+// points, the first two repeated at the end, on the N + 7 knots
+// t_{N-2} - T, t_{N-1} - T, t_0, t_0, t_1, ..., t_{N-1}, t_N, t_N,
+// t_1 + T, t_2 + T (T = t_N - t_0 the period), C2 except at t_0 where it is
+// C1 with C'(t_0) = start_derivative (estimated from the first four points
+// as for open curves when empty). Two points without a derivative give the
+// closed polygon of degree 1 (knots t_1 - T, t_0, t_1, t_2, t_1 + T).
+// Errors as above, and "degree" (not the rule's degree),
+// "parameterization" (kUniversal), "end_derivative" (given for a closed
+// curve: its one derivative is start_derivative), "start_derivative" /
+// "end_derivative" (a zero vector with scale_end_derivatives),
+// "scale_end_derivatives" (set with another knot rule), and "points..."
+// (fewer than two points).
 absl::StatusOr<CurveInterpolation> InterpolateCurve(
     const PointsView& points, const CurveInterpolationOptions& options);
 
@@ -205,7 +253,8 @@ struct SurfaceInterpolation {
 // rows of the result with one banded factorization per direction reused for
 // every right-hand side. Fails with
 // INVALID_ARGUMENT on "points..." (ValidateControlNet with at least degree + 1
-// points each way), "degree_u" / "degree_v" (< 1), and "points" when the
+// points each way), "degree_u" / "degree_v" (< 1), "knot_rule"
+// (kAtParameters, which needs end derivatives), and "points" when the
 // averaged parameters are not strictly increasing (a whole grid row or column
 // repeated).
 absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
