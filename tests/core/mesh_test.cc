@@ -409,52 +409,54 @@ void ExpectPlanBounds(const std::vector<Surface>& surfaces, double tolerance,
   EXPECT_LE(size.triangles, 3 * mesh.triangles.size() / 3);
 }
 
-TEST(MeshTest, NurbsSphereIsClosedAndWithinTolerance) {
-  constexpr double kRadius = 2.0;
-  Shapes shapes;
-  shapes.AddBSpline(NurbsSphere(kRadius));
-  const auto distance = [](const Surface&, const double* p, double, double) {
-    return std::fabs(std::hypot(p[0], p[1], p[2]) - kRadius);
-  };
-  for (const double tolerance : {1e-2, 1e-3}) {
+// ExpectClosedMeshes meshes the closed surface `shapes` at each tolerance
+// and checks every mesh (CheckMesh with the exact `distance`), that it has
+// no boundary edge and the Euler characteristic V - E + F = `euler` (E = 3F
+// / 2 when every edge has two triangles), and its plan.
+void ExpectClosedMeshes(const Shapes& shapes,
+                        std::initializer_list<double> tolerances,
+                        const DistanceBound& distance, long euler) {
+  for (const double tolerance : tolerances) {
     const absl::StatusOr<Mesh> mesh = MeshOf(shapes.surfaces, tolerance);
     ASSERT_TRUE(mesh.ok()) << mesh.status();
     const MeshFigures figures =
         CheckMesh(shapes.surfaces, *mesh, tolerance, distance,
                   [](uint32_t, const double*, const double*) { return false; });
     EXPECT_EQ(figures.boundary_edges, 0u);
-    // Euler: a closed mesh of genus 0 has V - E + F = 2 (E = 3F / 2).
     const long v = static_cast<long>(mesh->vertices.size() / 3);
     const long f = static_cast<long>(mesh->triangles.size() / 3);
-    EXPECT_EQ(v - 3 * f / 2 + f, 2);
+    EXPECT_EQ(v - 3 * f / 2 + f, euler);
     ExpectPlanBounds(shapes.surfaces, tolerance, *mesh);
-    std::printf("sphere r=%g at %g: %zu vertices, %zu triangles, worst %.3g\n",
-                kRadius, tolerance, mesh->vertices.size() / 3,
-                mesh->triangles.size() / 3, figures.worst_error);
+    std::printf("closed mesh at %g: %ld vertices, %ld triangles, worst %.3g\n",
+                tolerance, v, f, figures.worst_error);
   }
+}
+
+TEST(MeshTest, NurbsSphereIsClosedAndWithinTolerance) {
+  constexpr double kRadius = 2.0;
+  Shapes shapes;
+  shapes.AddBSpline(NurbsSphere(kRadius));
+  // Genus 0.
+  ExpectClosedMeshes(
+      shapes, {1e-2, 1e-3},
+      [](const Surface&, const double* p, double, double) {
+        return std::fabs(std::hypot(p[0], p[1], p[2]) - kRadius);
+      },
+      2);
 }
 
 TEST(MeshTest, NurbsTorusHasNoBoundaryEdge) {
   constexpr double kMajor = 3.0, kMinor = 1.0;
   Shapes shapes;
   shapes.AddBSpline(NurbsTorus(kMajor, kMinor));
-  const auto distance = [](const Surface&, const double* p, double, double) {
-    return std::fabs(std::hypot(std::hypot(p[0], p[1]) - kMajor, p[2]) -
-                     kMinor);
-  };
-  for (const double tolerance : {1e-2, 3e-3}) {
-    const absl::StatusOr<Mesh> mesh = MeshOf(shapes.surfaces, tolerance);
-    ASSERT_TRUE(mesh.ok()) << mesh.status();
-    const MeshFigures figures =
-        CheckMesh(shapes.surfaces, *mesh, tolerance, distance,
-                  [](uint32_t, const double*, const double*) { return false; });
-    EXPECT_EQ(figures.boundary_edges, 0u);
-    // Genus 1: V - E + F = 0.
-    const long v = static_cast<long>(mesh->vertices.size() / 3);
-    const long f = static_cast<long>(mesh->triangles.size() / 3);
-    EXPECT_EQ(v - 3 * f / 2 + f, 0);
-    ExpectPlanBounds(shapes.surfaces, tolerance, *mesh);
-  }
+  // Genus 1.
+  ExpectClosedMeshes(
+      shapes, {1e-2, 3e-3},
+      [](const Surface&, const double* p, double, double) {
+        return std::fabs(std::hypot(std::hypot(p[0], p[1]) - kMajor, p[2]) -
+                         kMinor);
+      },
+      0);
 }
 
 // MeshesOfOpenSurfaces meshes `shapes` at each tolerance and checks every
