@@ -360,44 +360,59 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
   return absl::OkStatus();
 }
 
-// WeldMap returns, for every vertex, the first vertex within `epsilon` of
-// it (itself when none), found by hashing into cells of size epsilon and
-// searching the 27 neighbouring cells.
+// WeldMap returns, for every vertex, an earlier unwelded vertex within
+// `epsilon` of it (itself when none), found by hashing into cells of 4
+// epsilon: a vertex within epsilon of another lies in the same cell or in a
+// neighbouring one across a cell side it is within epsilon of, so most
+// vertices look into one cell only.
 std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
                               double epsilon) {
   const size_t count = positions.size() / 3;
+  const double cell_size = 4 * epsilon;
   std::vector<uint32_t> target(count);
   using Cell = std::array<int64_t, 3>;
   struct CellHash {
     size_t operator()(const Cell& c) const {
-      return static_cast<size_t>(static_cast<uint64_t>(c[0]) * 73856093u ^
-                                 static_cast<uint64_t>(c[1]) * 19349663u ^
-                                 static_cast<uint64_t>(c[2]) * 83492791u);
+      // Multiply-xorshift mixing of the three coordinates.
+      uint64_t h = static_cast<uint64_t>(c[0]) * 0x9E3779B97F4A7C15u;
+      h ^= (h >> 29) + static_cast<uint64_t>(c[1]) * 0xBF58476D1CE4E5B9u;
+      h ^= (h >> 31) + static_cast<uint64_t>(c[2]) * 0x94D049BB133111EBu;
+      return static_cast<size_t>(h ^ (h >> 32));
     }
   };
-  std::unordered_map<Cell, std::vector<uint32_t>, CellHash> cells;
-  auto cell_of = [&](size_t r) {
-    std::array<int64_t, 3> cell;
-    for (int x = 0; x < 3; ++x) {
-      cell[x] =
-          static_cast<int64_t>(std::floor(positions[3 * r + x] / epsilon));
-    }
-    return cell;
-  };
+  // Each cell's first vertex; next[r] is the vertex after r in its cell.
+  constexpr uint32_t kNone = UINT32_MAX;
+  std::unordered_map<Cell, uint32_t, CellHash> cells;
+  cells.reserve(count);
+  std::vector<uint32_t> next(count, kNone);
   for (size_t r = 0; r < count; ++r) {
     target[r] = static_cast<uint32_t>(r);
-    const std::array<int64_t, 3> cell = cell_of(r);
+    const double* p = &positions[3 * r];
+    Cell cell;
+    // Per axis the cells to search: its own, and the neighbour across a
+    // side within epsilon.
+    std::array<std::array<int, 2>, 3> steps;
+    std::array<int, 3> step_count;
+    for (int x = 0; x < 3; ++x) {
+      const double scaled = std::floor(p[x] / cell_size);
+      cell[x] = static_cast<int64_t>(scaled);
+      const double offset = p[x] - scaled * cell_size;
+      steps[x] = {0, 0};
+      step_count[x] = 1;
+      if (offset <= epsilon) steps[x][step_count[x]++] = -1;
+      if (offset >= cell_size - epsilon) steps[x][step_count[x]++] = 1;
+    }
     bool found = false;
-    for (int dx = -1; dx <= 1 && !found; ++dx) {
-      for (int dy = -1; dy <= 1 && !found; ++dy) {
-        for (int dz = -1; dz <= 1 && !found; ++dz) {
-          auto it = cells.find({cell[0] + dx, cell[1] + dy, cell[2] + dz});
+    for (int i = 0; i < step_count[0] && !found; ++i) {
+      for (int j = 0; j < step_count[1] && !found; ++j) {
+        for (int k = 0; k < step_count[2] && !found; ++k) {
+          auto it = cells.find({cell[0] + steps[0][i], cell[1] + steps[1][j],
+                                cell[2] + steps[2][k]});
           if (it == cells.end()) continue;
-          for (uint32_t other : it->second) {
-            if (Norm3(positions[3 * r] - positions[3 * other],
-                      positions[3 * r + 1] - positions[3 * other + 1],
-                      positions[3 * r + 2] - positions[3 * other + 2]) <=
-                epsilon) {
+          for (uint32_t other = it->second; other != kNone;
+               other = next[other]) {
+            const double* q = &positions[3 * other];
+            if (Norm3(p[0] - q[0], p[1] - q[1], p[2] - q[2]) <= epsilon) {
               target[r] = other;
               found = true;
               break;
@@ -406,7 +421,10 @@ std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
         }
       }
     }
-    if (!found) cells[cell].push_back(static_cast<uint32_t>(r));
+    if (found) continue;
+    uint32_t& head = cells.try_emplace(cell, kNone).first->second;
+    next[r] = head;
+    head = static_cast<uint32_t>(r);
   }
   return target;
 }
