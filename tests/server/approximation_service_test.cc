@@ -456,6 +456,19 @@ TEST_F(ApproximationServiceTest, KnotsAtTheParameters) {
   request.mutable_bspline()->set_knot_rule(v1::KNOT_RULE_AVERAGING);
   ExpectInvalid(client_->InterpolateCurve(request).status(),
                 "bspline.scale_end_derivatives");
+
+  // The rule is for curves: a grid has no end tangents to give.
+  v1::InterpolateSurfaceRequest grid;
+  grid.mutable_points()->set_dimension(1);
+  grid.mutable_points()->set_count_u(4);
+  grid.mutable_points()->set_count_v(4);
+  for (int k = 0; k < 16; ++k) {
+    grid.mutable_points()->add_coordinates(k * k);
+  }
+  grid.set_degree_u(3);
+  grid.set_degree_v(3);
+  grid.set_knot_rule(v1::KNOT_RULE_AT_PARAMETERS);
+  ExpectInvalid(client_->InterpolateSurface(grid).status(), "knot_rule");
 }
 
 TEST_F(ApproximationServiceTest, ErrorsNameTheirFields) {
