@@ -1,7 +1,10 @@
 #include "convert.h"
 
 #include <cmath>
+#include <optional>
+#include <string>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/status.h"
 
@@ -111,6 +114,22 @@ absl::Status CheckEnum(int value, bool (*is_valid)(int),
                            absl::StrCat(value, " is not one of its values"));
 }
 
+absl::Status PrefixFieldPathExcept(
+    const absl::Status& status, absl::string_view prefix,
+    std::initializer_list<absl::string_view> top_fields) {
+  const std::optional<std::string> path = FieldPathOf(status);
+  if (!path.has_value()) return status;
+  const absl::string_view field = *path;
+  for (absl::string_view top : top_fields) {
+    if (field == top ||
+        (absl::StartsWith(field, top) &&
+         (field[top.size()] == '[' || field[top.size()] == '.'))) {
+      return status;
+    }
+  }
+  return PrefixFieldPath(status, prefix);
+}
+
 absl::Span<const double> ParameterSet::Values(size_t begin, size_t end,
                                               ParameterStorage& storage) const {
   if (!is_range_) return list_.subspan(begin, end - begin);
@@ -150,8 +169,14 @@ Parameterization ToCore(v1::Parameterization parameterization) {
 }
 
 KnotRule ToCore(v1::KnotRule rule) {
-  return rule == v1::KNOT_RULE_UNIFORM ? KnotRule::kUniform
-                                       : KnotRule::kAveraging;
+  switch (rule) {
+    case v1::KNOT_RULE_UNIFORM:
+      return KnotRule::kUniform;
+    case v1::KNOT_RULE_AT_PARAMETERS:
+      return KnotRule::kAtParameters;
+    default:
+      return KnotRule::kAveraging;
+  }
 }
 
 }  // namespace freeform::server

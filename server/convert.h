@@ -9,6 +9,7 @@
 #define FREEFORM_SERVER_CONVERT_H_
 
 #include <cstddef>
+#include <initializer_list>
 #include <memory>
 #include <string_view>
 #include <vector>
@@ -56,6 +57,14 @@ KnotRule ToCore(v1::KnotRule rule);
 // keeps unknown numbers, which must not run as some other value.
 absl::Status CheckEnum(int value, bool (*is_valid)(int),
                        absl::string_view field);
+
+// PrefixFieldPathExcept prefixes the field path of `status` with `prefix`
+// (PrefixFieldPath) unless the path is one of `top_fields` or inside one
+// ("knot", "points.coordinates[4]"): the core's errors about the request's
+// own fields stay at the top, those about the geometry go under its path.
+absl::Status PrefixFieldPathExcept(
+    const absl::Status& status, absl::string_view prefix,
+    std::initializer_list<absl::string_view> top_fields);
 
 // Room for generated parameters, reused from chunk to chunk.
 struct ParameterStorage {

@@ -201,6 +201,7 @@ absl::Status InterpolateWithBSpline(const v1::InterpolateCurveRequest& request,
   options.knot_rule = ToCore(method.knot_rule());
   options.start_derivative = SpanOf(method.start_derivative().coordinates());
   options.end_derivative = SpanOf(method.end_derivative().coordinates());
+  options.scale_end_derivatives = method.scale_end_derivatives();
   options.closed = method.closed();
   options.cancel = cancel;
   absl::StatusOr<CurveInterpolation> result = InterpolateCurve(points, options);

@@ -1,7 +1,8 @@
 // CurveServiceImpl: freeform.v1.CurveService on top of the core.
 //
 // Evaluation, refinement and construction (curve_service.cc,
-// curve_operations.cc, curve_refinement.cc) and the queries
+// curve_operations.cc, curve_refinement.cc), knot removal and fitting
+// (curve_approximation.cc) and the queries
 // (curve_queries.cc, curve_measures.cc). Each handler converts the request to
 // core views (no copies), checks the server's limits, runs the core on the
 // shared thread pool under the RPC's cancellation token and writes results
@@ -60,6 +61,13 @@ class CurveServiceImpl final : public v1::CurveService::CallbackService {
       grpc::CallbackServerContext* context,
       const v1::InterpolateCurveRequest* request,
       v1::InterpolateCurveResponse* response) override;
+  grpc::ServerUnaryReactor* RemoveKnots(
+      grpc::CallbackServerContext* context,
+      const v1::RemoveCurveKnotsRequest* request,
+      v1::RemoveCurveKnotsResponse* response) override;
+  grpc::ServerUnaryReactor* Fit(grpc::CallbackServerContext* context,
+                                const v1::FitCurveRequest* request,
+                                v1::FitCurveResponse* response) override;
 
   grpc::ServerUnaryReactor* ClosestPoint(
       grpc::CallbackServerContext* context,

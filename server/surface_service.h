@@ -3,7 +3,8 @@
 // Evaluation converts the request to core views (no copies), checks the
 // server's limits, runs the core on the shared thread pool under the RPC's
 // cancellation token and writes partials and normals straight into the
-// response; the queries are in surface_queries.cc.
+// response; knot removal and fitting are in surface_approximation.cc, the
+// queries in surface_queries.cc.
 // Thread-safe: one instance serves all calls.
 #ifndef FREEFORM_SERVER_SURFACE_SERVICE_H_
 #define FREEFORM_SERVER_SURFACE_SERVICE_H_
@@ -51,6 +52,17 @@ class SurfaceServiceImpl final : public v1::SurfaceService::CallbackService {
       grpc::CallbackServerContext* context,
       const v1::InterpolateSurfaceRequest* request,
       v1::InterpolateSurfaceResponse* response) override;
+  grpc::ServerUnaryReactor* RemoveKnots(
+      grpc::CallbackServerContext* context,
+      const v1::RemoveSurfaceKnotsRequest* request,
+      v1::RemoveSurfaceKnotsResponse* response) override;
+  grpc::ServerUnaryReactor* Fit(grpc::CallbackServerContext* context,
+                                const v1::FitSurfaceRequest* request,
+                                v1::FitSurfaceResponse* response) override;
+  grpc::ServerUnaryReactor* FitScattered(
+      grpc::CallbackServerContext* context,
+      const v1::FitScatteredSurfaceRequest* request,
+      v1::FitScatteredSurfaceResponse* response) override;
 
   grpc::ServerUnaryReactor* ClosestPoint(
       grpc::CallbackServerContext* context,

@@ -15,6 +15,8 @@
 //                   [--parameterization KIND] [--closed]
 //                   [--spline END] [--least-squares N]]
 //   freeform split|insert-knots [--surface] [--file REQUEST.json]
+//   freeform remove-knots [--surface] [--file REQUEST.json]
+//   freeform fit [--surface [--scattered]] [--file REQUEST.json]
 //   freeform decompose [--file REQUEST.json]
 //   freeform subdivide [--file REQUEST.json] [--svg PICTURE.svg]
 //   freeform tessellate [--surface] [--file REQUEST.json]
@@ -405,6 +407,33 @@ absl::StatusOr<freeform::v1::InterpolateCurveRequest> CsvRequest(
   return request;
 }
 
+// AddRequestCommand adds the subcommand `name` that sends one request read
+// as proto3 JSON (`request`, the message's name) from --file or stdin, with
+// --surface for the SurfaceService form (`surface_request`).
+CLI::App* AddRequestCommand(CLI::App& app, const std::string& name,
+                            const std::string& description, CommonFlags& flags,
+                            std::string& file, const std::string& request,
+                            bool& surface, const std::string& surface_request) {
+  CLI::App* command = app.add_subcommand(name, description);
+  AddCommonFlags(*command, flags);
+  command->add_option("-f,--file", file,
+                      request + " as proto3 JSON (default: stdin)");
+  command->add_flag("--surface", surface,
+                    "The request is a " + surface_request);
+  return command;
+}
+
+int RunFit(const CommonFlags& flags, const std::string& file, bool surface,
+           bool scattered) {
+  if (scattered && !surface) {
+    std::cerr << "freeform fit: --scattered needs --surface\n";
+    return 2;
+  }
+  if (scattered) return RunJsonCall(flags, file, &SurfaceStub::FitScattered);
+  return surface ? RunJsonCall(flags, file, &SurfaceStub::Fit)
+                 : RunJsonCall(flags, file, &CurveStub::Fit);
+}
+
 int RunInterpolate(const CommonFlags& flags, const std::string& file,
                    bool surface, const CsvInterpolation& csv) {
   if (surface) {
@@ -653,14 +682,12 @@ int main(int argc, char** argv) {
   mesh_command->add_option("--obj", mesh_obj, "Output file ('-' for stdout)")
       ->capture_default_str();
 
-  CLI::App* elevate = app.add_subcommand(
-      "elevate", "Raise the degree: CurveService/SurfaceService.ElevateDegree");
   bool surface_request = false;
-  AddCommonFlags(*elevate, flags);
-  elevate->add_option("-f,--file", file,
-                      "Elevate*DegreeRequest as proto3 JSON (default: stdin)");
-  elevate->add_flag("--surface", surface_request,
-                    "The request is an ElevateSurfaceDegreeRequest");
+  CLI::App* elevate = AddRequestCommand(
+      app, "elevate",
+      "Raise the degree: CurveService/SurfaceService.ElevateDegree", flags,
+      file, "Elevate*DegreeRequest", surface_request,
+      "ElevateSurfaceDegreeRequest");
 
   CLI::App* reduce = app.add_subcommand(
       "reduce", "Lower a Bezier curve's degree: CurveService.ReduceDegree");
@@ -699,20 +726,28 @@ int main(int argc, char** argv) {
       "--least-squares", csv.least_squares_points,
       "Least-squares fit with this many control points instead");
 
-  CLI::App* split = app.add_subcommand(
-      "split", "Split a curve or patch: CurveService/SurfaceService.Split");
-  AddCommonFlags(*split, flags);
-  split->add_option("-f,--file", file, "Split*Request as proto3 JSON");
-  split->add_flag("--surface", surface_request,
-                  "The request is a SplitSurfaceRequest");
-
-  CLI::App* insert = app.add_subcommand(
-      "insert-knots",
-      "Knot insertion: CurveService/SurfaceService.InsertKnots");
-  AddCommonFlags(*insert, flags);
-  insert->add_option("-f,--file", file, "Insert*KnotsRequest as proto3 JSON");
-  insert->add_flag("--surface", surface_request,
-                   "The request is an InsertSurfaceKnotsRequest");
+  CLI::App* split = AddRequestCommand(
+      app, "split", "Split a curve or patch: CurveService/SurfaceService.Split",
+      flags, file, "Split*Request", surface_request, "SplitSurfaceRequest");
+  CLI::App* insert = AddRequestCommand(
+      app, "insert-knots",
+      "Knot insertion: CurveService/SurfaceService.InsertKnots", flags, file,
+      "Insert*KnotsRequest", surface_request, "InsertSurfaceKnotsRequest");
+  CLI::App* remove = AddRequestCommand(
+      app, "remove-knots",
+      "Knot removal within a tolerance (one knot, or simplify): "
+      "CurveService/SurfaceService.RemoveKnots",
+      flags, file, "Remove*KnotsRequest", surface_request,
+      "RemoveSurfaceKnotsRequest");
+  CLI::App* fit = AddRequestCommand(
+      app, "fit",
+      "Least-squares fit: CurveService.Fit, SurfaceService.Fit (a grid) or "
+      "SurfaceService.FitScattered",
+      flags, file, "Fit*Request", surface_request,
+      "FitSurfaceRequest (a grid of points)");
+  bool scattered = false;
+  fit->add_flag("--scattered", scattered,
+                "With --surface: the request is a FitScatteredSurfaceRequest");
 
   CLI::App* decompose = app.add_subcommand(
       "decompose", "Bezier segments of a curve: CurveService.Decompose");
@@ -781,6 +816,11 @@ int main(int argc, char** argv) {
     return surface_request ? RunJsonCall(flags, file, &SurfaceStub::InsertKnots)
                            : RunJsonCall(flags, file, &CurveStub::InsertKnots);
   }
+  if (remove->parsed()) {
+    return surface_request ? RunJsonCall(flags, file, &SurfaceStub::RemoveKnots)
+                           : RunJsonCall(flags, file, &CurveStub::RemoveKnots);
+  }
+  if (fit->parsed()) return RunFit(flags, file, surface_request, scattered);
   if (decompose->parsed()) {
     return RunJsonCall(flags, file, &CurveStub::Decompose);
   }

@@ -8,7 +8,8 @@ std::vector<RpcCase> AllCases(StreamSize stream) {
   for (std::vector<RpcCase> group :
        {CurveEvaluationCases(stream), CurveRefinementCases(),
         CurveConstructionCases(), SurfaceEvaluationCases(stream),
-        SurfaceRefinementCases(), SurfaceTessellationCases(), QueryCases()}) {
+        SurfaceRefinementCases(), SurfaceTessellationCases(), QueryCases(),
+        ApproximationCases()}) {
     for (RpcCase& c : group) cases.push_back(std::move(c));
   }
   return cases;

@@ -43,8 +43,10 @@ std::vector<RpcCase> SurfaceRefinementCases();
 std::vector<RpcCase> SurfaceTessellationCases();
 // The queries of both services, one case per method.
 std::vector<RpcCase> QueryCases();
+// Knot removal and fitting of both services, one case per method.
+std::vector<RpcCase> ApproximationCases();
 
-// Every method of both services (33 cases).
+// Every method of both services (38 cases).
 std::vector<RpcCase> AllCases(StreamSize stream = {});
 
 // A random set of curve blending functions (Bernstein, B-spline, either

@@ -218,6 +218,28 @@ class Client {
     return Unary(*surfaces_, &v1::SurfaceService::Stub::Interpolate, request);
   }
 
+  // Knot removal and fitting.
+  absl::StatusOr<v1::RemoveCurveKnotsResponse> RemoveCurveKnots(
+      const v1::RemoveCurveKnotsRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::RemoveKnots, request);
+  }
+  absl::StatusOr<v1::FitCurveResponse> FitCurve(
+      const v1::FitCurveRequest& request) {
+    return Unary(*curves_, &v1::CurveService::Stub::Fit, request);
+  }
+  absl::StatusOr<v1::RemoveSurfaceKnotsResponse> RemoveSurfaceKnots(
+      const v1::RemoveSurfaceKnotsRequest& request) {
+    return Unary(*surfaces_, &v1::SurfaceService::Stub::RemoveKnots, request);
+  }
+  absl::StatusOr<v1::FitSurfaceResponse> FitSurface(
+      const v1::FitSurfaceRequest& request) {
+    return Unary(*surfaces_, &v1::SurfaceService::Stub::Fit, request);
+  }
+  absl::StatusOr<v1::FitScatteredSurfaceResponse> FitScatteredSurface(
+      const v1::FitScatteredSurfaceRequest& request) {
+    return Unary(*surfaces_, &v1::SurfaceService::Stub::FitScattered, request);
+  }
+
   // Subdivision, refinement and tessellation.
   absl::StatusOr<v1::SplitCurveResponse> SplitCurve(
       const v1::SplitCurveRequest& request) {
