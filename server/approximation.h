@@ -12,6 +12,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "freeform/core/status.h"
+#include "plan.h"
 #include "service_limits.h"
 
 namespace freeform::server {
@@ -54,6 +55,24 @@ inline absl::StatusOr<int> FitControlCap(uint32_t requested, uint64_t data,
   }
   const uint64_t cap = requested == 0 ? server : requested;
   return static_cast<int>(std::min(cap, std::max<uint64_t>(data, 1)));
+}
+
+// CheckSimplifyWork returns RESOURCE_EXHAUSTED on `field` when
+// simplifying `knots` interior knots of a net of `values` numbers may move
+// more than limits.max_simplify_moves values (service_limits.h).
+inline absl::Status CheckSimplifyWork(uint64_t knots, uint64_t values,
+                                      const ServiceLimits& limits,
+                                      absl::string_view field) {
+  const uint64_t moves = SaturatingProduct(knots, values);
+  if (moves <= limits.max_simplify_moves) return absl::OkStatus();
+  return ExhaustedFieldError(
+      field,
+      absl::StrCat("simplifying ", knots, " interior knots of ", values,
+                   " control-point values may move ", moves,
+                   " values, over the server's limit of ",
+                   limits.max_simplify_moves,
+                   "; split the geometry and simplify the pieces, or remove "
+                   "chosen knots (knot)"));
 }
 
 }  // namespace freeform::server

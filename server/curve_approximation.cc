@@ -42,6 +42,18 @@ absl::StatusOr<UnaryWork> PlanBSplineRemove(
       !status.ok()) {
     return status;
   }
+  if (!request.has_knot()) {
+    const uint64_t count = view.control_points.size();
+    if (absl::Status status = CheckSimplifyWork(
+            count - static_cast<uint64_t>(view.degree) - 1,
+            SaturatingProduct(count,
+                              static_cast<uint64_t>(bspline.dimension()) +
+                                  (view.rational() ? 1 : 0)),
+            limits, "curve.bspline.control_points");
+        !status.ok()) {
+      return status;
+    }
+  }
   // The work: the curve being reduced, the original's homogeneous points
   // and the candidates' refined points, a few copies of the input each.
   // Simplifying evaluates every knot, again after each removal near it:

@@ -43,6 +43,13 @@ struct ServiceLimits {
   // geometry whose hull bounds prune little (extreme weights). A query
   // that runs out answers complete = false.
   uint64_t max_closest_point_pieces = uint64_t{1} << 26;
+  // Most control-point values one knot simplification may move: each
+  // removal shifts the values after it (the core keeps its arrays
+  // contiguous), so simplifying a net of V values with R interior knots
+  // moves up to R * V of them, which grows with the square of the size.
+  // 2^35 bounds that part to about 14 s here: planar curves up to about
+  // 130,000 control points, spatial ones up to about 107,000.
+  uint64_t max_simplify_moves = uint64_t{1} << 35;
 };
 
 // CheckDimensionLimit returns INVALID_ARGUMENT on "<field>.dimension" unless

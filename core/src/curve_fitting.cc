@@ -119,10 +119,16 @@ absl::Status CorrectParameters(const BSplineCurveData& curve,
   return absl::OkStatus();
 }
 
-// FitWithCorrections fits on `knots`, then `corrections` times moves the
-// parameters (CorrectParameters) and fits again. A round that would leave a
-// span with fewer than two parameters (Schoenberg-Whitney could fail) is
-// undone and ends the corrections.
+double MaxError(absl::Span<const double> errors) {
+  return errors.empty() ? 0 : *std::max_element(errors.begin(), errors.end());
+}
+
+// FitWithCorrections fits on `knots`, then up to `corrections` times moves
+// the parameters (CorrectParameters) and fits again. A round is kept only
+// when it lowers the max residual and leaves every span with at least two
+// parameters (Schoenberg-Whitney could fail otherwise) and a system that
+// is not singular; the first round that does not is undone and ends the
+// corrections.
 absl::StatusOr<KnotFit> FitWithCorrections(const PointsView& points, int p,
                                            absl::Span<const double> knots,
                                            int corrections,
@@ -142,7 +148,19 @@ absl::StatusOr<KnotFit> FitWithCorrections(const PointsView& points, int p,
       t = std::move(previous);
       break;
     }
-    fit = FitOnKnots(points, p, knots, t, cancel);
+    absl::StatusOr<KnotFit> corrected = FitOnKnots(points, p, knots, t, cancel);
+    if (!corrected.ok() &&
+        corrected.status().code() != absl::StatusCode::kInvalidArgument) {
+      return corrected.status();  // cancelled
+    }
+    // A system made singular (in floating point) by parameters moved close
+    // together ends the corrections too.
+    if (!corrected.ok() ||
+        !(MaxError(corrected->errors) < MaxError(fit->errors))) {
+      t = std::move(previous);
+      break;
+    }
+    fit = std::move(corrected);
   }
   return fit;
 }
@@ -223,6 +241,68 @@ absl::Status ValidateFitKnots(int p, absl::Span<const double> knots,
   return absl::OkStatus();
 }
 
+// RefineFit fits on one span, then inserts knots where the error exceeds
+// the tolerance until it does not (FitCurve), correcting the parameters
+// `t` after every fit (FitWithCorrections).
+absl::StatusOr<CurveFit> RefineFit(const PointsView& points,
+                                   const CurveFitOptions& options,
+                                   std::vector<double> t) {
+  const int p = options.degree;
+  // The parameters before any correction: refinement falls back on them
+  // when corrected parameters bunch up (below).
+  const std::vector<double> initial = t;
+  std::vector<double> knots =
+      internal::SingleSpanKnots(p, t.front(), t.back());
+  for (int round = 0;; ++round) {
+    absl::StatusOr<KnotFit> fit = FitWithCorrections(
+        points, p, knots, options.parameter_corrections, t, options.cancel);
+    if (!fit.ok()) return fit.status();
+    const size_t count = knots.size() - static_cast<size_t>(p) - 1;
+    if (MaxError(fit->errors) <= options.tolerance) {
+      const auto [max, rms] = ErrorSummary(fit->errors);
+      return CurveFit{
+          .curve = MakeCurve(p, points.dimension, std::move(fit->control),
+                             std::move(knots)),
+          .parameters = std::move(t),
+          .max_residual = max,
+          .rms_residual = rms,
+          .refinement_rounds = round};
+    }
+    // No more control points than points: with two parameters per span
+    // Schoenberg-Whitney then holds.
+    const size_t capacity =
+        std::min(static_cast<size_t>(options.max_control_points),
+                 points.size()) -
+        count;
+    std::vector<double> inserted = internal::SplitFailingSpans(
+        p, knots, t, fit->errors, options.tolerance, capacity);
+    if (inserted.empty() && t != initial) {
+      // Corrections on coarse knots can bunch the parameters where the
+      // error is, so that no failing span holds enough of them to split:
+      // refine by the initial parameters, which the next round corrects
+      // again on the finer knots.
+      // (Knots placed between corrected parameters may leave too few
+      // initial ones in a span: FitCurve then starts again without
+      // corrections.)
+      t = initial;
+      absl::StatusOr<KnotFit> plain =
+          FitOnKnots(points, p, knots, t, options.cancel);
+      if (!plain.ok()) return plain.status();
+      if (MaxError(plain->errors) <= options.tolerance) continue;
+      inserted = internal::SplitFailingSpans(p, knots, t, plain->errors,
+                                             options.tolerance, capacity);
+      fit = std::move(plain);
+    }
+    if (inserted.empty()) {
+      return internal::ToleranceNotMet(
+          MaxError(fit->errors), options.tolerance,
+          count == static_cast<size_t>(options.max_control_points),
+          "max_control_points", options.max_control_points);
+    }
+    knots = internal::WithKnots(knots, inserted);
+  }
+}
+
 }  // namespace
 
 absl::StatusOr<CurveFit> FitCurve(const PointsView& points,
@@ -237,39 +317,19 @@ absl::StatusOr<CurveFit> FitCurve(const PointsView& points,
           ? InterpolationParameters(points, p, options.parameterization)
           : ExplicitParameters(points, options.parameters);
   if (!t.ok()) return t.status();
-  std::vector<double> knots =
-      internal::SingleSpanKnots(p, t->front(), t->back());
-  for (int round = 0;; ++round) {
-    absl::StatusOr<KnotFit> fit = FitWithCorrections(
-        points, p, knots, options.parameter_corrections, *t, options.cancel);
-    if (!fit.ok()) return fit.status();
-    const auto [max, rms] = ErrorSummary(fit->errors);
-    const size_t count = knots.size() - static_cast<size_t>(p) - 1;
-    if (max <= options.tolerance) {
-      return CurveFit{
-          .curve = MakeCurve(p, points.dimension, std::move(fit->control),
-                             std::move(knots)),
-          .parameters = *std::move(t),
-          .max_residual = max,
-          .rms_residual = rms,
-          .refinement_rounds = round};
-    }
-    // No more control points than points: with two parameters per span
-    // Schoenberg-Whitney then holds.
-    const size_t capacity =
-        std::min(static_cast<size_t>(options.max_control_points),
-                 points.size()) -
-        count;
-    const std::vector<double> inserted = internal::SplitFailingSpans(
-        p, knots, *t, fit->errors, options.tolerance, capacity);
-    if (inserted.empty()) {
-      return internal::ToleranceNotMet(
-          max, options.tolerance,
-          count == static_cast<size_t>(options.max_control_points),
-          "max_control_points", options.max_control_points);
-    }
-    knots = internal::WithKnots(knots, inserted);
+  absl::StatusOr<CurveFit> fit = RefineFit(points, options, *t);
+  if (fit.ok() || options.parameter_corrections == 0 ||
+      (fit.status().code() != absl::StatusCode::kResourceExhausted &&
+       fit.status().code() != absl::StatusCode::kInvalidArgument)) {
+    return fit;
   }
+  // Corrections moved the parameters so that refinement got stuck (or a
+  // system became singular) where a fit without them need not: corrections
+  // never make FitCurve fail where the plain fit succeeds. (The input was
+  // validated above, so INVALID_ARGUMENT here comes from the corrections.)
+  CurveFitOptions plain = options;
+  plain.parameter_corrections = 0;
+  return RefineFit(points, plain, *std::move(t));
 }
 
 absl::StatusOr<CurveApproximation> FitCurveToKnots(

@@ -265,6 +265,96 @@ TEST_F(ApproximationServiceTest, PlansRefuseWorkOverTheLimits) {
   EXPECT_EQ(FieldViolationsOf(status)[0].field, "max_control_points");
 }
 
+// The Greville abscissae (t_{i+1} + ... + t_{i+p}) / p of the knots of a
+// degree-p B-spline: control points there reproduce linear functions.
+std::vector<double> Greville(const google::protobuf::RepeatedField<double>& t,
+                             int p) {
+  std::vector<double> abscissae;
+  for (int i = 0; i + p + 1 < t.size(); ++i) {
+    double sum = 0.0;
+    for (int k = 1; k <= p; ++k) sum += t[i + k];
+    abscissae.push_back(sum / p);
+  }
+  return abscissae;
+}
+
+// Simplification moves the values after each removed knot: its work grows
+// with the square of the size, and the plan refuses it beyond
+// max_simplify_moves, naming the net, while removing one knot is not
+// limited.
+TEST_F(ApproximationServiceTest, SimplifyWorkIsBoundedByThePlan) {
+  ServiceLimits limits;
+  // A planar cubic of 100 control points: 96 interior knots x 200 values
+  // = 19,200 moves.
+  limits.max_simplify_moves = 19'199;
+  StartServer(limits);
+  v1::RemoveCurveKnotsRequest curve_request;
+  v1::BSplineCurve* curve = curve_request.mutable_curve()->mutable_bspline();
+  curve->set_degree(3);
+  curve->mutable_control_points()->set_dimension(2);
+  Append(curve->mutable_knots(), {0, 0, 0});
+  AppendAll(curve->mutable_knots(), Linspace(0, 1, 98));
+  Append(curve->mutable_knots(), {1, 1, 1});
+  // At the Greville abscissae the control points give the line C(t) = (t, 0)
+  // (linear precision), from which every interior knot can go.
+  for (const double x : Greville(curve->knots(), 3)) {
+    Append(curve->mutable_control_points()->mutable_coordinates(), {x, 0.0});
+  }
+  curve_request.set_tolerance(1e-9);
+  absl::Status status = client_->RemoveCurveKnots(curve_request).status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kResourceExhausted) << status;
+  ASSERT_EQ(FieldViolationsOf(status).size(), 1u) << status;
+  EXPECT_EQ(FieldViolationsOf(status)[0].field, "curve.bspline.control_points");
+  curve_request.set_knot(curve->knots(50));
+  EXPECT_TRUE(client_->RemoveCurveKnots(curve_request).ok());
+  limits.max_simplify_moves = 19'200;
+  StartServer(limits);
+  curve_request.clear_knot();
+  absl::StatusOr<v1::RemoveCurveKnotsResponse> simplified =
+      client_->RemoveCurveKnots(curve_request);
+  ASSERT_TRUE(simplified.ok()) << simplified.status();
+  // A straight segment keeps no interior knot.
+  EXPECT_EQ(simplified->removals(), 96u);
+
+  // A bicubic net of 10 x 20 points in 3-D: 6 + 16 interior knots x 600
+  // values; both directions are over a limit of 13,199, v alone (9,600)
+  // is not.
+  v1::RemoveSurfaceKnotsRequest surface_request;
+  v1::BSplineSurface* surface =
+      surface_request.mutable_surface()->mutable_bspline();
+  surface->set_degree_u(3);
+  surface->set_degree_v(3);
+  v1::ControlNet* net = surface->mutable_control_net();
+  net->set_count_u(10);
+  net->set_count_v(20);
+  net->set_dimension(3);
+  Append(surface->mutable_knots_u(), {0, 0, 0});
+  AppendAll(surface->mutable_knots_u(), Linspace(0, 1, 8));
+  Append(surface->mutable_knots_u(), {1, 1, 1});
+  Append(surface->mutable_knots_v(), {0, 0, 0});
+  AppendAll(surface->mutable_knots_v(), Linspace(0, 1, 18));
+  Append(surface->mutable_knots_v(), {1, 1, 1});
+  // The plane S(u, v) = (u, v, 0).
+  for (const double x : Greville(surface->knots_u(), 3)) {
+    for (const double y : Greville(surface->knots_v(), 3)) {
+      Append(net->mutable_coordinates(), {x, y, 0.0});
+    }
+  }
+  surface_request.set_tolerance(1e-9);
+  surface_request.set_direction(v1::SURFACE_DIRECTION_BOTH);
+  limits.max_simplify_moves = 13'199;
+  StartServer(limits);
+  status = client_->RemoveSurfaceKnots(surface_request).status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kResourceExhausted) << status;
+  ASSERT_EQ(FieldViolationsOf(status).size(), 1u) << status;
+  EXPECT_EQ(FieldViolationsOf(status)[0].field, "surface.bspline.control_net");
+  surface_request.set_direction(v1::SURFACE_DIRECTION_V);
+  absl::StatusOr<v1::RemoveSurfaceKnotsResponse> simplified_v =
+      client_->RemoveSurfaceKnots(surface_request);
+  ASSERT_TRUE(simplified_v.ok()) << simplified_v.status();
+  EXPECT_EQ(simplified_v->removals_v(), 16u);
+}
+
 // A bicubic B-spline on the clamped uniform knots 0, 0, 0, 0, 1/2, 1, 1, 1,
 // 1 sampled at 400 parameter pairs: the scattered fit of the same degrees
 // and control counts without smoothing is that spline (a least-squares fit

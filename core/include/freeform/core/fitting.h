@@ -74,9 +74,11 @@ struct CurveFitOptions {
   // Rounds of parameter correction after every fit (Hoschek 1988): one
   // Newton step of every interior t_k towards the closest point of the
   // curve to Q_k, kept when it stays between its neighbours and off the
-  // knots, then a new fit; a round that leaves a knot span with fewer than
-  // two parameters is undone and ends the corrections of that fit.
-  // 0 (off) to kMaxParameterCorrections.
+  // knots, then a new fit; a round that does not lower the max residual,
+  // or leaves a knot span with fewer than two parameters, is undone and
+  // ends the corrections of that fit. When corrected parameters bunch up so
+  // that no failing span can be split, the fit goes back to the initial
+  // parameters and refines by them. 0 (off) to kMaxParameterCorrections.
   int parameter_corrections = 0;
   const CancellationToken* cancel = nullptr;
 };
