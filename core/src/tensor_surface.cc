@@ -442,20 +442,25 @@ absl::Status ValidateControlNet(const ControlNetView& net,
         absl::StrCat(field, ".count_v"),
         absl::StrCat("needs at least ", min_v, " columns, got ", net.count_v));
   }
-  const std::string coordinates = absl::StrCat(field, ".coordinates");
   // Compared by division so that huge counts cannot overflow.
   const size_t size = net.coordinates.size();
   const size_t row = static_cast<size_t>(net.count_v) * net.dimension;
   const size_t count_u = static_cast<size_t>(net.count_u);
   if (size % row != 0 || size / row != count_u) {
     return InvalidFieldError(
-        coordinates,
+        absl::StrCat(field, ".coordinates"),
         absl::StrCat("has ", size,
                      " values, expected count_u * count_v * "
                      "dimension = ",
                      net.count_u, " * ", net.count_v, " * ", net.dimension));
   }
-  return ValidateFinite(net.coordinates, coordinates);
+  // The field's name is made only for an error (evaluators validate every
+  // Bezier piece of a mesh).
+  if (std::all_of(net.coordinates.begin(), net.coordinates.end(),
+                  [](double x) { return std::isfinite(x); })) {
+    return absl::OkStatus();
+  }
+  return ValidateFinite(net.coordinates, absl::StrCat(field, ".coordinates"));
 }
 
 absl::Status ValidateBezierSurface(const BezierSurfaceView& surface) {

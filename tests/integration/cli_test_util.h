@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
@@ -43,8 +44,20 @@ inline CommandResult RunCommand(const std::string& command) {
   return result;
 }
 
+// The files WriteTempFile made, removed when the test program exits.
+inline std::vector<std::string>& TempFiles() {
+  static std::vector<std::string>* const files = [] {
+    auto* made = new std::vector<std::string>();
+    std::atexit([] {
+      for (const std::string& path : TempFiles()) unlink(path.c_str());
+    });
+    return made;
+  }();
+  return *files;
+}
+
 // WriteTempFile writes `contents` to a new file in /tmp and returns its
-// path.
+// path; the file goes when the test program exits.
 inline std::string WriteTempFile(const std::string& contents) {
   char path[] = "/tmp/freeform_request_XXXXXX";
   const int fd = mkstemp(path);
@@ -52,6 +65,7 @@ inline std::string WriteTempFile(const std::string& contents) {
   EXPECT_EQ(write(fd, contents.data(), contents.size()),
             static_cast<ssize_t>(contents.size()));
   close(fd);
+  TempFiles().push_back(path);
   return path;
 }
 

@@ -1,7 +1,7 @@
 // The Highway kernels that evaluate curves with one vector lane per
 // parameter (bspline_simd.cc, bezier_simd.cc), as bspline.cc and bezier.cc
 // call them. Each call dispatches at run time to the best instruction set
-// the CPU offers (AVX-512, AVX2, SSE4, SSSE3 or scalar code). The kernels do
+// the CPU offers (AVX-512, AVX2, SSE4 or portable code). The kernels do
 // the scalar evaluators' arithmetic in the same order, without fused
 // multiply-adds, so every target gives the same bits as the scalar code.
 // Internal to the core; thread-safe, no allocation per point.
