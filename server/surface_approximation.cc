@@ -90,11 +90,14 @@ absl::StatusOr<UnaryWork> PlanBSplineRemove(
   }
   if (!request.has_knot()) {
     const ControlNetView& net = view.control_net;
-    const uint64_t knots_u = net.count_u - static_cast<uint64_t>(view.degree_u) - 1;
-    const uint64_t knots_v = net.count_v - static_cast<uint64_t>(view.degree_v) - 1;
-    const uint64_t knots = *directions == KnotDirections::kU   ? knots_u
-                           : *directions == KnotDirections::kV ? knots_v
-                                                               : knots_u + knots_v;
+    const uint64_t knots_u =
+        net.count_u - static_cast<uint64_t>(view.degree_u) - 1;
+    const uint64_t knots_v =
+        net.count_v - static_cast<uint64_t>(view.degree_v) - 1;
+    const uint64_t knots = *directions == KnotDirections::kU ? knots_u
+                           : *directions == KnotDirections::kV
+                               ? knots_v
+                               : knots_u + knots_v;
     if (absl::Status status = CheckSimplifyWork(
             knots,
             SaturatingProduct(SaturatingProduct(net.count_u, net.count_v),

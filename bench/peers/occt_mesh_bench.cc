@@ -67,6 +67,7 @@
 #include <string>
 #include <vector>
 
+#include "peers/occt_knots.h"
 #include "workloads.h"
 
 namespace {
@@ -122,31 +123,7 @@ NetData W3Surface() {
           .knots_v = ClampedUniformKnots(20, 3)};
 }
 
-// The distinct knots and their multiplicities of a knot vector.
-struct Knots {
-  explicit Knots(const std::vector<double>& knots) {
-    std::vector<double> distinct;
-    std::vector<int> counts;
-    for (const double knot : knots) {
-      if (!distinct.empty() && distinct.back() == knot) {
-        ++counts.back();
-      } else {
-        distinct.push_back(knot);
-        counts.push_back(1);
-      }
-    }
-    const int n = static_cast<int>(distinct.size());
-    values.Resize(1, n, false);
-    multiplicities.Resize(1, n, false);
-    for (int i = 0; i < n; ++i) {
-      values.SetValue(i + 1, distinct[i]);
-      multiplicities.SetValue(i + 1, counts[i]);
-    }
-  }
-
-  TColStd_Array1OfReal values{1, 1};
-  TColStd_Array1OfInteger multiplicities{1, 1};
-};
+using OccKnots = freeform::bench::OccKnots;
 
 Handle(Geom_BSplineSurface) SurfaceOf(const NetData& data) {
   TColgp_Array2OfPnt poles(1, data.count_u, 1, data.count_v);
@@ -162,8 +139,8 @@ Handle(Geom_BSplineSurface) SurfaceOf(const NetData& data) {
                        data.weights.empty() ? 1.0 : data.weights[k]);
     }
   }
-  const Knots u(data.knots_u);
-  const Knots v(data.knots_v);
+  const OccKnots u(data.knots_u);
+  const OccKnots v(data.knots_v);
   if (data.weights.empty()) {
     return new Geom_BSplineSurface(poles, u.values, v.values, u.multiplicities,
                                    v.multiplicities, data.degree_u,

@@ -42,6 +42,7 @@
 #include <utility>
 #include <vector>
 
+#include "peers/occt_knots.h"
 #include "workloads.h"
 
 namespace {
@@ -52,31 +53,7 @@ using freeform::bench::SplineData;
 
 constexpr size_t kQueries = 100'000;
 
-// The distinct knots and their multiplicities of a knot vector.
-struct Knots {
-  explicit Knots(const std::vector<double>& knots) {
-    std::vector<double> distinct;
-    std::vector<int> counts;
-    for (const double knot : knots) {
-      if (!distinct.empty() && distinct.back() == knot) {
-        ++counts.back();
-      } else {
-        distinct.push_back(knot);
-        counts.push_back(1);
-      }
-    }
-    const int n = static_cast<int>(distinct.size());
-    values.Resize(1, n, false);
-    multiplicities.Resize(1, n, false);
-    for (int i = 0; i < n; ++i) {
-      values.SetValue(i + 1, distinct[i]);
-      multiplicities.SetValue(i + 1, counts[i]);
-    }
-  }
-
-  TColStd_Array1OfReal values{1, 1};
-  TColStd_Array1OfInteger multiplicities{1, 1};
-};
+using OccKnots = freeform::bench::OccKnots;
 
 // SplineOf returns the OCCT B-spline (Geom_BSplineCurve with gp_Pnt poles,
 // or Geom2d_BSplineCurve with gp_Pnt2d) of `data`.
@@ -92,7 +69,7 @@ Handle(Spline) SplineOf(const SplineData& data) {
     }
     poles.SetValue(i + 1, pole);
   }
-  const Knots knots(data.knots);
+  const OccKnots knots(data.knots);
   return new Spline(poles, knots.values, knots.multiplicities, data.degree);
 }
 

@@ -251,8 +251,7 @@ absl::StatusOr<CurveFit> RefineFit(const PointsView& points,
   // The parameters before any correction: refinement falls back on them
   // when corrected parameters bunch up (below).
   const std::vector<double> initial = t;
-  std::vector<double> knots =
-      internal::SingleSpanKnots(p, t.front(), t.back());
+  std::vector<double> knots = internal::SingleSpanKnots(p, t.front(), t.back());
   for (int round = 0;; ++round) {
     absl::StatusOr<KnotFit> fit = FitWithCorrections(
         points, p, knots, options.parameter_corrections, t, options.cancel);

@@ -378,9 +378,8 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
       }
     }
     if (!degenerate.empty()) {
-      if (absl::Status status =
-              PieceNormals(PieceView(piece), 2, degenerate_uv, second_buffers,
-                           second_normals);
+      if (absl::Status status = PieceNormals(PieceView(piece), 2, degenerate_uv,
+                                             second_buffers, second_normals);
           !status.ok()) {
         return status;
       }

@@ -284,16 +284,16 @@ TEST(FitCurve, ParameterCorrectionNeverFailsWhereThePlainFitSucceeds) {
       if (!FitCurve(view, plain).ok()) continue;
       for (const int corrections : {1, 2, 5}) {
         SCOPED_TRACE(testing::Message()
-                     << "trial " << trial << ", tolerance " << tolerance
-                     << ", " << corrections << " corrections");
+                     << "trial " << trial << ", tolerance " << tolerance << ", "
+                     << corrections << " corrections");
         CurveFitOptions options = plain;
         options.parameter_corrections = corrections;
         absl::StatusOr<CurveFit> fit = FitCurve(view, options);
         ASSERT_TRUE(fit.ok()) << fit.status();
         EXPECT_LE(fit->max_residual, tolerance);
-        EXPECT_LE(MaxDistance(EvaluateCurve(fit->curve, fit->parameters),
-                              points, 2),
-                  tolerance * (1 + 1e-9));
+        EXPECT_LE(
+            MaxDistance(EvaluateCurve(fit->curve, fit->parameters), points, 2),
+            tolerance * (1 + 1e-9));
         ++corrected_fits;
       }
     }
