@@ -6,6 +6,7 @@
 #include "absl/strings/cord.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "absl/strings/str_replace.h"
 #include "freeform/core/file.h"
 #include "google/rpc/error_details.pb.h"
 #include "google/rpc/status.pb.h"
@@ -184,8 +185,8 @@ absl::StatusOr<std::unique_ptr<Client>> Client::Create(
   arguments.SetMaxReceiveMessageSize(options.max_receive_message_bytes);
   const bool balance = options.round_robin || !options.replicas.empty();
   const std::string policy = balance ? "round_robin" : "pick_first";
-  std::string config = kRetryServiceConfig;
-  config.replace(config.find("%s"), 2, policy);
+  std::string config =
+      absl::StrReplaceAll(kRetryServiceConfig, {{"%s", policy}});
   if (!options.retry_unavailable) {
     config =
         absl::StrCat(R"({"loadBalancingConfig": [{")", policy, R"(": {}}]})");
