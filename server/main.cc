@@ -11,15 +11,21 @@
 #include <atomic>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "absl/flags/commandlineflag.h"
 #include "absl/flags/flag.h"
 #include "absl/flags/parse.h"
+#include "absl/flags/reflection.h"
 #include "absl/flags/usage.h"
 #include "absl/functional/function_ref.h"
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
 #include "memory_trimmer.h"
@@ -52,6 +58,10 @@ ABSL_FLAG(uint64_t, max_output_values, 64'000'000,
 ABSL_FLAG(uint64_t, max_closest_point_pieces, uint64_t{1} << 26,
           "Bezier pieces one ClosestPoint call may examine over all its "
           "queries (each query its share, 1 to 4096)");
+ABSL_FLAG(uint64_t, max_simplify_moves, uint64_t{1} << 35,
+          "Control-point values one knot simplification may move (interior "
+          "knots times the net's values; its array moves grow with the "
+          "square of the size)");
 ABSL_FLAG(uint64_t, memory_budget, 768ull << 20,
           "Bytes the process may use: calls together may reserve 3/4 of it "
           "for their answers and work (a call that does not fit gets "
@@ -90,6 +100,7 @@ freeform::server::ServerOptions OptionsFromFlags() {
   limits.max_output_values = absl::GetFlag(FLAGS_max_output_values);
   limits.max_closest_point_pieces =
       absl::GetFlag(FLAGS_max_closest_point_pieces);
+  limits.max_simplify_moves = absl::GetFlag(FLAGS_max_simplify_moves);
   limits.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget);
   return options;
 }
@@ -180,11 +191,59 @@ void WaitUntilQuiet(const freeform::server::FreeformServer& server,
                  [&] { return absl::Now() >= deadline; });
 }
 
+// The version of freeformd, set by the build (CMakeLists.txt).
+#ifndef FREEFORM_VERSION
+#define FREEFORM_VERSION "unknown"
+#endif
+
+namespace {
+
+constexpr char kUsage[] = "freeform curve and surface gRPC server";
+
+// PrintHelp lists the server's own flags (those of this file), sorted, with
+// their help and default values.
+void PrintHelp() {
+  std::vector<const absl::CommandLineFlag*> flags;
+  for (const auto& [name, flag] : absl::GetAllFlags()) {
+    if (absl::EndsWith(flag->Filename(), "server/main.cc")) {
+      flags.push_back(flag);
+    }
+  }
+  std::sort(flags.begin(), flags.end(),
+            [](const auto* a, const auto* b) { return a->Name() < b->Name(); });
+  std::cout << "freeformd " << FREEFORM_VERSION << ": " << kUsage
+            << "\n\nUsage: freeformd [--flag=value ...]\n\nFlags:\n";
+  for (const absl::CommandLineFlag* flag : flags) {
+    std::cout << "  --" << flag->Name() << "  " << flag->Help()
+              << " (default: " << flag->DefaultValue() << ")\n";
+  }
+  std::cout << "\n--helpfull also lists the flags of the libraries.\n";
+}
+
+// HandleHelpAndVersion answers --help / -h (the server's flags) and
+// --version on stdout and exits 0; other arguments are left to Abseil.
+void HandleHelpAndVersion(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const absl::string_view argument = argv[i];
+    if (argument == "--help" || argument == "-h" || argument == "-help") {
+      PrintHelp();
+      std::exit(0);
+    }
+    if (argument == "--version") {
+      std::cout << "freeformd " << FREEFORM_VERSION << "\n";
+      std::exit(0);
+    }
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   // Before any thread exists (memory_trimmer.h says why).
   const bool allocator_configured =
       freeform::server::ConfigureAllocatorForTrimming();
-  absl::SetProgramUsageMessage("freeform curve and surface gRPC server");
+  HandleHelpAndVersion(argc, argv);
+  absl::SetProgramUsageMessage(kUsage);
   absl::ParseCommandLine(argc, argv);
   // Abseil's mutex deadlock detection is a debugging aid that costs every
   // lock (gRPC's included) a graph update; the server runs without it.

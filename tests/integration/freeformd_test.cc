@@ -34,6 +34,24 @@ constexpr char kCubicRequest[] = R"({
 
 using FreeformdTest = ServerAndCliTest;
 
+// --help lists the server's own flags with their defaults and --version
+// prints the version; both exit 0 without serving.
+TEST(FreeformdFlags, HelpAndVersionExitZero) {
+  const CommandResult help =
+      RunCommand(absl::StrCat(FREEFORMD_PATH, " --help"));
+  EXPECT_EQ(help.exit_code, 0) << help.output;
+  EXPECT_THAT(help.output, HasSubstr("Usage: freeformd"));
+  EXPECT_THAT(help.output, HasSubstr("--listen  Address to listen on"));
+  EXPECT_THAT(help.output, HasSubstr("(default: 0.0.0.0:50051)"));
+  EXPECT_THAT(help.output, HasSubstr("--max_simplify_moves"));
+  EXPECT_THAT(help.output, ::testing::Not(HasSubstr("No flags matched")));
+  const CommandResult version =
+      RunCommand(absl::StrCat(FREEFORMD_PATH, " --version"));
+  EXPECT_EQ(version.exit_code, 0) << version.output;
+  EXPECT_THAT(version.output,
+              ::testing::MatchesRegex("freeformd [0-9]+\\.[0-9]+\\.[0-9]+\n"));
+}
+
 TEST_F(FreeformdTest, ClientEvaluatesTheWorkedCubic) {
   absl::StatusOr<CurveSamples> samples =
       client_->EvaluateBezier(2, {0, 0, 1, 2, 3, 2, 4, 0}, {0.0, 0.5, 1.0}, 1);
