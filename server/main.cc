@@ -181,13 +181,14 @@ void ExitWhenDrained(const freeform::server::FreeformServer& server,
 }
 
 // WaitUntilQuiet returns once no call is in flight and none has started for
-// 50 ms (the server answers new calls UNAVAILABLE while it drains), or at
+// 250 ms (the server answers new calls UNAVAILABLE while it drains), or at
 // `deadline`. gRPC's Shutdown cancels the calls its transport has accepted
 // but not yet handed to a handler; starting it only when the server is
-// quiet leaves it none.
+// quiet leaves it none. 50 ms was not enough on a starved machine (load 8
+// on 2 cores): a call still on its way to a handler got CANCELLED.
 void WaitUntilQuiet(const freeform::server::FreeformServer& server,
                     absl::Time deadline) {
-  PollUntilQuiet(server, absl::Milliseconds(10), 5,
+  PollUntilQuiet(server, absl::Milliseconds(10), 25,
                  [&] { return absl::Now() >= deadline; });
 }
 
