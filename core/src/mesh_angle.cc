@@ -47,18 +47,28 @@ constexpr double kMostGrowth = 8.0;
 // The least turn per cell a ring edge is attributed by, relative to the
 // limit.
 constexpr double kLeastTurn = 1e-3;
+// Grid nodes evaluated at once (whole rows, at least one).
+constexpr size_t kBatchNodes = 1024;
 // Arithmetic per evaluated normal, for the cancellation polls.
 constexpr size_t kNormalWork = 200;
 
 // What changed in a piece since it was last checked.
 enum Change : uint8_t { kGridChanged = 1, kRingChanged = 2 };
 
-// NormalAngle returns the angle between unit normals a and b, or 0 when
-// either is zero (the surface has no normal there; such ends are exempt).
+bool IsZero(const double* n) { return n[0] == 0 && n[1] == 0 && n[2] == 0; }
+
+// CosAngle returns the cosine of the angle between unit normals a and b,
+// or 1 when either is zero (the surface has no normal there; such ends are
+// exempt).
+double CosAngle(const double* a, const double* b) {
+  if (IsZero(a) || IsZero(b)) return 1.0;
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+// NormalAngle returns the angle between unit normals a and b, accurate for
+// small angles too (unlike acos), or 0 when either is zero.
 double NormalAngle(const double* a, const double* b) {
-  const bool a_zero = a[0] == 0 && a[1] == 0 && a[2] == 0;
-  const bool b_zero = b[0] == 0 && b[1] == 0 && b[2] == 0;
-  if (a_zero || b_zero) return 0.0;
+  if (IsZero(a) || IsZero(b)) return 0.0;
   const double cross[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
                            a[0] * b[1] - a[1] * b[0]};
   return std::atan2(std::hypot(cross[0], cross[1], cross[2]),
@@ -79,6 +89,15 @@ class AngleRefiner {
         .pieces.patches[plan.piece]
         .bezier_view();
   }
+  // RatioOf returns the ratio of the angle between the normals a and b at
+  // the ends of an edge, whose cosine is `cos`, to the limit; 0 when the
+  // cosine, which is cheap, shows it within the limit.
+  double RatioOf(double cos, const double* a, const double* b) const {
+    return cos >= cos_within_ ? 0.0 : NormalAngle(a, b) / limit_;
+  }
+  double Ratio(const double* a, const double* b) const {
+    return RatioOf(CosAngle(a, b), a, b);
+  }
   // The checks note the ratio of angle to limit of the edges over it.
   absl::Status CheckGrid(uint32_t piece, CancellationPoll& poll);
   absl::Status CheckRing(uint32_t piece, CancellationPoll& poll);
@@ -94,6 +113,9 @@ class AngleRefiner {
 
   MeshPlan& plan_;
   const double limit_;
+  // Normals whose angle has a cosine of at least this are within the limit
+  // despite rounding.
+  const double cos_within_;
   const size_t max_vertices_;
   double& vertex_count_;
   // The pieces that use each edge.
@@ -114,6 +136,7 @@ AngleRefiner::AngleRefiner(MeshPlan& plan, const MeshOptions& options,
                            double& vertex_count)
     : plan_(plan),
       limit_(options.max_normal_angle),
+      cos_within_(std::cos(options.max_normal_angle) + 1e-12),
       max_vertices_(options.max_vertices),
       vertex_count_(vertex_count),
       users_(plan.edges.size()),
@@ -139,47 +162,70 @@ void AngleRefiner::NoteEdge(uint32_t piece, double turn_u, double turn_v,
   noted[1] = std::max(noted[1], share_v * ratio);
 }
 
-// CheckGrid checks the edges between the interior grid nodes, a row of
-// nodes (fixed i) at a time: from node (i, j) to (i, j + 1), from (i - 1,
-// j) to (i, j), and the diagonal from (i - 1, j) to (i, j + 1), whose turn
-// is shared by the two before.
+// CheckGrid checks the edges between the interior grid nodes, row (fixed
+// i) after row, evaluated kBatchNodes at a time: from node (i, j) to (i,
+// j + 1), from (i - 1, j) to (i, j), and the diagonal from (i - 1, j) to
+// (i, j + 1), whose turn is shared by the two before.
 absl::Status AngleRefiner::CheckGrid(uint32_t piece, CancellationPoll& poll) {
   const int nu = plan_.pieces[piece].grid_u;
   const int nv = plan_.pieces[piece].grid_v;
   const size_t row = static_cast<size_t>(nv - 1);
-  std::array<double, 2>& turn = cell_turn_[piece];
-  turn = {0.0, 0.0};
-  std::vector<double> previous, current;
-  for (int i = 1; i < nu; ++i) {
+  const int rows_per_batch =
+      static_cast<int>(std::max<size_t>(1, kBatchNodes / row));
+  // The least cosine along u and v, for cell_turn_.
+  double least_u = 1.0, least_v = 1.0;
+  // The normals of the row before the batch, then of the batch's rows.
+  std::vector<double> normals;
+  for (int first = 1; first < nu; first += rows_per_batch) {
+    const int last = std::min(nu - 1, first + rows_per_batch - 1);
     uv_.clear();
-    for (int j = 1; j < nv; ++j) {
-      uv_.insert(uv_.end(),
-                 {static_cast<double>(i) / nu, static_cast<double>(j) / nv});
+    for (int i = first; i <= last; ++i) {
+      for (int j = 1; j < nv; ++j) {
+        uv_.insert(uv_.end(),
+                   {static_cast<double>(i) / nu, static_cast<double>(j) / nv});
+      }
     }
     if (absl::Status status = evaluator_.Evaluate(PieceView(piece), uv_);
         !status.ok()) {
       return status;
     }
-    current.assign(evaluator_.normals().begin(), evaluator_.normals().end());
-    for (size_t j = 0; j < row; ++j) {
-      const double* n = &current[3 * j];
-      const double along_v = j + 1 < row ? NormalAngle(n, n + 3) : 0.0;
-      NoteEdge(piece, 0.0, 1.0, along_v / limit_);
-      turn[1] = std::max(turn[1], along_v);
-      if (i == 1) continue;
-      const double* below = &previous[3 * j];
-      const double along_u = NormalAngle(below, n);
-      NoteEdge(piece, 1.0, 0.0, along_u / limit_);
-      turn[0] = std::max(turn[0], along_u);
-      if (j + 1 < row) {
-        NoteEdge(piece, along_u, along_v, NormalAngle(below, n + 3) / limit_);
+    const bool has_previous = first > 1;
+    if (has_previous) {
+      normals.erase(normals.begin(), normals.end() - 3 * row);
+    } else {
+      normals.clear();
+    }
+    normals.insert(normals.end(), evaluator_.normals().begin(),
+                   evaluator_.normals().end());
+    for (int i = first; i <= last; ++i) {
+      const size_t at = static_cast<size_t>(i - first + has_previous) * row;
+      for (size_t j = 0; j < row; ++j) {
+        const double* n = &normals[3 * (at + j)];
+        if (j + 1 < row) {
+          const double cos_v = CosAngle(n, n + 3);
+          least_v = std::min(least_v, cos_v);
+          NoteEdge(piece, 0.0, 1.0, RatioOf(cos_v, n, n + 3));
+        }
+        if (i == 1) continue;
+        const double* below = n - 3 * row;
+        const double cos_u = CosAngle(below, n);
+        least_u = std::min(least_u, cos_u);
+        NoteEdge(piece, 1.0, 0.0, RatioOf(cos_u, below, n));
+        if (j + 1 < row) {
+          if (const double ratio = Ratio(below, n + 3); ratio > 1.0) {
+            NoteEdge(piece, NormalAngle(below, n), NormalAngle(n, n + 3),
+                     ratio);
+          }
+        }
       }
     }
-    std::swap(previous, current);
-    if (absl::Status status = poll.Done(row * kNormalWork); !status.ok()) {
+    if (absl::Status status = poll.Done(uv_.size() / 2 * kNormalWork);
+        !status.ok()) {
       return status;
     }
   }
+  cell_turn_[piece] = {std::acos(std::clamp(least_u, -1.0, 1.0)),
+                       std::acos(std::clamp(least_v, -1.0, 1.0))};
   return absl::OkStatus();
 }
 
@@ -209,7 +255,7 @@ absl::Status AngleRefiner::CheckRing(uint32_t piece, CancellationPoll& poll) {
                   const double* normal_b) {
     NoteEdge(piece, std::abs(a.u - b.u) * plan.grid_u * turn_u,
              std::abs(a.v - b.v) * plan.grid_v * turn_v,
-             NormalAngle(normal_a, normal_b) / limit_);
+             Ratio(normal_a, normal_b));
   };
   auto outer_normal = [&](size_t k) { return &normals[3 * k]; };
   auto inner_normal = [&](size_t k) {
@@ -225,8 +271,7 @@ absl::Status AngleRefiner::CheckRing(uint32_t piece, CancellationPoll& poll) {
       const size_t edge = static_cast<size_t>(plan.edge[side]);
       if (outer[i + 1].side == side && !plan_.edges[edge].collapsed) {
         edge_ratio_[edge] = std::max(
-            edge_ratio_[edge],
-            NormalAngle(outer_normal(i), outer_normal(i + 1)) / limit_);
+            edge_ratio_[edge], Ratio(outer_normal(i), outer_normal(i + 1)));
       }
     } else {
       note(outer[i], inner[j + 1], outer_normal(i), inner_normal(j + 1));

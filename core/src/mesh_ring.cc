@@ -11,6 +11,7 @@
 #include "freeform/core/normals.h"
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
+#include "validated.h"
 
 namespace freeform::internal {
 namespace {
@@ -40,7 +41,9 @@ absl::Status PartialNormals(const BezierSurfaceView& piece, int order,
     output.push_back(absl::MakeSpan(buffer));
   }
   const SurfaceSamples samples = SurfaceSamples::Pairs(uv);
-  if (absl::Status status = EvaluateBezierSurface(piece, samples, output);
+  // The pieces of surfaces PlanMesh checked are valid.
+  if (absl::Status status =
+          EvaluateValidBezierSurface(piece, samples, output, {});
       !status.ok()) {
     return status;
   }
