@@ -338,8 +338,6 @@ absl::StatusOr<bool> AngleRefiner::Grow() {
   for (size_t edge = 0; edge < plan_.edges.size(); ++edge) {
     if (!(edge_ratio_[edge] > 1.0)) continue;
     grew = true;
-    fprintf(stderr, "edge %zu ratio %.3f segments %d\n", edge,
-            edge_ratio_[edge], plan_.edges[edge].segments);
     if (absl::Status status =
             RaiseEdge(static_cast<int>(edge),
                       grown(plan_.edges[edge].segments, edge_ratio_[edge]));
@@ -353,8 +351,6 @@ absl::StatusOr<bool> AngleRefiner::Grow() {
       if (!(ratio > 1.0)) continue;
       grew = true;
       const PiecePlan& plan = plan_.pieces[piece];
-      fprintf(stderr, "piece %u axis %d ratio %.3f grid %d x %d\n", piece, axis,
-              ratio, plan.grid_u, plan.grid_v);
       if (absl::Status status = RaiseGrid(
               piece, axis, grown(axis == 0 ? plan.grid_u : plan.grid_v, ratio));
           !status.ok()) {
