@@ -237,10 +237,12 @@ absl::Status AngleRefiner::CheckRing(uint32_t piece, CancellationPoll& poll) {
   const std::vector<OuterPlace> outer = OuterLoop(plan, plan_.edges);
   const std::vector<InnerPlace> inner = InnerLoop(plan.grid_u, plan.grid_v);
   uv_.clear();
-  for (const OuterPlace& place : outer)
+  for (const OuterPlace& place : outer) {
     uv_.insert(uv_.end(), {place.u, place.v});
-  for (const InnerPlace& place : inner)
+  }
+  for (const InnerPlace& place : inner) {
     uv_.insert(uv_.end(), {place.u, place.v});
+  }
   if (absl::Status status = evaluator_.Evaluate(PieceView(piece), uv_);
       !status.ok()) {
     return status;

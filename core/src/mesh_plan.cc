@@ -1,6 +1,7 @@
 // PlanMesh of mesh.h: every surface as a tensor net with knots, the grid of
 // each span rectangle from bounds on the derivatives of the net, and the
-// sides the pieces share.
+// sides the pieces share; with a normal-angle limit, then the refinement of
+// mesh_angle.cc.
 #include "mesh_plan.h"
 
 #include <algorithm>
