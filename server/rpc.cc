@@ -194,10 +194,7 @@ CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
       request_(request),
       request_bytes_(request->ByteSizeLong()),
       started_(std::chrono::steady_clock::now()) {
-  if (auto deadline = SteadyDeadline(*context); deadline.has_value()) {
-    token_.SetDeadline(*deadline);
-  }
-  token_.SetPoll([context] { return context->IsCancelled(); });
+  WatchCall(*context, token_);
   frame_->calls_in_flight_.fetch_add(1, std::memory_order_acq_rel);
   frame_->calls_started_.fetch_add(1, std::memory_order_acq_rel);
 }
@@ -282,6 +279,13 @@ grpc::ServerUnaryReactor* RpcFrame::Unary(
   HandOffToGrpc(call);  // to OnCancel
   call->Start();
   return call;
+}
+
+void WatchCall(grpc::CallbackServerContext& context, CancellationToken& token) {
+  if (auto deadline = SteadyDeadline(context); deadline.has_value()) {
+    token.SetDeadline(*deadline);
+  }
+  token.SetPoll([&context] { return context.IsCancelled(); });
 }
 
 absl::Status DrainingError() {

@@ -204,6 +204,12 @@ class RpcFrame {
 // Requests larger than this are planned on the pool, not the gRPC thread.
 inline constexpr size_t kInlinePlanningBytes = 64 * 1024;
 
+// WatchCall makes `token` stop at the call's deadline and when the client
+// cancels, as every call's own token does: for a planner that does real
+// work before the call's token is at hand (PlanMesh with a normal-angle
+// limit evaluates the surfaces).
+void WatchCall(grpc::CallbackServerContext& context, CancellationToken& token);
+
 // QueueFullError is the answer to a call whose work the pool's full queue
 // refused.
 absl::Status QueueFullError();

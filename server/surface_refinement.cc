@@ -168,6 +168,28 @@ struct MeshInput {
   }
 };
 
+// GivenLimit returns an optional limit of a request, 0 (no limit) when it
+// is absent. Zero is the proto's default, which the core reads as no limit,
+// so a limit that is there must not be zero; the core checks the rest of
+// `rule`, naming the same field.
+absl::StatusOr<double> GivenLimit(bool present, double value,
+                                  absl::string_view field,
+                                  absl::string_view rule) {
+  if (!present) return 0.0;
+  if (value == 0.0) return InvalidFieldError(field, rule);
+  return value;
+}
+
+// The Bezier pieces of all surfaces (SurfacePieceValues), saturating.
+uint64_t PieceValues(const std::vector<Surface>& surfaces) {
+  uint64_t values = 0;
+  for (const Surface& surface : surfaces) {
+    values = std::min(values, UINT64_MAX - SurfacePieceValues(surface)) +
+             SurfacePieceValues(surface);
+  }
+  return values;
+}
+
 // Bytes of one vertex in an answer, with about two triangles of three
 // indices: what the vertex cap allows for.
 constexpr uint64_t kVertexBytes = 8 * (3 + 3 + 2) + 4 + 2 * 3 * 4;
@@ -189,9 +211,11 @@ std::string DimensionField(const v1::Surface& message) {
   }
 }
 
+// PrepareMesh checks and plans a mesh request; `cancel` stops the planning
+// (which evaluates the surfaces when there is a normal-angle limit).
 absl::StatusOr<MeshInput> PrepareMesh(
     const v1::TessellateSurfaceRequest& request, const ServiceLimits& limits,
-    uint64_t message_limit) {
+    uint64_t message_limit, const CancellationToken* cancel) {
   if (request.surfaces_size() == 0) {
     return InvalidFieldError("surfaces", "needs at least one surface");
   }
@@ -209,30 +233,36 @@ absl::StatusOr<MeshInput> PrepareMesh(
     }
     input.surfaces.push_back(*std::move(surface));
   }
-  // Zero is the proto's default, so a limit that is there must be positive.
-  if (request.has_max_edge_length() && !(request.max_edge_length() > 0.0)) {
-    return InvalidFieldError("max_edge_length", "must be positive and finite");
+  absl::StatusOr<double> max_edge_length =
+      GivenLimit(request.has_max_edge_length(), request.max_edge_length(),
+                 "max_edge_length", "must be positive and finite");
+  if (!max_edge_length.ok()) return max_edge_length.status();
+  absl::StatusOr<double> max_normal_angle =
+      GivenLimit(request.has_max_normal_angle(), request.max_normal_angle(),
+                 "max_normal_angle", "must be above 0 and below pi (radians)");
+  if (!max_normal_angle.ok()) return max_normal_angle.status();
+  // The Bezier pieces the mesher cuts the surfaces into (with a normal-angle
+  // limit the planner cuts them already).
+  if (absl::Status status =
+          PieceWorkBytes(PieceValues(input.surfaces), limits, "surfaces")
+              .status();
+      !status.ok()) {
+    return status;
   }
   const uint64_t requested = request.max_vertices() > 0 ? request.max_vertices()
                                                         : limits.max_parameters;
   input.cap = static_cast<size_t>(
       std::min({requested, uint64_t{limits.max_parameters},
                 limits.max_output_values / 16, message_limit / kVertexBytes}));
-  absl::StatusOr<std::shared_ptr<const MeshPlan>> plan = PlanMesh(
-      input.surfaces,
-      {.tolerance = request.tolerance(),
-       .max_edge_length =
-           request.has_max_edge_length() ? request.max_edge_length() : 0.0,
-       .max_vertices = input.cap});
+  absl::StatusOr<std::shared_ptr<const MeshPlan>> plan =
+      PlanMesh(input.surfaces,
+               {.tolerance = request.tolerance(),
+                .max_edge_length = *max_edge_length,
+                .max_normal_angle = *max_normal_angle,
+                .max_vertices = input.cap},
+               cancel);
   if (!plan.ok()) return plan.status();
   input.plan = *std::move(plan);
-  // The Bezier pieces the mesher cuts the surfaces into.
-  if (absl::Status status =
-          PieceWorkBytes(PlannedPieceValues(*input.plan), limits, "surfaces")
-              .status();
-      !status.ok()) {
-    return status;
-  }
   input.size = PlannedMeshSize(*input.plan);
   return input;
 }
@@ -290,10 +320,13 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Tessellate(
     v1::TessellateSurfaceResponse* response) {
   return frame_->Unary(
       "SurfaceService.Tessellate", context, request, response,
-      [this, request, response]() -> absl::StatusOr<UnaryWork> {
+      [this, context, request, response]() -> absl::StatusOr<UnaryWork> {
         const ServiceLimits& limits = frame_->limits();
+        CancellationToken planning;
+        WatchCall(*context, planning);
         absl::StatusOr<MeshInput> input = PrepareMesh(
-            *request, limits, static_cast<uint64_t>(limits.max_message_bytes));
+            *request, limits, static_cast<uint64_t>(limits.max_message_bytes),
+            &planning);
         if (!input.ok()) return input.status();
         return UnaryWork{
             .plan = {.memory_bytes =
@@ -318,10 +351,12 @@ SurfaceServiceImpl::TessellateStream(
   using Work = StreamWork<v1::TessellateSurfaceResponse>;
   return frame_->Stream<v1::TessellateSurfaceResponse>(
       "SurfaceService.TessellateStream", context, request,
-      [this, request]() -> absl::StatusOr<Work> {
+      [this, context, request]() -> absl::StatusOr<Work> {
         const ServiceLimits& limits = frame_->limits();
+        CancellationToken planning;
+        WatchCall(*context, planning);
         absl::StatusOr<MeshInput> input =
-            PrepareMesh(*request, limits, UINT64_MAX);
+            PrepareMesh(*request, limits, UINT64_MAX, &planning);
         if (!input.ok()) return input.status();
         // Vertices or triangles per message: the request's or the default,
         // within half a message.

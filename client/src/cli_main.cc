@@ -19,7 +19,8 @@
 //   freeform fit [--surface [--scattered]] [--file REQUEST.json]
 //   freeform decompose [--file REQUEST.json]
 //   freeform subdivide [--file REQUEST.json] [--svg PICTURE.svg]
-//   freeform tessellate [--surface] [--file REQUEST.json]
+//   freeform tessellate [--surface [--max-normal-angle RADIANS]]
+//                   [--file REQUEST.json]
 //                   [--svg PICTURE.svg [--combs [--comb-scale S]] |
 //                    --obj MESH.obj | --stl MESH.stl]
 //   freeform closest [--surface] [--file REQUEST.json]
@@ -499,13 +500,20 @@ struct TessellateOutput {
   double comb_scale = 0;  // 0: the default
 };
 
+// RunTessellateSurfaces sends a TessellateSurfaceRequest, with the
+// normal-angle limit of --max-normal-angle when given (the server checks
+// it).
 int RunTessellateSurfaces(const CommonFlags& flags, const std::string& file,
-                          const TessellateOutput& output) {
+                          const TessellateOutput& output,
+                          std::optional<double> max_normal_angle) {
   const std::string& obj = output.obj;
   return RunCall(
       flags, file, &SurfaceStub::Tessellate,
       [&](freeform::v1::TessellateSurfaceRequest& request) {
         if (!obj.empty()) request.set_normals(true);
+        if (max_normal_angle.has_value()) {
+          request.set_max_normal_angle(*max_normal_angle);
+        }
         return absl::OkStatus();
       },
       [&](freeform::Client&, const freeform::v1::TessellateSurfaceRequest&,
@@ -786,6 +794,11 @@ int main(int argc, char** argv) {
                    "Tooth length per unit of curvature (default: the "
                    "longest tooth is 15% of the drawing)")
       ->check(CLI::PositiveNumber);
+  double max_normal_angle = 0;
+  CLI::Option* normal_angle = tessellate->add_option(
+      "--max-normal-angle", max_normal_angle,
+      "Surfaces: the largest angle in radians between the unit normals at the "
+      "two ends of a mesh edge (sets max_normal_angle)");
 
   freeform::cli::QueryCommands queries(app, flags);
 
@@ -826,8 +839,16 @@ int main(int argc, char** argv) {
   }
   if (subdivide->parsed()) return RunSubdivide(flags, file, svg);
   if (tessellate->parsed()) {
-    return surface_request ? RunTessellateSurfaces(flags, file, tessellation)
-                           : RunTessellateCurve(flags, file, tessellation);
+    const bool angle = normal_angle->count() > 0;
+    if (angle && !surface_request) {
+      std::cerr << "freeform tessellate: --max-normal-angle needs --surface\n";
+      return 2;
+    }
+    return surface_request
+               ? RunTessellateSurfaces(
+                     flags, file, tessellation,
+                     angle ? std::optional(max_normal_angle) : std::nullopt)
+               : RunTessellateCurve(flags, file, tessellation);
   }
   if (std::optional<int> status = queries.Run()) return *status;
   if (interpolate->parsed()) {

@@ -12,10 +12,10 @@
 #include "absl/container/flat_hash_map.h"
 #include "absl/status/status.h"
 #include "freeform/core/mesh.h"
-#include "freeform/core/normals.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
 #include "mesh_plan.h"
+#include "mesh_ring.h"
 
 namespace freeform {
 namespace {
@@ -46,15 +46,6 @@ double Norm3(double x, double y, double z) {
   return std::sqrt(x * x + y * y + z * z);
 }
 
-// Along returns the coordinate of a sample along the perimeter of the
-// square, counter-clockwise from (0, 0): side k covers [k, k + 1].
-double Along(int side, const Sample& s) {
-  return side + (side == kBottom  ? s.u
-                 : side == kRight ? s.v
-                 : side == kTop   ? 1.0 - s.u
-                                  : 1.0 - s.v);
-}
-
 // The mesh under construction, before evaluation and welding.
 class MeshBuilder {
  public:
@@ -75,31 +66,28 @@ class MeshBuilder {
  private:
   BezierSurfaceView PieceView(uint32_t piece) const {
     const PiecePlan& plan = plan_.pieces[piece];
-    return decompositions_[plan.surface]
+    return (*decompositions_)[plan.surface]
         .pieces.patches[plan.piece]
         .bezier_view();
   }
   std::array<double, 2> SurfaceParameters(uint32_t piece, double s,
                                           double t) const {
     const PiecePlan& plan = plan_.pieces[piece];
-    return SurfacePieceParameters(decompositions_[plan.surface], plan.piece, s,
-                                  t);
+    return SurfacePieceParameters((*decompositions_)[plan.surface], plan.piece,
+                                  s, t);
   }
   uint32_t CornerVertex(uint32_t piece, int corner);
   uint32_t NewVertex(uint32_t piece, double u, double v);
   std::vector<Sample> SideSamples(uint32_t piece, int side);
-  std::vector<std::pair<Sample, double>> OuterLoop(uint32_t piece);
-  std::vector<std::pair<Sample, double>> InnerLoop(
-      uint32_t piece, const std::vector<uint32_t>& grid);
   void AddTriangle(uint32_t piece, const Sample& a, const Sample& b,
                    const Sample& c);
-  void ZipRing(uint32_t piece,
-               const std::vector<std::pair<Sample, double>>& outer,
-               const std::vector<std::pair<Sample, double>>& inner);
+  void ZipRing(uint32_t piece, const std::vector<uint32_t>& grid);
   void BuildPiece(uint32_t piece);
 
   const MeshPlan& plan_;
-  std::vector<SurfaceDecomposition> decompositions_;
+  // The plan's pieces when it holds them, else owned_decompositions_.
+  const std::vector<SurfaceDecomposition>* decompositions_ = nullptr;
+  std::vector<SurfaceDecomposition> owned_decompositions_;
   // Per piece: its corner vertices (0,0), (1,0), (1,1), (0,1).
   std::vector<std::array<uint32_t, 4>> corners_;
   // Per edge: segments + 1 vertices in its canonical direction (created
@@ -115,12 +103,17 @@ class MeshBuilder {
 };
 
 absl::Status MeshBuilder::Decompose(const CancellationToken* cancel) {
-  decompositions_.reserve(plan_.surfaces.size());
+  decompositions_ = &owned_decompositions_;
+  if (!plan_.decompositions.empty()) {
+    decompositions_ = &plan_.decompositions;
+    return absl::OkStatus();
+  }
+  owned_decompositions_.reserve(plan_.surfaces.size());
   for (const Surface& surface : plan_.surfaces) {
     absl::StatusOr<SurfaceDecomposition> decomposition =
         DecomposeSurface(surface, cancel);
     if (!decomposition.ok()) return decomposition.status();
-    decompositions_.push_back(*std::move(decomposition));
+    owned_decompositions_.push_back(*std::move(decomposition));
   }
   return absl::OkStatus();
 }
@@ -144,19 +137,16 @@ uint32_t MeshBuilder::CornerVertex(uint32_t piece, int corner) {
   return it->second;
 }
 
-// SideSamples returns the samples of a side at t = m / n, m = 0..n, in the
-// direction of increasing parameter. The vertices belong to the side's
-// edge, numbered in its canonical direction, so pieces that share the edge
-// share them. A collapsed side is one vertex sampled as densely as the
-// piece's grid, which keeps the fan triangles at its apex small in
-// parameter space.
+// SideSamples returns the samples of a side (SidePoint m = 0..n, n =
+// SideSegments). The vertices belong to the side's edge, numbered in its
+// canonical direction, so pieces that share the edge share them; a
+// collapsed side is one vertex.
 std::vector<Sample> MeshBuilder::SideSamples(uint32_t piece, int side) {
   const PiecePlan& plan = plan_.pieces[piece];
   const std::array<uint32_t, 4>& corner = corners_[piece];
   const EdgePlan& edge = plan_.edges[static_cast<size_t>(plan.edge[side])];
   std::vector<uint32_t>& vertices =
       edge_vertices_[static_cast<size_t>(plan.edge[side])];
-  const bool along_u = side == kBottom || side == kTop;
   const bool reversed = plan.reversed[side];
   const int start_corner = side == kBottom  ? 0
                            : side == kRight ? 1
@@ -166,77 +156,24 @@ std::vector<Sample> MeshBuilder::SideSamples(uint32_t piece, int side) {
                          : side == kRight ? 2
                          : side == kTop   ? 2
                                           : 3;
-  const double fixed = side == kRight || side == kTop ? 1.0 : 0.0;
-  const int n =
-      edge.collapsed ? (along_u ? plan.grid_u : plan.grid_v) : edge.segments;
+  const int n = internal::SideSegments(plan, edge, side);
   if (vertices.empty() && !edge.collapsed) {
     vertices.resize(static_cast<size_t>(n) + 1);
     vertices.front() = reversed ? corner[end_corner] : corner[start_corner];
     vertices.back() = reversed ? corner[start_corner] : corner[end_corner];
     for (int k = 1; k < n; ++k) {
-      const double t = static_cast<double>(reversed ? n - k : k) / n;
-      vertices[k] =
-          along_u ? NewVertex(piece, t, fixed) : NewVertex(piece, fixed, t);
+      const auto [u, v] = internal::SidePoint(side, reversed ? n - k : k, n);
+      vertices[k] = NewVertex(piece, u, v);
     }
   }
   std::vector<Sample> samples(static_cast<size_t>(n) + 1);
   for (int m = 0; m <= n; ++m) {
-    const double t = static_cast<double>(m) / n;
+    const auto [u, v] = internal::SidePoint(side, m, n);
     const uint32_t vertex =
         edge.collapsed ? corner[start_corner] : vertices[reversed ? n - m : m];
-    samples[m] = along_u ? Sample{vertex, t, fixed} : Sample{vertex, fixed, t};
+    samples[m] = Sample{vertex, u, v};
   }
   return samples;
-}
-
-// OuterLoop returns the boundary samples counter-clockwise from (0, 0),
-// each with its perimeter coordinate theta in [0, 4]; corners appear at the
-// end of one side and the start of the next.
-std::vector<std::pair<Sample, double>> MeshBuilder::OuterLoop(uint32_t piece) {
-  std::vector<std::pair<Sample, double>> loop;
-  for (int side = 0; side < 4; ++side) {
-    std::vector<Sample> samples = SideSamples(piece, side);
-    const size_t n = samples.size() - 1;
-    const bool backward = side == kTop || side == kLeft;
-    for (size_t m = 0; m <= n; ++m) {
-      const Sample& s = samples[backward ? n - m : m];
-      loop.push_back({s, Along(side, s)});
-    }
-  }
-  return loop;
-}
-
-// InnerLoop returns the boundary of the interior grid (nodes 1..grid-1 each
-// way) counter-clockwise, each node with the perimeter coordinate of the
-// outer loop's side it faces (its u or v along that side), so the zipper
-// pairs samples that are at most one spacing apart in u and in v, also at
-// the corners (where the inner corner appears once for each side).
-std::vector<std::pair<Sample, double>> MeshBuilder::InnerLoop(
-    uint32_t piece, const std::vector<uint32_t>& grid) {
-  const int nu = plan_.pieces[piece].grid_u;
-  const int nv = plan_.pieces[piece].grid_v;
-  auto node = [&](int i, int j) {
-    return Sample{grid[static_cast<size_t>(i - 1) * (nv - 1) + (j - 1)],
-                  static_cast<double>(i) / nu, static_cast<double>(j) / nv};
-  };
-  std::vector<std::pair<Sample, double>> loop;
-  auto add_side = [&](int side, int count, auto at) {
-    for (int k = 0; k < count; ++k) {
-      const Sample s = at(k);
-      loop.push_back({s, Along(side, s)});
-    }
-  };
-  // Each side from its start corner to its end corner; a single node is
-  // both (count 2 then repeats it).
-  add_side(kBottom, std::max(2, nu - 1),
-           [&](int k) { return node(std::min(1 + k, nu - 1), 1); });
-  add_side(kRight, std::max(2, nv - 1),
-           [&](int k) { return node(nu - 1, std::min(1 + k, nv - 1)); });
-  add_side(kTop, std::max(2, nu - 1),
-           [&](int k) { return node(std::max(nu - 1 - k, 1), nv - 1); });
-  add_side(kLeft, std::max(2, nv - 1),
-           [&](int k) { return node(1, std::max(nv - 1 - k, 1)); });
-  return loop;
 }
 
 void MeshBuilder::AddTriangle(uint32_t piece, const Sample& a, const Sample& b,
@@ -252,27 +189,32 @@ void MeshBuilder::AddTriangle(uint32_t piece, const Sample& a, const Sample& b,
   triangle_piece_.push_back(piece);
 }
 
-// ZipRing triangulates the ring between the outer and inner loops by
-// merging them in order of theta (a "zipper"): each step advances the loop
-// whose next sample comes first, so every triangle spans at most about one
-// sample spacing of each loop.
-void MeshBuilder::ZipRing(uint32_t piece,
-                          const std::vector<std::pair<Sample, double>>& outer,
-                          const std::vector<std::pair<Sample, double>>& inner) {
-  size_t i = 0;
-  size_t j = 0;
-  while (i + 1 < outer.size() || j + 1 < inner.size()) {
-    const bool advance_outer =
-        j + 1 == inner.size() ||
-        (i + 1 < outer.size() && outer[i + 1].second <= inner[j + 1].second);
-    if (advance_outer) {
-      AddTriangle(piece, outer[i].first, outer[i + 1].first, inner[j].first);
-      ++i;
+// ZipRing triangulates the ring between the side samples and the interior
+// grid `grid` of a piece (ZipLoops).
+void MeshBuilder::ZipRing(uint32_t piece, const std::vector<uint32_t>& grid) {
+  const PiecePlan& plan = plan_.pieces[piece];
+  std::array<std::vector<Sample>, 4> sides;
+  for (int side = 0; side < 4; ++side) sides[side] = SideSamples(piece, side);
+  const std::vector<internal::OuterPlace> outer =
+      internal::OuterLoop(plan, plan_.edges);
+  const std::vector<internal::InnerPlace> inner =
+      internal::InnerLoop(plan.grid_u, plan.grid_v);
+  auto outer_sample = [&](size_t k) {
+    return sides[outer[k].side][static_cast<size_t>(outer[k].m)];
+  };
+  auto inner_sample = [&](size_t k) {
+    const internal::InnerPlace& place = inner[k];
+    return Sample{grid[static_cast<size_t>(place.i - 1) * (plan.grid_v - 1) +
+                       static_cast<size_t>(place.j - 1)],
+                  place.u, place.v};
+  };
+  internal::ZipLoops(outer, inner, [&](size_t i, size_t j, bool outer_step) {
+    if (outer_step) {
+      AddTriangle(piece, outer_sample(i), outer_sample(i + 1), inner_sample(j));
     } else {
-      AddTriangle(piece, outer[i].first, inner[j + 1].first, inner[j].first);
-      ++j;
+      AddTriangle(piece, outer_sample(i), inner_sample(j + 1), inner_sample(j));
     }
-  }
+  });
 }
 
 void MeshBuilder::BuildPiece(uint32_t piece) {
@@ -289,7 +231,7 @@ void MeshBuilder::BuildPiece(uint32_t piece) {
                                static_cast<double>(j) / nv));
     }
   }
-  ZipRing(piece, OuterLoop(piece), InnerLoop(piece, grid));
+  ZipRing(piece, grid);
   auto node = [&](int i, int j) {
     return Sample{grid[static_cast<size_t>(i - 1) * (nv - 1) + (j - 1)],
                   static_cast<double>(i) / nu, static_cast<double>(j) / nv};
@@ -314,30 +256,6 @@ absl::Status MeshBuilder::Build(const CancellationToken* cancel) {
   return absl::OkStatus();
 }
 
-// PieceNormals evaluates the positions (order 1) or also the partials to
-// order 2 (for normals at degenerate points) of a Bezier piece at the (u, v)
-// pairs `uv` into `buffers`, and its unit normals into `normals`.
-absl::Status PieceNormals(const BezierSurfaceView& piece, int order,
-                          absl::Span<const double> uv,
-                          std::vector<std::vector<double>>& buffers,
-                          std::vector<double>& normals) {
-  const size_t count = uv.size() / 2;
-  buffers.resize(PartialCount(order));
-  std::vector<absl::Span<double>> output;
-  for (std::vector<double>& buffer : buffers) {
-    buffer.resize(3 * count);
-    output.push_back(absl::MakeSpan(buffer));
-  }
-  const SurfaceSamples samples = SurfaceSamples::Pairs(uv);
-  if (absl::Status status = EvaluateBezierSurface(piece, samples, output);
-      !status.ok()) {
-    return status;
-  }
-  normals.resize(3 * count);
-  return ComputeUnitNormals(output, samples, BezierSurfaceDomain(),
-                            absl::MakeSpan(normals));
-}
-
 absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
   std::vector<std::vector<uint32_t>> owned(plan_.pieces.size());
   for (uint32_t r = 0; r < sources_.size(); ++r) {
@@ -345,10 +263,8 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
   }
   positions_.resize(3 * sources_.size());
   normals_.resize(3 * sources_.size());
-  std::vector<double> uv, degenerate_uv;
-  std::vector<size_t> degenerate;
-  std::vector<std::vector<double>> buffers, second_buffers;
-  std::vector<double> normals, second_normals;
+  std::vector<double> uv;
+  internal::PieceEvaluator evaluator;
   for (uint32_t piece = 0; piece < plan_.pieces.size(); ++piece) {
     if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
       return status;
@@ -360,38 +276,14 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
       uv.push_back(sources_[r].u);
       uv.push_back(sources_[r].v);
     }
-    // First partials give the normal of every regular point; the zero
-    // normals of degenerate points (a collapsed side) are then replaced
-    // by the limit from the second partials, evaluated for them only.
-    if (absl::Status status =
-            PieceNormals(PieceView(piece), 1, uv, buffers, normals);
+    if (absl::Status status = evaluator.Evaluate(PieceView(piece), uv);
         !status.ok()) {
       return status;
     }
-    degenerate.clear();
-    degenerate_uv.clear();
     for (size_t k = 0; k < vertices.size(); ++k) {
-      if (normals[3 * k] == 0 && normals[3 * k + 1] == 0 &&
-          normals[3 * k + 2] == 0) {
-        degenerate.push_back(k);
-        degenerate_uv.insert(degenerate_uv.end(), {uv[2 * k], uv[2 * k + 1]});
-      }
-    }
-    if (!degenerate.empty()) {
-      if (absl::Status status = PieceNormals(PieceView(piece), 2, degenerate_uv,
-                                             second_buffers, second_normals);
-          !status.ok()) {
-        return status;
-      }
-      for (size_t d = 0; d < degenerate.size(); ++d) {
-        std::copy_n(&second_normals[3 * d], 3, &normals[3 * degenerate[d]]);
-      }
-    }
-    for (size_t k = 0; k < vertices.size(); ++k) {
-      for (int x = 0; x < 3; ++x) {
-        positions_[3 * vertices[k] + x] = buffers[0][3 * k + x];
-        normals_[3 * vertices[k] + x] = normals[3 * k + x];
-      }
+      std::copy_n(&evaluator.positions()[3 * k], 3,
+                  &positions_[3 * vertices[k]]);
+      std::copy_n(&evaluator.normals()[3 * k], 3, &normals_[3 * vertices[k]]);
     }
   }
   return absl::OkStatus();

@@ -1,6 +1,7 @@
 // PlanMesh of mesh.h: every surface as a tensor net with knots, the grid of
 // each span rectangle from bounds on the derivatives of the net, and the
-// sides the pieces share.
+// sides the pieces share; with a normal-angle limit, then the refinement of
+// mesh_angle.cc.
 #include "mesh_plan.h"
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <utility>
@@ -31,9 +33,6 @@ using internal::kRight;
 using internal::kTop;
 using internal::PiecePlan;
 
-// Grid cells per piece direction beyond this are refused (they would not
-// fit the 32-bit vertex indices anyway).
-constexpr double kMaxCells = 1 << 30;
 // The cancellation token is polled after this many pieces.
 constexpr size_t kCancelStride = 64;
 
@@ -432,6 +431,7 @@ class Planner {
 
  private:
   absl::Status AddVertices(double count);
+  absl::Status RefineNormalAngles();
   void UseSide(PiecePlan& piece, int side, std::pair<int, bool> edge,
                double cells);
 
@@ -441,6 +441,20 @@ class Planner {
   EdgeTable edges_;
   double vertex_count_ = 0.0;
 };
+
+// RefineNormalAngles cuts the surfaces into their pieces, which the plan
+// then keeps for TessellatePlanned, and refines the plan for the normal
+// angle.
+absl::Status Planner::RefineNormalAngles() {
+  plan_.decompositions.reserve(plan_.surfaces.size());
+  for (const Surface& surface : plan_.surfaces) {
+    absl::StatusOr<SurfaceDecomposition> decomposition =
+        DecomposeSurface(surface, cancel_);
+    if (!decomposition.ok()) return decomposition.status();
+    plan_.decompositions.push_back(*std::move(decomposition));
+  }
+  return internal::RefineNormalAngles(plan_, options_, vertex_count_, cancel_);
+}
 
 absl::Status Planner::AddVertices(double count) {
   vertex_count_ += count;
@@ -527,7 +541,8 @@ absl::Status Planner::AddSurface(uint32_t index, const TensorForm& form) {
       const double cells_v =
           CellsFor(bounds.vv + bounds.uv, bounds.v, options_);
       if (!(cells_u * cells_v <= static_cast<double>(options_.max_vertices)) ||
-          cells_u > kMaxCells || cells_v > kMaxCells) {
+          cells_u > internal::kMaxMeshCells ||
+          cells_v > internal::kMaxMeshCells) {
         return internal::TessellationTooLarge("vertices",
                                               options_.max_vertices);
       }
@@ -554,6 +569,11 @@ absl::Status Planner::AddSurface(uint32_t index, const TensorForm& form) {
 
 absl::StatusOr<std::shared_ptr<const MeshPlan>> Planner::Finish() {
   plan_.edges = std::move(edges_.edges());
+  if (options_.max_normal_angle > 0.0) {
+    if (absl::Status status = RefineNormalAngles(); !status.ok()) {
+      return status;
+    }
+  }
   plan_.size = {.vertices = static_cast<size_t>(vertex_count_),
                 .triangles = PlannedTriangles(plan_)};
   for (const Surface& surface : plan_.surfaces) {
@@ -571,8 +591,17 @@ absl::Status ValidateOptions(const MeshOptions& options) {
     return status;
   }
   if (options.max_edge_length != 0.0) {
-    return internal::ValidatePositive(options.max_edge_length,
-                                      "max_edge_length");
+    if (absl::Status status = internal::ValidatePositive(
+            options.max_edge_length, "max_edge_length");
+        !status.ok()) {
+      return status;
+    }
+  }
+  if (options.max_normal_angle != 0.0 &&
+      !(options.max_normal_angle > 0.0 &&
+        options.max_normal_angle < std::numbers::pi)) {
+    return InvalidFieldError("max_normal_angle",
+                             "must be above 0 and below pi (radians)");
   }
   return absl::OkStatus();
 }

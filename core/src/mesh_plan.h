@@ -9,12 +9,18 @@
 #include <cstdint>
 #include <vector>
 
+#include "absl/status/status.h"
 #include "absl/types/span.h"
+#include "freeform/core/cancellation.h"
 #include "freeform/core/mesh.h"
 #include "freeform/core/surface.h"
 
 namespace freeform {
 namespace internal {
+
+// Grid cells or side segments beyond this are refused (they would not fit
+// the 32-bit vertex indices anyway).
+inline constexpr double kMaxMeshCells = 1 << 30;
 
 // A piece side: bottom (v = 0), right (u = 1), top (v = 1), left (u = 0);
 // its curve runs in the direction of increasing parameter.
@@ -45,12 +51,31 @@ class MeshPlan {
   absl::Span<const Surface> surfaces;
   std::vector<internal::PiecePlan> pieces;
   std::vector<internal::EdgePlan> edges;
+  // The Bezier pieces of every surface (DecomposeSurface) when planning
+  // evaluated them (a normal-angle limit), else empty: TessellatePlanned
+  // cuts the surfaces itself then.
+  std::vector<SurfaceDecomposition> decompositions;
   MeshSize size;
   uint64_t piece_values = 0;
   // The largest absolute control-point coordinate (the welding scale).
   double scale = 0.0;
 };
 
+namespace internal {
+
+// RefineNormalAngles raises the grids of plan.pieces and the segments of
+// plan.edges until the unit normals at the two ends of every edge the
+// builder will make differ by at most options.max_normal_angle
+// (mesh_angle.cc), evaluating plan.decompositions, which must hold every
+// surface's pieces. `vertex_count` is the planned vertex count, kept up to
+// date. Fails with RESOURCE_EXHAUSTED naming "max_normal_angle" when more
+// than options.max_vertices vertices would be needed, and with the token's
+// CANCELLED / DEADLINE_EXCEEDED.
+absl::Status RefineNormalAngles(MeshPlan& plan, const MeshOptions& options,
+                                double& vertex_count,
+                                const CancellationToken* cancel);
+
+}  // namespace internal
 }  // namespace freeform
 
 #endif  // FREEFORM_CORE_SRC_MESH_PLAN_H_

@@ -7,6 +7,8 @@
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -403,46 +405,107 @@ TEST_F(CliQueriesTest, CombsRefuseCurvesThatAreNotPlanar) {
   unlink(file.c_str());
 }
 
-// tessellate --surface --stl writes the closed NURBS torus of
-// examples/torus_mesh.json (radii 3 and 1) as binary STL: 84 + 50 bytes per
-// triangle, every vertex on the torus (to float precision), unit facet
-// normals pointing out of the tube or into it consistently.
-TEST_F(CliQueriesTest, MeshesATorusAsBinaryStl) {
+// StlTriangles runs `command` (a tessellate --surface) with --stl to a
+// temporary file and returns the triangles it wrote: the facet normal and
+// the three corners, 12 floats each.
+std::vector<std::array<float, 12>> StlTriangles(const std::string& command) {
   const std::string path = WriteTempFile("");
-  const CommandResult result = RunCommand(
-      Cli(absl::StrCat("tessellate --surface --file ",
-                       Example("torus_mesh.json"), " --stl ", path)));
-  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const CommandResult result =
+      RunCommand(absl::StrCat(command, " --stl ", path));
+  EXPECT_EQ(result.exit_code, 0) << result.output;
   std::ifstream file(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(file)),
                           std::istreambuf_iterator<char>());
-  ASSERT_GE(bytes.size(), 84u);
+  unlink(path.c_str());
+  if (bytes.size() < 84u) {
+    ADD_FAILURE() << "no STL header";
+    return {};
+  }
   uint32_t count = 0;
   std::memcpy(&count, bytes.data() + 80, 4);
-  EXPECT_GT(count, 1000u);
-  ASSERT_EQ(bytes.size(), 84u + 50u * count);
-  int outward = 0;
+  if (bytes.size() != 84u + 50u * count) {
+    ADD_FAILURE() << bytes.size() << " bytes for " << count << " triangles";
+    return {};
+  }
+  std::vector<std::array<float, 12>> triangles(count);
   for (uint32_t t = 0; t < count; ++t) {
-    float values[12];
-    std::memcpy(values, bytes.data() + 84 + 50 * t, sizeof values);
+    std::memcpy(triangles[t].data(), bytes.data() + 84 + 50 * t,
+                sizeof(triangles[t]));
+  }
+  return triangles;
+}
+
+// The unit vector from the torus's tube centre circle (radius 3) to p.
+std::array<double, 3> AwayFromTube(const float* p) {
+  const double ring = std::hypot(p[0], p[1]);
+  const double away[3] = {p[0] - 3.0 * p[0] / ring, p[1] - 3.0 * p[1] / ring,
+                          p[2]};
+  const double length = std::hypot(away[0], away[1], away[2]);
+  return {away[0] / length, away[1] / length, away[2] / length};
+}
+
+// tessellate --surface --stl writes the closed NURBS torus of
+// examples/torus_mesh.json (radii 3 and 1) as binary STL:
+// 84 + 50 bytes per triangle, every vertex on the torus (to float
+// precision), unit facet normals pointing out of the tube or into it
+// consistently.
+TEST_F(CliQueriesTest, MeshesATorusAsBinaryStl) {
+  const std::vector<std::array<float, 12>> triangles = StlTriangles(
+      Cli("tessellate --surface --file " + Example("torus_mesh.json")));
+  EXPECT_GT(triangles.size(), 1000u);
+  int outward = 0;
+  for (const std::array<float, 12>& values : triangles) {
     EXPECT_NEAR(std::hypot(values[0], values[1], values[2]), 1.0, 1e-6);
-    double centroid[3] = {0, 0, 0};
+    float centroid[3] = {0, 0, 0};
     for (int k = 0; k < 3; ++k) {
-      const float* p = values + 3 + 3 * k;
+      const float* p = values.data() + 3 + 3 * k;
       EXPECT_NEAR(std::hypot(std::hypot(p[0], p[1]) - 3.0, p[2]), 1.0, 1e-5);
       for (int x = 0; x < 3; ++x) centroid[x] += p[x] / 3;
     }
     // Away from the tube's centre circle, or towards it.
-    const double ring = std::hypot(centroid[0], centroid[1]);
-    const double away[3] = {centroid[0] - 3.0 * centroid[0] / ring,
-                            centroid[1] - 3.0 * centroid[1] / ring,
-                            centroid[2]};
+    const std::array<double, 3> away = AwayFromTube(centroid);
     outward +=
         away[0] * values[0] + away[1] * values[1] + away[2] * values[2] > 0
             ? 1
             : -1;
   }
-  EXPECT_EQ(std::abs(outward), static_cast<int>(count));
+  EXPECT_EQ(std::abs(outward), static_cast<int>(triangles.size()));
+}
+
+// --max-normal-angle sets the request's limit: more triangles, and the
+// torus's exact normals at the ends of every edge within 0.05 rad (to float
+// precision); without --surface, or 0, it is refused.
+TEST_F(CliQueriesTest, MeshesATorusWithinANormalAngle) {
+  const std::string command =
+      Cli("tessellate --surface --file " + Example("torus_mesh.json"));
+  const size_t plain = StlTriangles(command).size();
+  const std::vector<std::array<float, 12>> triangles =
+      StlTriangles(command + " --max-normal-angle 0.05");
+  EXPECT_GT(triangles.size(), plain);
+  double worst = 0.0;
+  for (const std::array<float, 12>& values : triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const std::array<double, 3> a = AwayFromTube(values.data() + 3 + 3 * k);
+      const std::array<double, 3> b =
+          AwayFromTube(values.data() + 3 + 3 * ((k + 1) % 3));
+      const double cross =
+          std::hypot(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                     a[0] * b[1] - a[1] * b[0]);
+      worst = std::max(
+          worst, std::atan2(cross, a[0] * b[0] + a[1] * b[1] + a[2] * b[2]));
+    }
+  }
+  EXPECT_LE(worst, 0.05 + 1e-5);
+  const CommandResult zero = RunCommand(
+      Cli(absl::StrCat("tessellate --surface --max-normal-angle 0 --file ",
+                       Example("torus_mesh.json"))));
+  EXPECT_EQ(zero.exit_code, 1) << zero.output;
+  EXPECT_THAT(zero.output, HasSubstr("max_normal_angle"));
+  const CommandResult curve =
+      RunCommand(Cli(absl::StrCat("tessellate --max-normal-angle 0.05 --file ",
+                                  Example("nurbs_circle_polyline.json"))));
+  EXPECT_EQ(curve.exit_code, 2) << curve.output;
+  EXPECT_THAT(curve.output, HasSubstr("needs --surface"));
 }
 
 }  // namespace

@@ -3,12 +3,16 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "../core/test_util.h"
 #include "in_process_server.h"
@@ -266,37 +270,65 @@ TEST_F(RefinementTest, TessellatesLagrangeAndHermiteCurves) {
   }
 }
 
-// A NURBS torus (the tube circle turned a full turn, nine-point quadratic
-// circles both ways) meshed by the server: every vertex on the torus, and
-// the mesh closed, every edge used by exactly two triangles.
-v1::TessellateSurfaceRequest TorusRequest(double major, double minor) {
+// RevolvedRequest asks to mesh the NURBS surface that turns the profile
+// (rho_i, z_i, weight w_i) with quadratic `profile_knots` a full turn about
+// z with the nine-point circle: P_ij = (rho_i x_j, rho_i y_j, z_i), w_ij =
+// w_i c_j.
+v1::TessellateSurfaceRequest RevolvedRequest(
+    const std::vector<std::array<double, 3>>& profile,
+    std::initializer_list<double> profile_knots) {
   const double s = std::numbers::sqrt2 / 2;
   const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
   const double cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
   const double cw[9] = {1, s, 1, s, 1, s, 1, s, 1};
   v1::TessellateSurfaceRequest request;
-  v1::BSplineSurface* torus = request.add_surfaces()->mutable_bspline();
-  torus->set_degree_u(2);
-  torus->set_degree_v(2);
-  torus->mutable_control_net()->set_dimension(3);
-  torus->mutable_control_net()->set_count_u(9);
-  torus->mutable_control_net()->set_count_v(9);
-  for (int i = 0; i < 9; ++i) {
-    const double rho = major + minor * cx[i], z = minor * cy[i];
+  v1::BSplineSurface* surface = request.add_surfaces()->mutable_bspline();
+  surface->set_degree_u(2);
+  surface->set_degree_v(2);
+  surface->mutable_control_net()->set_dimension(3);
+  surface->mutable_control_net()->set_count_u(static_cast<int>(profile.size()));
+  surface->mutable_control_net()->set_count_v(9);
+  for (const auto& [rho, z, w] : profile) {
     for (int j = 0; j < 9; ++j) {
-      Append(torus->mutable_control_net()->mutable_coordinates(),
+      Append(surface->mutable_control_net()->mutable_coordinates(),
              {rho * cx[j], rho * cy[j], z});
-      torus->add_weights(cw[i] * cw[j]);
+      surface->add_weights(w * cw[j]);
     }
   }
+  surface->mutable_knots_u()->Add(profile_knots.begin(), profile_knots.end());
   for (const double knot :
        {0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0}) {
-    torus->add_knots_u(knot);
-    torus->add_knots_v(knot);
+    surface->add_knots_v(knot);
   }
   return request;
 }
 
+// A NURBS torus: the tube circle turned a full turn, nine-point quadratic
+// circles both ways.
+v1::TessellateSurfaceRequest TorusRequest(double major, double minor) {
+  const double s = std::numbers::sqrt2 / 2;
+  const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
+  const double cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
+  const double cw[9] = {1, s, 1, s, 1, s, 1, s, 1};
+  std::vector<std::array<double, 3>> profile;
+  for (int i = 0; i < 9; ++i) {
+    profile.push_back({major + minor * cx[i], minor * cy[i], cw[i]});
+  }
+  return RevolvedRequest(profile, {0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75,
+                                   0.75, 1.0, 1.0, 1.0});
+}
+
+// The sphere of `radius` about the origin: a half circle from pole to pole
+// turned a full turn.
+v1::TessellateSurfaceRequest SphereRequest(double radius) {
+  const double r = radius, s = std::numbers::sqrt2 / 2;
+  return RevolvedRequest(
+      {{0, -r, 1}, {r, -r, s}, {r, 0, 1}, {r, r, s}, {0, r, 1}},
+      {0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0});
+}
+
+// The torus meshed by the server: every vertex on the torus, and the mesh
+// closed, every edge used by exactly two triangles.
 TEST_F(RefinementTest, TessellatesAClosedNurbsTorus) {
   v1::TessellateSurfaceRequest request = TorusRequest(3.0, 1.0);
   request.set_tolerance(1e-3);
@@ -346,6 +378,72 @@ TEST_F(RefinementTest, TessellatesAClosedNurbsTorus) {
   request.mutable_surfaces(0)->mutable_bspline()->set_weights(40, 0.0);
   ExpectInvalid(client_->TessellateSurfaces(request).status(),
                 "surfaces[0].bspline.weights[40]", true);
+}
+
+// The angle between the vectors a and b.
+double Angle(const double* a, const double* b) {
+  const double cross[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                           a[0] * b[1] - a[1] * b[0]};
+  return std::atan2(std::hypot(cross[0], cross[1], cross[2]),
+                    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]);
+}
+
+// A sphere meshed within a normal angle by the server: the vertex normals
+// are the sphere's exact ones, p / r, and no edge's end normals differ by
+// more than the limit; the limit costs vertices, and a cap below them is
+// refused naming it.
+TEST_F(RefinementTest, TessellatesASphereWithinANormalAngle) {
+  constexpr double kRadius = 2.0, kLimit = 0.05;
+  v1::TessellateSurfaceRequest request = SphereRequest(kRadius);
+  request.set_tolerance(1e-2);
+  request.set_normals(true);
+  absl::StatusOr<v1::TessellateSurfaceResponse> plain =
+      client_->TessellateSurfaces(request);
+  ASSERT_TRUE(plain.ok()) << plain.status();
+  request.set_max_normal_angle(kLimit);
+  absl::StatusOr<v1::TessellateSurfaceResponse> mesh =
+      client_->TessellateSurfaces(request);
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  const auto& xyz = mesh->vertices().coordinates();
+  const auto& normals = mesh->normals().coordinates();
+  const int vertices = xyz.size() / 3;
+  ASSERT_EQ(normals.size(), xyz.size());
+  EXPECT_GT(vertices, plain->vertices().coordinates_size() / 3);
+  const double sign =
+      normals[0] * xyz[0] + normals[1] * xyz[1] + normals[2] * xyz[2] > 0
+          ? 1.0
+          : -1.0;
+  for (int r = 0; r < vertices; ++r) {
+    const double* p = &xyz[3 * r];
+    EXPECT_NEAR(std::hypot(p[0], p[1], p[2]), kRadius, 1e-12);
+    const double outward[3] = {sign * normals[3 * r], sign * normals[3 * r + 1],
+                               sign * normals[3 * r + 2]};
+    EXPECT_LE(Angle(p, outward), 1e-9) << r;
+  }
+  double worst = 0.0;
+  for (int t = 0; t < mesh->triangles_size(); t += 3) {
+    for (int e = 0; e < 3; ++e) {
+      const int a = 3 * static_cast<int>(mesh->triangles(t + e));
+      const int b = 3 * static_cast<int>(mesh->triangles(t + (e + 1) % 3));
+      worst = std::max(worst, Angle(&xyz[a], &xyz[b]));
+    }
+  }
+  EXPECT_LE(worst, kLimit + 1e-9);
+  EXPECT_GT(worst, kLimit / 2);
+
+  // Twice the vertices of the plain mesh fit its plan, not the limit's.
+  request.set_max_vertices(
+      static_cast<uint32_t>(2 * plain->vertices().coordinates_size() / 3));
+  const absl::Status capped = client_->TessellateSurfaces(request).status();
+  EXPECT_EQ(capped.code(), absl::StatusCode::kResourceExhausted) << capped;
+  ASSERT_EQ(FieldViolationsOf(capped).size(), 1u) << capped;
+  EXPECT_EQ(FieldViolationsOf(capped)[0].field, "max_normal_angle");
+  request.clear_max_vertices();
+  for (const double angle : {0.0, -0.1, 4.0, std::nan("")}) {
+    request.set_max_normal_angle(angle);
+    ExpectInvalid(client_->TessellateSurfaces(request).status(),
+                  "max_normal_angle");
+  }
 }
 
 TEST_F(RefinementTest, TessellatesTriangularAndHermitePatchesTogether) {

@@ -23,6 +23,30 @@
 // must be positive). An optional longest edge adds cells from bounds on the
 // first partials.
 //
+// An optional normal-angle limit is met by checking the plan, not by a
+// bound: after the counts above are chosen, PlanMesh cuts the surfaces into
+// their pieces (kept in the plan for TessellatePlanned), evaluates the unit
+// normals at the two ends of every edge the mesh will have (the planner
+// enumerates grid, side and ring edges with the builder's own code) and
+// raises the grid of a piece, or the segments of a side, where an edge's
+// normals differ by more than the limit, checking again until none does.
+// Guaranteed, to rounding: for every triangle, the unit normals of its
+// surface at its three corners (Mesh::corner_uv; at a point where S_u x S_v
+// vanishes, the limit from inside the triangle's piece) are pairwise within
+// the limit. These are the vertex normals (Mesh::normals) except at a vertex
+// whose surfaces disagree on the normal, which carries the normal of the
+// piece that made it: where surfaces meet at an angle (a crease, or a
+// corner point they touch at, as the Utah teapot's handle touches its
+// body; also pieces at a knot of multiplicity p, where a B-spline surface
+// may be only C0) and on a collapsed side whose limit normal varies along
+// it (a cone's apex; a sphere's pole has one normal). Points where the
+// surface has no normal at all (a zero normal) are exempt. Refinement ends
+// where the normals, limits included, are continuous on every closed piece;
+// where they are not (a degenerate corner whose limit depends on the
+// direction of approach) the plan reaches the vertex cap. Grids stay
+// uniform per piece, so a piece whose normal turns fast in a small part (the
+// lip of the teapot's spout) is refined all over.
+//
 // Sides shared by pieces are sampled once, with the largest segment count
 // any of their pieces needs, so the mesh has no T-junctions: neighbouring
 // span rectangles of a B-spline surface share their knot lines, and the
@@ -83,6 +107,9 @@ struct MeshOptions {
   double tolerance = 0.0;
   // Longest triangle edge, 0 for no limit (else > 0).
   double max_edge_length = 0.0;
+  // Largest angle in radians between the unit normals at the two ends of a
+  // triangle edge (see above), 0 for no limit (else in (0, pi)).
+  double max_normal_angle = 0.0;
   // More vertices than this are refused (RESOURCE_EXHAUSTED).
   size_t max_vertices = 0;
 };
@@ -91,16 +118,19 @@ class MeshPlan;
 
 // PlanMesh checks `surfaces` and `options` and chooses every piece's grid
 // and every side's sampling, so the size of the mesh is known before any
-// vertex is made; costs one pass over the control nets. The surfaces must
-// outlive the plan. Fails with INVALID_ARGUMENT naming
+// vertex is made; costs one pass over the control nets, and with a
+// normal-angle limit the Bezier pieces of the surfaces (held by the plan)
+// and the normals at a small multiple of the planned vertices. The surfaces
+// must outlive the plan. Fails with INVALID_ARGUMENT naming
 // "surfaces[i].<kind>.<field>" for a surface that is not 3D
 // ("...control_net.dimension" or "...control_points.dimension") or has a
 // weight that is not positive ("...weights[k]"), "tolerance" or
 // "max_edge_length" (not positive and finite; a tolerance below 2^-48 of a
-// surface's largest coordinate cannot be met in double precision),
-// RESOURCE_EXHAUSTED naming "tolerance" when more than options.max_vertices
-// vertices would be needed, and with the token's CANCELLED /
-// DEADLINE_EXCEEDED.
+// surface's largest coordinate cannot be met in double precision) or
+// "max_normal_angle" (not in (0, pi)), RESOURCE_EXHAUSTED when more than
+// options.max_vertices vertices would be needed, naming "max_normal_angle"
+// when the normal-angle refinement needs them and "tolerance" otherwise,
+// and with the token's CANCELLED / DEADLINE_EXCEEDED.
 absl::StatusOr<std::shared_ptr<const MeshPlan>> PlanMesh(
     absl::Span<const Surface> surfaces, const MeshOptions& options,
     const CancellationToken* cancel = nullptr);
@@ -111,7 +141,8 @@ MeshSize PlannedMeshSize(const MeshPlan& plan);
 
 // PlannedPieceValues returns an upper bound of the doubles of the Bezier
 // pieces TessellatePlanned holds while it works (SurfacePieceValues of every
-// surface): its working memory beside the mesh.
+// surface): its working memory beside the mesh. With a normal-angle limit
+// the plan holds them from PlanMesh on.
 uint64_t PlannedPieceValues(const MeshPlan& plan);
 
 // TessellatePlanned makes the planned mesh: within the tolerance of the
