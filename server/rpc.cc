@@ -67,14 +67,15 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
   UnaryCall(RpcFrame* frame, absl::string_view method,
             grpc::CallbackServerContext* context,
             const google::protobuf::Message* request,
-            google::protobuf::Message* response, UnaryPlanner planner)
-      : record_(frame, method, context, request),
+            google::protobuf::Message* response, UnaryPlanner planner,
+            Planning planning)
+      : record_(frame, method, context, request, planning),
         response_(response),
         planner_(std::move(planner)) {}
 
   void Start() {
     if (record_.frame().draining()) return Answer(DrainingError());
-    if (record_.request_bytes() > kInlinePlanningBytes) {
+    if (record_.PlanOnPool()) {
       if (!record_.Schedule([this] { PlanAndRun(/*on_pool=*/true); })) {
         Answer(QueueFullError());
       }
@@ -187,12 +188,14 @@ bool AllFinite(const google::protobuf::Message& message) {
 
 CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
                        grpc::CallbackServerContext* context,
-                       const google::protobuf::Message* request)
+                       const google::protobuf::Message* request,
+                       Planning planning)
     : frame_(frame),
       method_(method),
       context_(context),
       request_(request),
       request_bytes_(request->ByteSizeLong()),
+      planning_(planning),
       started_(std::chrono::steady_clock::now()) {
   WatchCall(*context, token_);
   frame_->calls_in_flight_.fetch_add(1, std::memory_order_acq_rel);
@@ -240,6 +243,11 @@ absl::Status CallRecord::CheckAnswer(
   return absl::OkStatus();
 }
 
+bool CallRecord::PlanOnPool() const {
+  return planning_ == Planning::kOnPool ||
+         request_bytes_ > kInlinePlanningBytes;
+}
+
 bool CallRecord::Schedule(absl::AnyInvocable<void() &&> task) {
   return frame_->pool()->TrySchedule(std::move(task));
 }
@@ -273,9 +281,10 @@ size_t RpcFrame::chunks_in_flight() const {
 grpc::ServerUnaryReactor* RpcFrame::Unary(
     absl::string_view method, grpc::CallbackServerContext* context,
     const google::protobuf::Message* request,
-    google::protobuf::Message* response, UnaryPlanner planner) {
+    google::protobuf::Message* response, UnaryPlanner planner,
+    Planning planning) {
   auto* call = new UnaryCall(this, method, context, request, response,
-                             std::move(planner));
+                             std::move(planner), planning);
   HandOffToGrpc(call);  // to OnCancel
   call->Start();
   return call;

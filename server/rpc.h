@@ -107,12 +107,19 @@ inline constexpr size_t kMaxChunksInFlight = 17;
 
 class RpcFrame;
 
+// Where a call's planner runs. A planner is cheap (a pass over the request)
+// unless the request says otherwise: kByRequestSize plans small requests on
+// the gRPC thread and larger ones on the pool; kOnPool always plans on the
+// pool, for planners whose work grows with the answer (a mesh within a
+// normal-angle limit).
+enum class Planning { kByRequestSize, kOnPool };
+
 // The bookkeeping every call shares: token, timing, reservation, log line.
 class CallRecord {
  public:
   CallRecord(RpcFrame* frame, absl::string_view method,
              grpc::CallbackServerContext* context,
-             const google::protobuf::Message* request);
+             const google::protobuf::Message* request, Planning planning);
   ~CallRecord();
   CallRecord(const CallRecord&) = delete;
   CallRecord& operator=(const CallRecord&) = delete;
@@ -124,6 +131,8 @@ class CallRecord {
   // since the chunks in flight already keep the pool busy.
   ExecutionContext chunk_execution() const;
   size_t request_bytes() const { return request_bytes_; }
+  // PlanOnPool says whether the planner runs on the pool.
+  bool PlanOnPool() const;
   // Reserve takes the plan's memory from the budget.
   absl::Status Reserve(const CallPlan& plan);
   // CheckAnswer returns INVALID_ARGUMENT on the request's geometry when
@@ -144,6 +153,7 @@ class CallRecord {
   grpc::CallbackServerContext* const context_;
   const google::protobuf::Message* const request_;
   const size_t request_bytes_;
+  const Planning planning_;
   uint64_t planned_bytes_ = 0;
   const std::chrono::steady_clock::time_point started_;
   CancellationToken token_;
@@ -181,14 +191,15 @@ class RpcFrame {
                                   grpc::CallbackServerContext* context,
                                   const google::protobuf::Message* request,
                                   google::protobuf::Message* response,
-                                  UnaryPlanner planner);
+                                  UnaryPlanner planner,
+                                  Planning planning = Planning::kByRequestSize);
 
   // Stream serves a server-streaming call whose handler is `planner`.
   template <typename Response>
   grpc::ServerWriteReactor<Response>* Stream(
       absl::string_view method, grpc::CallbackServerContext* context,
-      const google::protobuf::Message* request,
-      StreamPlanner<Response> planner);
+      const google::protobuf::Message* request, StreamPlanner<Response> planner,
+      Planning planning = Planning::kByRequestSize);
 
  private:
   friend class CallRecord;
@@ -249,14 +260,14 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
   StreamCall(RpcFrame* frame, absl::string_view method,
              grpc::CallbackServerContext* context,
              const google::protobuf::Message* request,
-             StreamPlanner<Response> planner)
-      : record_(frame, method, context, request),
+             StreamPlanner<Response> planner, Planning planning)
+      : record_(frame, method, context, request, planning),
         planner_(std::move(planner)),
         slots_(frame->chunks_in_flight()) {}
 
   void Start() {
     if (record_.frame().draining()) return Fail(DrainingError());
-    if (record_.request_bytes() > kInlinePlanningBytes) {
+    if (record_.PlanOnPool()) {
       if (!record_.Schedule([this] { Plan(); })) Fail(QueueFullError());
       return;
     }
@@ -438,9 +449,10 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
 template <typename Response>
 grpc::ServerWriteReactor<Response>* RpcFrame::Stream(
     absl::string_view method, grpc::CallbackServerContext* context,
-    const google::protobuf::Message* request, StreamPlanner<Response> planner) {
+    const google::protobuf::Message* request, StreamPlanner<Response> planner,
+    Planning planning) {
   auto* call = new StreamCall<Response>(this, method, context, request,
-                                        std::move(planner));
+                                        std::move(planner), planning);
   HandOffToGrpc(call);  // to OnCancel
   call->Start();
   return call;

@@ -211,6 +211,13 @@ std::string DimensionField(const v1::Surface& message) {
   }
 }
 
+// MeshPlanning says where a mesh request is planned: on the pool when a
+// normal-angle limit makes planning evaluate the surfaces.
+Planning MeshPlanning(const v1::TessellateSurfaceRequest& request) {
+  return request.has_max_normal_angle() ? Planning::kOnPool
+                                        : Planning::kByRequestSize;
+}
+
 // PrepareMesh checks and plans a mesh request; `cancel` stops the planning
 // (which evaluates the surfaces when there is a normal-angle limit).
 absl::StatusOr<MeshInput> PrepareMesh(
@@ -341,7 +348,8 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Tessellate(
                        0, mesh->triangles.size() / 3, *response);
               return absl::OkStatus();
             }};
-      });
+      },
+      MeshPlanning(*request));
 }
 
 grpc::ServerWriteReactor<v1::TessellateSurfaceResponse>*
@@ -408,7 +416,8 @@ SurfaceServiceImpl::TessellateStream(
                   }
                   return absl::OkStatus();
                 }};
-      });
+      },
+      MeshPlanning(*request));
 }
 
 }  // namespace freeform::server

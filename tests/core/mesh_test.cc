@@ -924,7 +924,7 @@ TEST(MeshTest, NormalAngleLimitOnSphereAndTorus) {
 TEST(MeshTest, NormalAngleLimitOnTeapot) {
   const Teapot teapot = MakeTeapot();
   const std::vector<LimitedMesh> meshes = MeshesWithNormalAngles(
-      teapot.shapes, 1e-2, {0.2, 0.1}, TeapotDistance,
+      teapot.shapes, 1e-2, {0.3, 0.2}, TeapotDistance,
       [&](uint32_t patch, const double* a, const double* b) {
         return teapot.OnUnsharedSide(patch, a, b);
       });
