@@ -263,11 +263,6 @@ absl::Status CheckParameter(double value, const ParameterDomain& domain,
                           domain.end, "]"));
 }
 
-absl::Status CheckTolerance(double tolerance) {
-  if (std::isfinite(tolerance) && tolerance > 0.0) return absl::OkStatus();
-  return InvalidFieldError("tolerance", "must be positive and finite");
-}
-
 absl::Status CheckInterval(const Curve& curve, double start, double end,
                            double tolerance) {
   const ParameterDomain domain = DomainOf(curve);
@@ -279,7 +274,7 @@ absl::Status CheckInterval(const Curve& curve, double start, double end,
     return status;
   }
   if (end < start) return InvalidFieldError("end", "must not be below start");
-  return CheckTolerance(tolerance);
+  return ValidatePositive(tolerance, "tolerance");
 }
 
 absl::Status CheckOutputSize(absl::Span<double> parameters, size_t expected) {
@@ -377,7 +372,8 @@ absl::Status ArcLengths(const Curve& curve, absl::Span<const double> intervals,
   if (absl::Status status = CheckOutputSize(lengths, count); !status.ok()) {
     return status;
   }
-  if (absl::Status status = CheckTolerance(tolerance); !status.ok()) {
+  if (absl::Status status = ValidatePositive(tolerance, "tolerance");
+      !status.ok()) {
     return status;
   }
   for (size_t i = 0; i < count; ++i) {

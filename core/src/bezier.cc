@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "binomial.h"
 #include "curve_reference.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
@@ -12,7 +13,6 @@
 #include "validated.h"
 
 namespace freeform {
-namespace {}  // namespace
 
 absl::Status ValidateBezierCurve(const BezierCurveView& curve) {
   if (absl::Status status =
@@ -165,23 +165,13 @@ BezierAlgorithm ResolveBezierAlgorithm(BezierAlgorithm algorithm, int degree) {
                                         : BezierAlgorithm::kDeCasteljau;
 }
 
-namespace {
-
-double Binomial(int n, int k) {
-  double result = 1.0;
-  for (int i = 1; i <= k; ++i) result = result * (n - k + i) / i;
-  return result;
-}
-
-}  // namespace
-
 std::vector<double> PowerToBezier(const PointsView& coefficients) {
   const size_t dim = static_cast<size_t>(coefficients.dimension);
   const int n = static_cast<int>(coefficients.size()) - 1;
   std::vector<double> control(coefficients.coordinates.size(), 0.0);
   for (int i = 0; i <= n; ++i) {
     for (int j = 0; j <= i; ++j) {
-      const double factor = Binomial(i, j) / Binomial(n, j);
+      const double factor = internal::Binomial(i, j) / internal::Binomial(n, j);
       const double* a = coefficients.point(static_cast<size_t>(j));
       for (size_t x = 0; x < dim; ++x) control[i * dim + x] += factor * a[x];
     }
@@ -196,7 +186,8 @@ std::vector<double> BezierToPower(const PointsView& control_points) {
   for (int j = 0; j <= n; ++j) {
     for (int i = 0; i <= j; ++i) {
       const double sign = (j - i) % 2 == 0 ? 1.0 : -1.0;
-      const double factor = sign * Binomial(n, j) * Binomial(j, i);
+      const double factor =
+          sign * internal::Binomial(n, j) * internal::Binomial(j, i);
       const double* p = control_points.point(static_cast<size_t>(i));
       for (size_t x = 0; x < dim; ++x) {
         coefficients[j * dim + x] += factor * p[x];

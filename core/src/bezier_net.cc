@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "freeform/core/bezier.h"
+#include "freeform/core/points.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
@@ -285,12 +286,6 @@ bool Project(const Net& net, std::vector<double>& points) {
   return positive;
 }
 
-double Distance(const double* a, const double* b, int dimension) {
-  double sum = 0.0;
-  for (int x = 0; x < dimension; ++x) sum += (a[x] - b[x]) * (a[x] - b[x]);
-  return std::sqrt(sum);
-}
-
 absl::Status CheckTolerances(double tolerance, double separation) {
   if (!std::isfinite(tolerance) || tolerance <= 0.0) {
     return InvalidFieldError("tolerance", "must be positive and finite");
@@ -323,7 +318,7 @@ double BoxDiameter(absl::Span<const double> points, int dimension) {
 
 double DirectionalBound(absl::Span<const double> points, int dimension,
                         const double* query, const double* toward) {
-  const double length = Distance(query, toward, dimension);
+  const double length = PointDistance(query, toward, dimension);
   if (!(length > 0.0)) return 0.0;
   double bound = std::numeric_limits<double>::infinity();
   for (size_t k = 0; k < points.size(); k += static_cast<size_t>(dimension)) {

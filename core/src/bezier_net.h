@@ -73,9 +73,6 @@ bool Project(const Net& net, std::vector<double>& points);
 // Point writes the Cartesian point (i, j); returns false at a weight <= 0.
 bool Point(const Net& net, int i, int j, double* point);
 
-// Distance returns |a - b| of two points of `dimension` coordinates.
-double Distance(const double* a, const double* b, int dimension);
-
 // CheckTolerances checks the options the queries share: a positive finite
 // "tolerance" and a finite "separation" >= 0.
 absl::Status CheckTolerances(double tolerance, double separation);

@@ -175,11 +175,6 @@ absl::StatusOr<BoundingBox> BoxOf(const std::vector<Net>& nets,
   return box;
 }
 
-absl::Status CheckTolerance(double tolerance) {
-  if (std::isfinite(tolerance) && tolerance > 0.0) return absl::OkStatus();
-  return InvalidFieldError("tolerance", "must be positive and finite");
-}
-
 // A Bezier curve as a net of one column.
 SurfaceData ColumnOf(BezierCurveData curve) {
   const int count =
@@ -211,7 +206,8 @@ TriangularPatchData PatchOf(const TriangularPatchView& view) {
 absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
                                              double tolerance,
                                              const CancellationToken* cancel) {
-  if (absl::Status status = CheckTolerance(tolerance); !status.ok()) {
+  if (absl::Status status = ValidatePositive(tolerance, "tolerance");
+      !status.ok()) {
     return status;
   }
   absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve, cancel);
@@ -225,7 +221,8 @@ absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
 
 absl::StatusOr<BoundingBox> SurfaceBoundingBox(
     const Surface& surface, double tolerance, const CancellationToken* cancel) {
-  if (absl::Status status = CheckTolerance(tolerance); !status.ok()) {
+  if (absl::Status status = ValidatePositive(tolerance, "tolerance");
+      !status.ok()) {
     return status;
   }
   // A triangular patch is halved as a triangle (BisectTriangularPatch), a

@@ -12,12 +12,12 @@
 #include "absl/strings/str_cat.h"
 #include "bezier_net.h"
 #include "freeform/core/cancellation.h"
+#include "freeform/core/points.h"
 #include "freeform/core/status.h"
 
 namespace freeform {
 namespace {
 
-using internal::Distance;
 using internal::LocalModel;
 using internal::Net;
 using internal::NetEvaluator;
@@ -124,7 +124,7 @@ Prepared::Prepared(const Pieces& pieces_in) : pieces(pieces_in) {
       middle[x * padded + k] = 0.5 * (lo[x] + hi[x]);
       half[x * padded + k] = 0.5 * (hi[x] - lo[x]);
     }
-    diameter[k] = Distance(lo.data(), hi.data(), pieces.dimension);
+    diameter[k] = PointDistance(lo.data(), hi.data(), pieces.dimension);
     double widest = 0.0;
     for (size_t i = 0; i < points.size(); i += dim) {
       double sum = 0.0;
@@ -391,7 +391,7 @@ Node Search::MakeNode(size_t piece, const double* lo, const double* hi,
   for (int i : {0, nu - 1}) {
     for (int j : {0, nv - 1}) {
       if (!internal::Point(net, i, j, point)) continue;
-      const double d = Distance(point, query_, dim);
+      const double d = PointDistance(point, query_, dim);
       if (d < node.corner.distance) {
         node.corner.distance = d;
         node.corner.x[0] = i == 0 ? lo[0] : hi[0];
@@ -639,7 +639,7 @@ void Search::Report(size_t r, ClosestPoints& answer) {
       // On a curve a point reached at two parameters (a self-intersection,
       // the seam of a closed curve) is two minima; on a surface one (a
       // collapsed edge such as a pole has many parameters).
-      seen = Distance(point, points + static_cast<size_t>(k) * dim, dim) <=
+      seen = PointDistance(point, points + static_cast<size_t>(k) * dim, dim) <=
                  options_.separation &&
              (pc == 2 ||
               std::abs(t[0] - parameters[k]) <= prepared_.parameter_slack);

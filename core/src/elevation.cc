@@ -373,7 +373,7 @@ absl::Status CheckSurfaceElevation(int by_u, int by_v) {
 
 // A rows x cols net of (homogeneous) points of `dim` values, P[i][j] at
 // (i * cols + j) * dim, with its knot vectors (empty for Bezier).
-struct Net {
+struct NetWithKnots {
   int rows = 0;
   int cols = 0;
   int dim = 0;
@@ -385,7 +385,7 @@ struct Net {
 // ElevateNetU raises the net in u (along its rows index i): the rows are
 // the control points, of cols * dim values each, of one curve. `degree` < 0
 // means Bezier.
-absl::Status ElevateNetU(Net& net, int degree, int by,
+absl::Status ElevateNetU(NetWithKnots& net, int degree, int by,
                          const CancellationToken* cancel) {
   Points rows{net.cols * net.dim, std::move(net.values)};
   if (degree < 0) {
@@ -405,14 +405,14 @@ absl::Status ElevateNetU(Net& net, int degree, int by,
 }
 
 // ElevateNetV raises the net in v by transposing it around ElevateNetU.
-absl::Status ElevateNetV(Net& net, int degree, int by,
+absl::Status ElevateNetV(NetWithKnots& net, int degree, int by,
                          const CancellationToken* cancel) {
-  Net transposed{net.cols,
-                 net.rows,
-                 net.dim,
-                 Transpose(net.values, net.rows, net.cols, net.dim),
-                 std::move(net.knots_v),
-                 {}};
+  NetWithKnots transposed{net.cols,
+                          net.rows,
+                          net.dim,
+                          Transpose(net.values, net.rows, net.cols, net.dim),
+                          std::move(net.knots_v),
+                          {}};
   if (absl::Status status = ElevateNetU(transposed, degree, by, cancel);
       !status.ok()) {
     return status;
@@ -434,12 +434,12 @@ absl::StatusOr<SurfaceData> ElevateSurface(const ControlNetView& view,
                                            int by_v,
                                            const CancellationToken* cancel) {
   Points points = ToPoints({view.dimension, view.coordinates}, weights);
-  Net net{view.count_u,
-          view.count_v,
-          points.dim,
-          std::move(points.values),
-          std::vector<double>(knots_u.begin(), knots_u.end()),
-          std::vector<double>(knots_v.begin(), knots_v.end())};
+  NetWithKnots net{view.count_u,
+                   view.count_v,
+                   points.dim,
+                   std::move(points.values),
+                   std::vector<double>(knots_u.begin(), knots_u.end()),
+                   std::vector<double>(knots_v.begin(), knots_v.end())};
   if (by_u > 0) {
     if (absl::Status status = ElevateNetU(net, degree_u, by_u, cancel);
         !status.ok()) {

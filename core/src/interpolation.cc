@@ -12,6 +12,7 @@
 #include "freeform/core/bspline.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/lagrange.h"
+#include "freeform/core/points.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
 
@@ -160,12 +161,6 @@ bool DenseSolve(int n, Matrix a, double* b, int columns) {
   return true;
 }
 
-double Distance(const double* a, const double* b, int dimension) {
-  double sum = 0;
-  for (int j = 0; j < dimension; ++j) sum += (a[j] - b[j]) * (a[j] - b[j]);
-  return std::sqrt(sum);
-}
-
 // ---------------------------------------------------------- parameters --
 
 // CumulativeParameters returns chord-length (exponent 1) or centripetal
@@ -178,8 +173,8 @@ absl::StatusOr<std::vector<double>> CumulativeParameters(
   const size_t intervals = closed ? count : count - 1;
   std::vector<double> t(intervals + 1, 0.0);
   for (size_t k = 1; k <= intervals; ++k) {
-    const double chord = Distance(points.point(k % count), points.point(k - 1),
-                                  points.dimension);
+    const double chord = PointDistance(points.point(k % count),
+                                       points.point(k - 1), points.dimension);
     if (!(chord > 0)) {
       const size_t repeated = k % count == 0 ? count - 1 : k;
       return InvalidFieldError(
@@ -510,8 +505,8 @@ absl::StatusOr<std::pair<double, double>> Residuals(
   double max = 0, sum = 0;
   for (size_t k = 0; k < points.size(); ++k) {
     const double distance =
-        Distance(values.data() + k * static_cast<size_t>(points.dimension),
-                 points.point(k), points.dimension);
+        PointDistance(values.data() + k * static_cast<size_t>(points.dimension),
+                      points.point(k), points.dimension);
     max = std::max(max, distance);
     sum += distance * distance;
   }
@@ -854,8 +849,8 @@ absl::Status ValidatePeriodicEnds(const PointsView& values) {
   for (double value : values.coordinates) {
     scale = std::max(scale, std::abs(value));
   }
-  const double gap = Distance(values.point(0), values.point(values.size() - 1),
-                              values.dimension);
+  const double gap = PointDistance(
+      values.point(0), values.point(values.size() - 1), values.dimension);
   if (gap > 1e-12 * scale) {
     return InvalidFieldError(
         "points", "a periodic spline needs the last value equal to the first");
@@ -932,7 +927,7 @@ absl::StatusOr<std::vector<double>> GridParameters(
   int used = 0;
   for (int l = 0; l < lines; ++l) {
     for (int k = 1; k < count; ++k) {
-      const double chord = Distance(
+      const double chord = PointDistance(
           along_u ? net.point(k, l) : net.point(l, k),
           along_u ? net.point(k - 1, l) : net.point(l, k - 1), net.dimension);
       line[static_cast<size_t>(k)] = line[static_cast<size_t>(k) - 1] +
@@ -989,9 +984,9 @@ absl::StatusOr<double> SurfaceResidual(const SurfaceInterpolation& result,
   double max = 0;
   const size_t d = static_cast<size_t>(points.dimension);
   for (size_t k = 0; k * d < values.size(); ++k) {
-    max = std::max(
-        max, Distance(values.data() + k * d, points.coordinates.data() + k * d,
-                      points.dimension));
+    max = std::max(max, PointDistance(values.data() + k * d,
+                                      points.coordinates.data() + k * d,
+                                      points.dimension));
   }
   return max;
 }

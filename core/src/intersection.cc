@@ -13,12 +13,12 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "bezier_net.h"
+#include "freeform/core/points.h"
 #include "freeform/core/status.h"
 
 namespace freeform {
 namespace {
 
-using internal::Distance;
 using internal::LocalModel;
 using internal::Net;
 using internal::NetEvaluator;
@@ -128,7 +128,8 @@ PartPtr MakePart(size_t piece, const double* lo, const double* hi, Net net) {
     part->box_hi[x] = std::max(part->box_hi[x], part->points[k]);
   }
   if (part->hull) {
-    part->diameter = Distance(part->box_lo.data(), part->box_hi.data(), dim);
+    part->diameter =
+        PointDistance(part->box_lo.data(), part->box_hi.data(), dim);
     if (part->curve()) part->cone = EdgeCone(part->points, dim);
   }
   return part;
@@ -258,7 +259,7 @@ double Extent(const Pieces& a, const Pieces& b) {
       }
     }
   }
-  const double extent = Distance(lo.data(), hi.data(), a.dimension);
+  const double extent = PointDistance(lo.data(), hi.data(), a.dimension);
   return std::isfinite(extent) ? extent : 0.0;
 }
 
@@ -433,7 +434,7 @@ bool PairSearch::FindOverlap(const Part& a, const Part& b) {
   evaluator_.Evaluate(first_.nets[a.piece], start.s, 0.0, scratch_a_.data());
   std::copy_n(scratch_a_.data(), dim, from.data());
   evaluator_.Evaluate(first_.nets[a.piece], end.s, 0.0, scratch_a_.data());
-  if (Distance(from.data(), scratch_a_.data(), dim) <=
+  if (PointDistance(from.data(), scratch_a_.data(), dim) <=
       std::max(options_.separation, 10.0 * tolerance)) {
     return false;
   }
@@ -542,7 +543,7 @@ const double* PairSearch::PointOf(const Hit& hit) {
 bool PairSearch::SameHit(const Hit& a, const Hit& b) {
   const int dim = first_.dimension;
   point_.assign(PointOf(a), PointOf(a) + dim);
-  if (Distance(point_.data(), PointOf(b), dim) <=
+  if (PointDistance(point_.data(), PointOf(b), dim) <=
       std::max(options_.separation, options_.tolerance)) {
     return true;
   }

@@ -24,13 +24,6 @@ using internal::LineReference;
 // The work a pass does on its remover: Remove or Simplify.
 using Work = absl::FunctionRef<absl::Status(KnotRemover&, CancellationPoll&)>;
 
-absl::Status CheckTolerance(double tolerance) {
-  if (!std::isfinite(tolerance) || tolerance <= 0.0) {
-    return InvalidFieldError("tolerance", "must be finite and positive");
-  }
-  return absl::OkStatus();
-}
-
 absl::Status CheckTimes(int times) {
   if (times < 1) return InvalidFieldError("times", "must be at least 1");
   return absl::OkStatus();
@@ -52,7 +45,8 @@ absl::Status CheckPositiveWeights(absl::Span<const double> weights) {
 // status of its Validate* function), then its weights.
 absl::Status CheckInput(double tolerance, const absl::Status& validation,
                         absl::Span<const double> weights) {
-  if (absl::Status status = CheckTolerance(tolerance); !status.ok()) {
+  if (absl::Status status = ValidatePositive(tolerance, "tolerance");
+      !status.ok()) {
     return status;
   }
   if (!validation.ok()) return validation;

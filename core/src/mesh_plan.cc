@@ -591,8 +591,8 @@ absl::Status ValidateOptions(const MeshOptions& options) {
     return status;
   }
   if (options.max_edge_length != 0.0) {
-    if (absl::Status status = internal::ValidatePositive(
-            options.max_edge_length, "max_edge_length");
+    if (absl::Status status =
+            ValidatePositive(options.max_edge_length, "max_edge_length");
         !status.ok()) {
       return status;
     }

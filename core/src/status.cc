@@ -1,5 +1,7 @@
 #include "freeform/core/status.h"
 
+#include <cmath>
+
 #include "absl/strings/cord.h"
 #include "absl/strings/str_cat.h"
 
@@ -25,6 +27,11 @@ absl::Status InvalidFieldError(absl::string_view field,
 absl::Status ExhaustedFieldError(absl::string_view field,
                                  absl::string_view rule) {
   return FieldError(absl::StatusCode::kResourceExhausted, field, rule);
+}
+
+absl::Status ValidatePositive(double value, absl::string_view field) {
+  if (std::isfinite(value) && value > 0.0) return absl::OkStatus();
+  return InvalidFieldError(field, "must be positive and finite");
 }
 
 std::optional<std::string> FieldPathOf(const absl::Status& status) {

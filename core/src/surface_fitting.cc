@@ -16,6 +16,7 @@
 #include "freeform/core/cancellation.h"
 #include "freeform/core/fitting.h"
 #include "freeform/core/interpolation.h"
+#include "freeform/core/points.h"
 #include "freeform/core/status.h"
 #include "tolerance_refinement.h"
 
@@ -23,12 +24,6 @@ namespace freeform {
 namespace {
 
 using internal::FixedEndLeastSquares;
-
-double Distance(const double* a, const double* b, size_t dimension) {
-  double sum = 0;
-  for (size_t c = 0; c < dimension; ++c) sum += (a[c] - b[c]) * (a[c] - b[c]);
-  return std::sqrt(sum);
-}
 
 absl::Status ValidateDirection(int degree, int count, int cap,
                                absl::string_view direction) {
@@ -116,7 +111,7 @@ std::vector<double> Distances(const double* a, const double* b, size_t count,
                               size_t d) {
   std::vector<double> distances(count);
   for (size_t k = 0; k < count; ++k) {
-    distances[k] = Distance(a + k * d, b + k * d, d);
+    distances[k] = PointDistance(a + k * d, b + k * d, d);
   }
   return distances;
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "binomial.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/points.h"
 #include "freeform/core/rational.h"
@@ -16,12 +17,6 @@
 
 namespace freeform {
 namespace {
-
-double Binomial(int n, int k) {
-  double result = 1.0;
-  for (int i = 1; i <= k; ++i) result = result * (n - k + i) / i;
-  return result;
-}
 
 // One parameter direction of a tensor-product surface: a basis of degree p
 // with n + 1 functions on `knots` (Bezier: p = n on [0..0, 1..1]).
@@ -611,7 +606,8 @@ void ProjectHomogeneousSurfaceDerivatives(const double* homogeneous,
       std::copy_n(homogeneous + PartialIndex(k, l) * stride, dim, out);
       for (int i = 0; i <= k; ++i) {
         for (int j = i == 0 ? 1 : 0; j <= l; ++j) {
-          const double factor = Binomial(k, i) * Binomial(l, j) * weight(i, j);
+          const double factor = internal::Binomial(k, i) *
+                                internal::Binomial(l, j) * weight(i, j);
           const double* lower = projected(k - i, l - j);
           for (size_t x = 0; x < dim; ++x) out[x] -= factor * lower[x];
         }

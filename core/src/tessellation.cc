@@ -22,9 +22,6 @@ using internal::CheckResolvable;
 using internal::TessellationTooLarge;
 using internal::ValidateTolerance;
 
-// Curve subdivision stops after this many halvings (the parameter interval
-// is then near the resolution of a double).
-constexpr int kMaxDepth = 50;
 // The cancellation token is polled after this many subdivision steps.
 constexpr size_t kCancelStride = 256;
 
@@ -140,7 +137,8 @@ absl::Status SubdivideBezierPiece(const double* control,
     }
     const Interval top = intervals.back();
     const double* piece = stack.data() + stack.size() - size;
-    if (top.depth >= kMaxDepth || IsFlat(piece, shape, tolerance, projected)) {
+    if (top.depth >= internal::kMaxSubdivisionDepth ||
+        IsFlat(piece, shape, tolerance, projected)) {
       if (parameters.size() >= max_points)
         return TessellationTooLarge("points", max_points);
       parameters.push_back(top.b);

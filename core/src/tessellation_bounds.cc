@@ -9,14 +9,13 @@
 #include "absl/types/span.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/tessellation.h"
+#include "tessellation_checks.h"
 #include "variant_dispatch.h"
 
 namespace freeform {
 namespace {
 
 constexpr size_t kNoBound = SIZE_MAX;
-// Matches the subdivision's depth limit (tessellation.cc).
-constexpr int kMaxDepth = 50;
 
 // PieceSegments returns the segments the flatness test leaves of one
 // polynomial Bezier piece of `degree` whose second differences are at most
@@ -29,8 +28,8 @@ double PieceSegments(int degree, double second_difference, double tolerance) {
   const double halvings =
       std::ceil(0.5 * std::log2(deviation / (tolerance / 2)));
   if (!(halvings > 0.0)) return 1.0;  // also catches NaN
-  return std::ldexp(1.0,
-                    static_cast<int>(std::min<double>(halvings, kMaxDepth)));
+  return std::ldexp(1.0, static_cast<int>(std::min<double>(
+                             halvings, internal::kMaxSubdivisionDepth)));
 }
 
 size_t ToBound(double points) {

@@ -21,17 +21,13 @@ namespace freeform::internal {
 // coordinate, that subdivision can meet in double precision.
 inline constexpr double kResolution = 0x1p-48;
 
-// ValidatePositive checks that `field` holds a positive finite value.
-inline absl::Status ValidatePositive(double value, absl::string_view field) {
-  if (!std::isfinite(value) || !(value > 0.0)) {
-    return InvalidFieldError(field, "must be positive and finite");
-  }
-  return absl::OkStatus();
-}
-
 inline absl::Status ValidateTolerance(double tolerance) {
   return ValidatePositive(tolerance, "tolerance");
 }
+
+// Curve subdivision stops after this many halvings (the parameter interval
+// is then near the resolution of a double); the size bounds count on it.
+inline constexpr int kMaxSubdivisionDepth = 50;
 
 // CheckResolvable refuses a tolerance below what double precision resolves
 // on geometry of the size of `coordinates`: no subdivision could meet it,

@@ -7,6 +7,7 @@
 #ifndef FREEFORM_CORE_POINTS_H_
 #define FREEFORM_CORE_POINTS_H_
 
+#include <cmath>
 #include <cstddef>
 
 #include "absl/status/status.h"
@@ -34,6 +35,14 @@ struct PointsView {
     return coordinates.data() + index * static_cast<size_t>(dimension);
   }
 };
+
+// PointDistance returns |a - b| for two points of `dimension` coordinates.
+inline double PointDistance(const double* a, const double* b,
+                            size_t dimension) {
+  double sum = 0.0;
+  for (size_t c = 0; c < dimension; ++c) sum += (a[c] - b[c]) * (a[c] - b[c]);
+  return std::sqrt(sum);
+}
 
 // ValidatePoints checks that `points` has a dimension in [1, kMaxDimension],
 // a whole number of at least `min_count` points and only finite coordinates.

@@ -27,6 +27,10 @@ absl::Status InvalidFieldError(absl::string_view field, absl::string_view rule);
 absl::Status ExhaustedFieldError(absl::string_view field,
                                  absl::string_view rule);
 
+// ValidatePositive returns INVALID_ARGUMENT naming `field` unless `value`
+// is positive and finite.
+absl::Status ValidatePositive(double value, absl::string_view field);
+
 // FieldPathOf returns the field path carried by `status`, if any.
 std::optional<std::string> FieldPathOf(const absl::Status& status);
 
