@@ -15,6 +15,8 @@
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
+#include "knot_insertion.h"
+#include "point_array.h"
 
 namespace freeform {
 namespace {
@@ -743,36 +745,6 @@ absl::StatusOr<CurveInterpolation> InterpolateClosed(
   return InterpolatePeriodic(points, p, *t, kappa, p, options.cancel);
 }
 
-// ------------------------------------------------------ knot insertion --
-
-// InsertKnot inserts u once into a non-rational curve (Boehm; The NURBS Book
-// A5.1 with r = 1).
-void InsertKnot(BSplineCurveData& curve, double u) {
-  const int p = curve.degree;
-  const size_t d = static_cast<size_t>(curve.dimension);
-  const int n = static_cast<int>(curve.coordinates.size() / d) - 1;
-  const int k = FindSpan(n, p, u, curve.knots);
-  Matrix q(curve.coordinates.size() + d);
-  const auto& P = curve.coordinates;
-  for (int i = 0; i <= n + 1; ++i) {
-    const size_t at = static_cast<size_t>(i) * d;
-    for (size_t c = 0; c < d; ++c) {
-      if (i <= k - p) {
-        q[at + c] = P[at + c];
-      } else if (i >= k + 1) {
-        q[at + c] = P[at - d + c];
-      } else {
-        const double alpha = (u - curve.knots[static_cast<size_t>(i)]) /
-                             (curve.knots[static_cast<size_t>(i + p)] -
-                              curve.knots[static_cast<size_t>(i)]);
-        q[at + c] = alpha * P[at + c] + (1 - alpha) * P[at - d + c];
-      }
-    }
-  }
-  curve.coordinates = std::move(q);
-  curve.knots.insert(curve.knots.begin() + k + 1, u);
-}
-
 // --------------------------------------------------------- cubic splines --
 
 absl::Status ValidateDerivative(absl::Span<const double> value,
@@ -809,8 +781,8 @@ absl::Status ValidateEndDerivatives(const CurveInterpolationOptions& options,
   return absl::OkStatus();
 }
 
-// ClampedKnots returns x_0 (x4), x_1, ..., x_{n-1}, x_n (x4) without the
-// interior abscissas listed in `skip` (not-a-knot).
+// CubicKnots returns x_0 (x4), x_1, ..., x_{n-1}, x_n (x4), without x_1
+// and x_{n-1} when `not_a_knot`.
 std::vector<double> CubicKnots(absl::Span<const double> x, bool not_a_knot) {
   std::vector<double> knots(4, x.front());
   for (size_t k = 1; k + 1 < x.size(); ++k) {
@@ -819,6 +791,22 @@ std::vector<double> CubicKnots(absl::Span<const double> x, bool not_a_knot) {
   }
   knots.insert(knots.end(), 4, x.back());
   return knots;
+}
+
+// WithKnots returns the non-rational `curve` with the non-decreasing knots
+// `x` inserted (knot_insertion.h): the same curve on more knots.
+absl::StatusOr<BSplineCurveData> WithKnots(BSplineCurveData curve,
+                                           absl::Span<const double> x,
+                                           const CancellationToken* cancel) {
+  absl::StatusOr<internal::Spline> refined = internal::RefineKnots(
+      internal::Spline{
+          curve.degree, std::move(curve.knots),
+          internal::PointArray{curve.dimension, std::move(curve.coordinates)}},
+      x, cancel);
+  if (!refined.ok()) return refined.status();
+  curve.knots = std::move(refined->knots);
+  curve.coordinates = std::move(refined->points.values);
+  return curve;
 }
 
 // PolynomialEndSlopes returns the end derivatives of the line (2 points) or
@@ -1281,11 +1269,13 @@ absl::StatusOr<CurveInterpolation> InterpolateCubicSpline(
     absl::StatusOr<Matrix> control =
         SolveOpen(values, 3, CubicKnots(x, true), x, {}, {}, cancel);
     if (!control.ok()) return control.status();
-    BSplineCurveData curve = MakeCurve(3, values.dimension, *std::move(control),
-                                       CubicKnots(x, true));
-    InsertKnot(curve, x[1]);
-    InsertKnot(curve, x[x.size() - 2]);
-    return Finish(std::move(curve), std::move(t), values, cancel);
+    const double removed[] = {x[1], x[x.size() - 2]};
+    absl::StatusOr<BSplineCurveData> curve =
+        WithKnots(MakeCurve(3, values.dimension, *std::move(control),
+                            CubicKnots(x, true)),
+                  removed, cancel);
+    if (!curve.ok()) return curve.status();
+    return Finish(*std::move(curve), std::move(t), values, cancel);
   }
   EndCondition start{.order = 2, .value = {}}, finish{.order = 2, .value = {}};
   std::pair<Matrix, Matrix> slopes;

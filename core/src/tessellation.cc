@@ -9,9 +9,9 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
-#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
+#include "homogeneous.h"
 #include "tessellation_checks.h"
 #include "variant_dispatch.h"
 
@@ -69,9 +69,11 @@ bool IsFlat(const double* control, const PieceShape& shape, double tolerance,
   if (shape.rational) {
     projected.resize(static_cast<size_t>(shape.degree + 1) * d);
     for (int i = 0; i <= shape.degree; ++i) {
-      const double* h = control + static_cast<size_t>(i) * shape.stride();
-      if (!(h[d] > 0.0)) return false;
-      for (int j = 0; j < d; ++j) projected[i * d + j] = h[j] / h[d];
+      if (!internal::ProjectPositive(
+              control + static_cast<size_t>(i) * shape.stride(), d,
+              projected.data() + static_cast<size_t>(i) * d)) {
+        return false;
+      }
     }
     points = projected.data();
   }
@@ -167,15 +169,6 @@ absl::Status ValidateCurveRequest(double tolerance, size_t max_points) {
   return absl::OkStatus();
 }
 
-// PieceControl returns the control points to subdivide: homogeneous
-// (w P, w) for a rational curve, the points themselves otherwise.
-std::vector<double> PieceControl(const PointsView& points,
-                                 absl::Span<const double> weights) {
-  if (!weights.empty()) return HomogeneousPoints(points, weights);
-  return std::vector<double>(points.coordinates.begin(),
-                             points.coordinates.end());
-}
-
 // PolylineAt evaluates the points at `parameters` with `evaluate`.
 template <typename Evaluate>
 absl::StatusOr<Polyline> PolylineAt(int dimension,
@@ -246,7 +239,7 @@ absl::StatusOr<Polyline> TessellateBezierCurve(
                          .dimension = curve.control_points.dimension,
                          .rational = curve.rational()};
   const std::vector<double> control =
-      PieceControl(curve.control_points, curve.weights);
+      internal::LiftedValues(curve.control_points, curve.weights);
   std::vector<double> parameters = {0.0};
   if (absl::Status status =
           SubdivideBezierPiece(control.data(), shape, 0.0, 1.0, tolerance,
@@ -283,7 +276,7 @@ absl::StatusOr<Polyline> TessellateBSplineCurve(
                          .dimension = curve.control_points.dimension,
                          .rational = curve.rational()};
   const std::vector<double> control =
-      PieceControl(curve.control_points, curve.weights);
+      internal::LiftedValues(curve.control_points, curve.weights);
   const int n = static_cast<int>(curve.control_points.size()) - 1;
   std::vector<double> parameters = {curve.knots[p]};
   std::vector<double> bezier(shape.size()), work;
@@ -334,7 +327,7 @@ absl::StatusOr<Polyline> TessellatePieces(const Curve& curve, double tolerance,
                            .dimension = piece.control_points.dimension,
                            .rational = piece.rational()};
     const std::vector<double> control =
-        PieceControl(piece.control_points, piece.weights);
+        internal::LiftedValues(piece.control_points, piece.weights);
     if (absl::Status status =
             SubdivideBezierPiece(control.data(), shape, pieces->breakpoints[k],
                                  pieces->breakpoints[k + 1], tolerance,
