@@ -8,8 +8,10 @@ include(CMakePackageConfigHelpers)
 set_target_properties(freeform_client PROPERTIES EXPORT_NAME client)
 set_target_properties(freeform_proto PROPERTIES EXPORT_NAME proto)
 set_target_properties(freeform_core PROPERTIES EXPORT_NAME core)
+set_target_properties(freeform_file PROPERTIES EXPORT_NAME file)
 
-install(TARGETS freeform_client freeform_proto freeform_core freeform_warnings
+install(TARGETS freeform_client freeform_proto freeform_core freeform_file
+  freeform_warnings
   EXPORT freeformTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -11,7 +11,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "curve_service.h"
-#include "freeform/core/file.h"
+#include "freeform/client/file.h"
 #include "grpc_handoff.h"
 #include "parse_errors.h"
 #include "surface_service.h"

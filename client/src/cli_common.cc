@@ -15,7 +15,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "absl/strings/strip.h"
-#include "freeform/core/file.h"
+#include "freeform/client/file.h"
 
 namespace freeform::cli {
 

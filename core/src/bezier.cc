@@ -9,6 +9,7 @@
 #include "curve_reference.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "homogeneous.h"
 #include "simd/curve_simd.h"
 #include "validated.h"
 
@@ -299,10 +300,7 @@ BezierPointEvaluator::BezierPointEvaluator(const BezierCurveView& curve,
       rational_(curve.rational()),
       algorithm_(ResolveBezierAlgorithm(algorithm, curve.degree())) {
   const int work_dimension = rational_ ? dimension_ + 1 : dimension_;
-  control_ = rational_
-                 ? HomogeneousPoints(curve.control_points, curve.weights)
-                 : std::vector<double>(curve.control_points.coordinates.begin(),
-                                       curve.control_points.coordinates.end());
+  control_ = internal::LiftedValues(curve.control_points, curve.weights);
   if (algorithm_ != BezierAlgorithm::kDeCasteljau) {
     hodographs_ = ScaledHodographs(control_.data(), degree_, work_dimension,
                                    std::min(max_order_, degree_));

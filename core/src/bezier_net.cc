@@ -7,10 +7,10 @@
 
 #include "freeform/core/bezier.h"
 #include "freeform/core/points.h"
-#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
+#include "homogeneous.h"
 
 namespace freeform::internal {
 namespace {
@@ -22,9 +22,7 @@ Net Lifted(int dimension, int count_u, int count_v,
           .rational = !weights.empty(),
           .count_u = count_u,
           .count_v = count_v};
-  net.values = net.rational
-                   ? HomogeneousPoints({dimension, coordinates}, weights)
-                   : coordinates;
+  net.values = LiftedValues({dimension, coordinates}, weights);
   return net;
 }
 
@@ -266,10 +264,7 @@ bool Point(const Net& net, int i, int j, double* point) {
     std::copy_n(p, net.dimension, point);
     return true;
   }
-  const double w = p[net.dimension];
-  if (!(w > 0.0)) return false;
-  for (int x = 0; x < net.dimension; ++x) point[x] = p[x] / w;
-  return true;
+  return ProjectPositive(p, net.dimension, point);
 }
 
 bool Project(const Net& net, std::vector<double>& points) {

@@ -3,39 +3,25 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <utility>
 #include <vector>
 
 #include "absl/types/span.h"
 #include "freeform/core/cancellation.h"
-#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "homogeneous.h"
+#include "knot_insertion.h"
 #include "knots.h"
+#include "point_array.h"
 
 namespace freeform {
 namespace {
 
-// Control points of `dim` coordinates each (homogeneous ones included) in a
-// flat array, point after point.
-struct Points {
-  int dim = 0;
-  std::vector<double> values;
-
-  size_t count() const {
-    return dim > 0 ? values.size() / static_cast<size_t>(dim) : 0;
-  }
-  double* at(size_t i) { return values.data() + i * static_cast<size_t>(dim); }
-  const double* at(size_t i) const {
-    return values.data() + i * static_cast<size_t>(dim);
-  }
-};
-
-// A B-spline's knots and control points.
-struct Spline {
-  std::vector<double> knots;
-  Points points;
-};
+using internal::Lift;
+using internal::PointArray;
+using internal::ProjectAllowingDirections;
+using internal::Spline;
+using internal::TransposeBlocks;
 
 absl::Status CheckPositive(int value, absl::string_view field) {
   if (value < 1) return InvalidFieldError(field, "must be at least 1");
@@ -92,11 +78,11 @@ absl::Status ElevateSegment(const std::vector<double>& a, int p, int by,
 }
 
 // ElevateBezierPoints raises the Bezier control polygon `points` by `by`.
-absl::StatusOr<Points> ElevateBezierPoints(const Points& points, int by,
-                                           const CancellationToken* cancel) {
+absl::StatusOr<PointArray> ElevateBezierPoints(
+    const PointArray& points, int by, const CancellationToken* cancel) {
   const int p = static_cast<int>(points.count()) - 1;
-  Points result{points.dim,
-                std::vector<double>((points.count() + by) * points.dim)};
+  PointArray result{points.dim,
+                    std::vector<double>((points.count() + by) * points.dim)};
   CancellationPoll poll(cancel);
   if (absl::Status status =
           ElevateSegment(ElevationCoefficients(p, by), p, by, points.dim,
@@ -107,37 +93,6 @@ absl::StatusOr<Points> ElevateBezierPoints(const Points& points, int by,
   return result;
 }
 
-// out = alpha * a + (1 - alpha) * b, coordinate by coordinate (out may
-// alias a or b).
-void Blend(double alpha, const double* a, const double* b, int dim,
-           double* out) {
-  for (int x = 0; x < dim; ++x) out[x] = alpha * a[x] + (1.0 - alpha) * b[x];
-}
-
-// InsertKnotOnce inserts `u` once into `spline` of degree p (The NURBS Book
-// A5.1 with r = 1); `u` must lie in [u_p, u_{n+1}] with a knot after it.
-void InsertKnotOnce(Spline& spline, int p, double u) {
-  std::vector<double>& knots = spline.knots;
-  const int k =
-      static_cast<int>(std::upper_bound(knots.begin(), knots.end(), u) -
-                       knots.begin()) -
-      1;
-  const int s = internal::Multiplicity(knots, u);
-  const int dim = spline.points.dim;
-  Points next{dim, std::vector<double>((spline.points.count() + 1) * dim)};
-  const Points& old = spline.points;
-  for (int i = 0; i <= k - p; ++i) std::copy_n(old.at(i), dim, next.at(i));
-  for (size_t i = k - s; i < old.count(); ++i) {
-    std::copy_n(old.at(i), dim, next.at(i + 1));
-  }
-  for (int i = k - p + 1; i <= k - s; ++i) {
-    const double alpha = (u - knots[i]) / (knots[i + p] - knots[i]);
-    Blend(alpha, old.at(i), old.at(i - 1), dim, next.at(i));
-  }
-  knots.insert(knots.begin() + k + 1, u);
-  spline.points = std::move(next);
-}
-
 bool IsClamped(absl::Span<const double> knots, int p) {
   const size_t last = knots.size() - 1;
   for (int i = 1; i <= p; ++i) {
@@ -146,25 +101,38 @@ bool IsClamped(absl::Span<const double> knots, int p) {
   return true;
 }
 
-// Clamp rewrites an unclamped spline of degree p with the same curve on its
-// domain [a, b] = [u_p, u_{n+1}] and knots a (p + 1 times), the knots
-// strictly inside the domain, b (p + 1 times). Knot insertion (A5.1) raises
-// the multiplicity of a and b to at least p; then only the control points
-// whose basis functions reach into the domain are kept: from index e - p,
-// where e is the last knot equal to a (the knots before the run of a do not
-// affect those functions on the domain), to index f - 1, where f is the
-// first knot equal to b.
-void Clamp(Spline& spline, int p) {
-  const size_t n = spline.points.count() - 1;
+// KnotsToClamp returns the knots that raise the multiplicity of the domain
+// ends a = u_p and b = u_{n+1} of a spline of degree p to p.
+std::vector<double> KnotsToClamp(const Spline& spline) {
+  const int p = spline.degree;
   const double a = spline.knots[p];
-  const double b = spline.knots[n + 1];
+  const double b = spline.knots[spline.points.count()];
+  std::vector<double> x;
   for (int s = internal::Multiplicity(spline.knots, a); s < p; ++s) {
-    InsertKnotOnce(spline, p, a);
+    x.push_back(a);
   }
   for (int s = internal::Multiplicity(spline.knots, b); s < p; ++s) {
-    InsertKnotOnce(spline, p, b);
+    x.push_back(b);
   }
-  const std::vector<double>& knots = spline.knots;
+  return x;
+}
+
+// Clamp rewrites an unclamped spline with the same curve on its domain
+// [a, b] = [u_p, u_{n+1}] and knots a (p + 1 times), the knots strictly
+// inside the domain, b (p + 1 times). Knot insertion raises the
+// multiplicity of a and b to at least p; then only the control points whose
+// basis functions reach into the domain are kept: from index e - p, where e
+// is the last knot equal to a (the knots before the run of a do not affect
+// those functions on the domain), to index f - 1, where f is the first knot
+// equal to b.
+absl::Status Clamp(Spline& spline, const CancellationToken* cancel) {
+  const int p = spline.degree;
+  const double a = spline.knots[p];
+  const double b = spline.knots[spline.points.count()];
+  absl::StatusOr<Spline> refined =
+      internal::RefineKnots(spline, KnotsToClamp(spline), cancel);
+  if (!refined.ok()) return refined.status();
+  const std::vector<double>& knots = refined->knots;
   const int e =
       static_cast<int>(std::upper_bound(knots.begin(), knots.end(), a) -
                        knots.begin()) -
@@ -173,15 +141,16 @@ void Clamp(Spline& spline, int p) {
       std::lower_bound(knots.begin(), knots.end(), b) - knots.begin());
   const int first = e - p;
   const int last = f - 1;
-  const int dim = spline.points.dim;
-  Spline clamped;
+  const int dim = refined->points.dim;
+  Spline clamped{.degree = p};
   clamped.knots.assign(knots.begin() + first, knots.begin() + last + p + 2);
   clamped.knots.front() = a;
   clamped.knots.back() = b;
   clamped.points.dim = dim;
-  clamped.points.values.assign(spline.points.at(first),
-                               spline.points.at(last + 1));
+  clamped.points.values.assign(refined->points.at(first),
+                               refined->points.at(last + 1));
   spline = std::move(clamped);
+  return absl::OkStatus();
 }
 
 // ElevatedKnots returns the clamped `knots` with the multiplicity of every
@@ -212,20 +181,20 @@ std::vector<double> ElevatedKnots(const std::vector<double>& knots, int by) {
 // loses up to 6 digits at degree 11 (measured on uniform knots).
 class BlossomElevator {
  public:
-  BlossomElevator(const Spline& spline, int p, int by)
-      : p_(p),
-        ph_(p + by),
+  BlossomElevator(const Spline& spline, int by)
+      : p_(spline.degree),
+        ph_(spline.degree + by),
         dim_(spline.points.dim),
         knots_(spline.knots),
         points_(spline.points),
-        levels_(static_cast<size_t>(p + 1)) {
-    for (int c = 0; c <= p; ++c) {
-      levels_[c].resize(static_cast<size_t>(p + 1 - c) * dim_);
+        levels_(static_cast<size_t>(p_ + 1)) {
+    for (int c = 0; c <= p_; ++c) {
+      levels_[c].resize(static_cast<size_t>(p_ + 1 - c) * dim_);
     }
   }
 
   absl::StatusOr<Spline> Run(const CancellationToken* cancel) {
-    Spline result{ElevatedKnots(knots_, ph_ - p_), Points{dim_, {}}};
+    Spline result{ph_, ElevatedKnots(knots_, ph_ - p_), PointArray{dim_, {}}};
     const std::vector<double>& uh = result.knots;
     const int count = static_cast<int>(uh.size()) - ph_ - 1;
     result.points.values.resize(static_cast<size_t>(count) * dim_);
@@ -295,71 +264,19 @@ class BlossomElevator {
   const int ph_;
   const int dim_;
   const std::vector<double>& knots_;
-  const Points& points_;
+  const PointArray& points_;
   std::vector<std::vector<double>> levels_;
 };
 
-// ElevateSpline raises a spline of degree p by `by` (see
-// ElevateBSplineCurve).
-absl::StatusOr<Spline> ElevateSpline(Spline spline, int p, int by,
+// ElevateSpline raises a spline by `by` (see ElevateBSplineCurve).
+absl::StatusOr<Spline> ElevateSpline(Spline spline, int by,
                                      const CancellationToken* cancel) {
-  if (!IsClamped(spline.knots, p)) Clamp(spline, p);
-  return BlossomElevator(spline, p, by).Run(cancel);
-}
-
-// Control points as `Points`, homogeneous (dimension + 1 values) when there
-// are weights.
-Points ToPoints(const PointsView& points, absl::Span<const double> weights) {
-  if (weights.empty()) {
-    return Points{points.dimension,
-                  std::vector<double>(points.coordinates.begin(),
-                                      points.coordinates.end())};
-  }
-  return Points{points.dimension + 1, HomogeneousPoints(points, weights)};
-}
-
-// FromPoints writes `points` (homogeneous when `rational`) back as
-// coordinates and weights. A weight within rounding of 0 (relative to the
-// largest weight) is a point at infinity: the weight becomes exactly 0 and
-// the homogeneous coordinates are kept as its direction.
-void FromPoints(const Points& points, bool rational,
-                std::vector<double>& coordinates,
-                std::vector<double>& weights) {
-  if (!rational) {
-    coordinates = points.values;
-    return;
-  }
-  const int dim = points.dim - 1;
-  const size_t count = points.count();
-  double largest = 0.0;
-  for (size_t i = 0; i < count; ++i) {
-    largest = std::max(largest, std::abs(points.at(i)[dim]));
-  }
-  const double zero = 8.0 * std::numeric_limits<double>::epsilon() * largest;
-  coordinates.resize(count * dim);
-  weights.resize(count);
-  for (size_t i = 0; i < count; ++i) {
-    const double* h = points.at(i);
-    double w = h[dim];
-    if (std::abs(w) <= zero) w = 0.0;
-    const double scale = w == 0.0 ? 1.0 : 1.0 / w;
-    for (int x = 0; x < dim; ++x) coordinates[i * dim + x] = scale * h[x];
-    weights[i] = w;
-  }
-}
-
-// Transpose swaps the two indices of a rows x cols grid of blocks of
-// `block` values.
-std::vector<double> Transpose(const std::vector<double>& values, int rows,
-                              int cols, int block) {
-  std::vector<double> result(values.size());
-  for (int i = 0; i < rows; ++i) {
-    for (int j = 0; j < cols; ++j) {
-      std::copy_n(&values[(static_cast<size_t>(i) * cols + j) * block], block,
-                  &result[(static_cast<size_t>(j) * rows + i) * block]);
+  if (!IsClamped(spline.knots, spline.degree)) {
+    if (absl::Status status = Clamp(spline, cancel); !status.ok()) {
+      return status;
     }
   }
-  return result;
+  return BlossomElevator(spline, by).Run(cancel);
 }
 
 absl::Status CheckSurfaceElevation(int by_u, int by_v) {
@@ -387,14 +304,14 @@ struct NetWithKnots {
 // means Bezier.
 absl::Status ElevateNetU(NetWithKnots& net, int degree, int by,
                          const CancellationToken* cancel) {
-  Points rows{net.cols * net.dim, std::move(net.values)};
+  PointArray rows{net.cols * net.dim, std::move(net.values)};
   if (degree < 0) {
-    absl::StatusOr<Points> elevated = ElevateBezierPoints(rows, by, cancel);
+    absl::StatusOr<PointArray> elevated = ElevateBezierPoints(rows, by, cancel);
     if (!elevated.ok()) return elevated.status();
     rows = *std::move(elevated);
   } else {
     absl::StatusOr<Spline> spline = ElevateSpline(
-        Spline{std::move(net.knots_u), std::move(rows)}, degree, by, cancel);
+        Spline{degree, std::move(net.knots_u), std::move(rows)}, by, cancel);
     if (!spline.ok()) return spline.status();
     net.knots_u = std::move(spline->knots);
     rows = std::move(spline->points);
@@ -407,19 +324,20 @@ absl::Status ElevateNetU(NetWithKnots& net, int degree, int by,
 // ElevateNetV raises the net in v by transposing it around ElevateNetU.
 absl::Status ElevateNetV(NetWithKnots& net, int degree, int by,
                          const CancellationToken* cancel) {
-  NetWithKnots transposed{net.cols,
-                          net.rows,
-                          net.dim,
-                          Transpose(net.values, net.rows, net.cols, net.dim),
-                          std::move(net.knots_v),
-                          {}};
+  NetWithKnots transposed{
+      net.cols,
+      net.rows,
+      net.dim,
+      TransposeBlocks(net.values, net.rows, net.cols, net.dim),
+      std::move(net.knots_v),
+      {}};
   if (absl::Status status = ElevateNetU(transposed, degree, by, cancel);
       !status.ok()) {
     return status;
   }
   net.cols = transposed.rows;
-  net.values =
-      Transpose(transposed.values, transposed.rows, transposed.cols, net.dim);
+  net.values = TransposeBlocks(transposed.values, transposed.rows,
+                               transposed.cols, net.dim);
   net.knots_v = std::move(transposed.knots_u);
   return absl::OkStatus();
 }
@@ -433,7 +351,7 @@ absl::StatusOr<SurfaceData> ElevateSurface(const ControlNetView& view,
                                            int degree_u, int degree_v, int by_u,
                                            int by_v,
                                            const CancellationToken* cancel) {
-  Points points = ToPoints({view.dimension, view.coordinates}, weights);
+  PointArray points = Lift({view.dimension, view.coordinates}, weights);
   NetWithKnots net{view.count_u,
                    view.count_v,
                    points.dim,
@@ -458,8 +376,9 @@ absl::StatusOr<SurfaceData> ElevateSurface(const ControlNetView& view,
   result.count_v = net.cols;
   result.degree_u = degree_u < 0 ? net.rows - 1 : degree_u + by_u;
   result.degree_v = degree_v < 0 ? net.cols - 1 : degree_v + by_v;
-  FromPoints(Points{net.dim, std::move(net.values)}, !weights.empty(),
-             result.coordinates, result.weights);
+  ProjectAllowingDirections(PointArray{net.dim, std::move(net.values)},
+                            !weights.empty(), result.coordinates,
+                            result.weights);
   result.knots_u = std::move(net.knots_u);
   result.knots_v = std::move(net.knots_v);
   return result;
@@ -468,9 +387,10 @@ absl::StatusOr<SurfaceData> ElevateSurface(const ControlNetView& view,
 // ElevateTriangleOnce raises the triangular net of degree n by one (Farin
 // 1986; docs/references.md, 'Degree elevation by the product formula'):
 // Q_ijk = (i P_{i-1,j,k} + j P_{i,j-1,k} + k P_{i,j,k-1}) / (n + 1).
-Points ElevateTriangleOnce(const Points& points, int n) {
+PointArray ElevateTriangleOnce(const PointArray& points, int n) {
   const int dim = points.dim;
-  Points result{dim, std::vector<double>(TriangularPointCount(n + 1) * dim)};
+  PointArray result{dim,
+                    std::vector<double>(TriangularPointCount(n + 1) * dim)};
   const double scale = 1.0 / (n + 1);
   for (int i = 0; i <= n + 1; ++i) {
     for (int j = 0; i + j <= n + 1; ++j) {
@@ -535,13 +455,13 @@ std::vector<double> SolveLeastSquares(std::vector<double> a, int rows, int cols,
 
 // ReducedPoints returns the control points of ReduceBezierCurve's
 // approximation of degree m = n - by to the degree-n polygon `p`.
-Points ReducedPoints(const Points& p, int by) {
+PointArray ReducedPoints(const PointArray& p, int by) {
   const int n = static_cast<int>(p.count()) - 1;
   const int m = n - by;
   const int dim = p.dim;
   const std::vector<double> e = ElevationCoefficients(m, by);
   auto coefficient = [&](int i, int j) { return e[i * (m + 1) + j]; };
-  Points q{dim, std::vector<double>(static_cast<size_t>(m + 1) * dim)};
+  PointArray q{dim, std::vector<double>(static_cast<size_t>(m + 1) * dim)};
   // Fixed end points for m >= 1; the free unknowns are q_first..q_last.
   const int first = m >= 1 ? 1 : 0;
   const int last = m >= 1 ? m - 1 : 0;
@@ -576,12 +496,13 @@ absl::StatusOr<BezierCurveData> ElevateBezierCurve(const BezierCurveView& curve,
   if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
     return status;
   }
-  absl::StatusOr<Points> elevated = ElevateBezierPoints(
-      ToPoints(curve.control_points, curve.weights), by, nullptr);
+  absl::StatusOr<PointArray> elevated = ElevateBezierPoints(
+      Lift(curve.control_points, curve.weights), by, nullptr);
   if (!elevated.ok()) return elevated.status();
   BezierCurveData result;
   result.dimension = curve.control_points.dimension;
-  FromPoints(*elevated, curve.rational(), result.coordinates, result.weights);
+  ProjectAllowingDirections(*elevated, curve.rational(), result.coordinates,
+                            result.weights);
   return result;
 }
 
@@ -591,16 +512,17 @@ absl::StatusOr<BSplineCurveData> ElevateBSplineCurve(
     return status;
   }
   absl::StatusOr<Spline> spline = ElevateSpline(
-      Spline{std::vector<double>(curve.knots.begin(), curve.knots.end()),
-             ToPoints(curve.control_points, curve.weights)},
-      curve.degree, by, cancel);
+      Spline{curve.degree,
+             std::vector<double>(curve.knots.begin(), curve.knots.end()),
+             Lift(curve.control_points, curve.weights)},
+      by, cancel);
   if (!spline.ok()) return spline.status();
   BSplineCurveData result;
   result.degree = curve.degree + by;
   result.dimension = curve.control_points.dimension;
   result.knots = std::move(spline->knots);
-  FromPoints(spline->points, curve.rational(), result.coordinates,
-             result.weights);
+  ProjectAllowingDirections(spline->points, curve.rational(),
+                            result.coordinates, result.weights);
   return result;
 }
 
@@ -614,9 +536,9 @@ absl::StatusOr<ReducedBezierCurve> ReduceBezierCurve(
     return InvalidFieldError(
         "weights", "degree reduction of rational curves is not supported");
   }
-  const Points original = ToPoints(curve.control_points, {});
-  Points reduced = ReducedPoints(original, by);
-  const Points back = *ElevateBezierPoints(reduced, by, nullptr);
+  const PointArray original = Lift(curve.control_points, {});
+  PointArray reduced = ReducedPoints(original, by);
+  const PointArray back = *ElevateBezierPoints(reduced, by, nullptr);
   ReducedBezierCurve result;
   for (size_t i = 0; i < original.count(); ++i) {
     double norm = 0.0;
@@ -656,7 +578,7 @@ absl::StatusOr<TriangularPatchData> ElevateTriangularPatch(
   if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
     return status;
   }
-  Points points = ToPoints(patch.control_points, patch.weights);
+  PointArray points = Lift(patch.control_points, patch.weights);
   for (int n = patch.degree; n < patch.degree + by; ++n) {
     points = ElevateTriangleOnce(points, n);
   }
@@ -665,7 +587,8 @@ absl::StatusOr<TriangularPatchData> ElevateTriangularPatch(
   result.dimension = patch.control_points.dimension;
   result.domain_triangle.assign(patch.domain_triangle.begin(),
                                 patch.domain_triangle.end());
-  FromPoints(points, patch.rational(), result.coordinates, result.weights);
+  ProjectAllowingDirections(points, patch.rational(), result.coordinates,
+                            result.weights);
   return result;
 }
 

@@ -10,8 +10,8 @@
 
 #include "absl/functional/function_ref.h"
 #include "absl/strings/str_cat.h"
-#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "homogeneous.h"
 #include "knot_remover.h"
 
 namespace freeform {
@@ -70,20 +70,15 @@ absl::Status CheckInteriorKnot(absl::Span<const double> knots, int p,
                            lo, ", ", hi, ")"));
 }
 
-// Lift returns the points, homogeneous (dimension + 1 values each, weight
-// last) when there are weights.
-std::vector<double> Lift(const PointsView& points,
-                         absl::Span<const double> weights) {
-  if (weights.empty()) {
-    return {points.coordinates.begin(), points.coordinates.end()};
-  }
-  return HomogeneousPoints(points, weights);
-}
-
-// Project writes homogeneous (when rational) `points` back as coordinates
-// and weights; the weights are positive.
-void Project(const std::vector<double>& points, int dimension, bool rational,
-             std::vector<double>& coordinates, std::vector<double>& weights) {
+// ProjectRemoved writes the remover's points (homogeneous when rational)
+// back as coordinates and weights. The remover refuses a removal that would
+// make a weight zero or negative, so every weight is positive and each point
+// is its homogeneous point divided by its weight (ProjectPositive; the
+// algorithms that take zero weights snap tiny ones to 0 instead, see
+// homogeneous.h).
+void ProjectRemoved(const std::vector<double>& points, int dimension,
+                    bool rational, std::vector<double>& coordinates,
+                    std::vector<double>& weights) {
   if (!rational) {
     coordinates = points;
     weights.clear();
@@ -96,7 +91,7 @@ void Project(const std::vector<double>& points, int dimension, bool rational,
   for (size_t i = 0; i < count; ++i) {
     const double* h = &points[i * (dim + 1)];
     weights[i] = h[dim];
-    for (size_t x = 0; x < dim; ++x) coordinates[i * dim + x] = h[x] / h[dim];
+    internal::ProjectPositive(h, dimension, &coordinates[i * dim]);
   }
 }
 
@@ -107,7 +102,8 @@ absl::StatusOr<CurveKnotRemoval> RunOnCurve(const BSplineCurveView& curve,
                                             Work work) {
   const int dim = curve.control_points.dimension;
   const int width = curve.rational() ? dim + 1 : dim;
-  std::vector<double> points = Lift(curve.control_points, curve.weights);
+  std::vector<double> points =
+      internal::LiftedValues(curve.control_points, curve.weights);
   const LineReference reference(points, 1, width, curve.rational(), {1},
                                 std::nullopt);
   CancellationPoll poll(cancel);
@@ -130,8 +126,8 @@ absl::StatusOr<CurveKnotRemoval> RunOnCurve(const BSplineCurveView& curve,
     return result;
   }
   result.curve.knots = remover->spline().knots;
-  Project(remover->spline().points, dim, curve.rational(),
-          result.curve.coordinates, result.curve.weights);
+  ProjectRemoved(remover->spline().points, dim, curve.rational(),
+                 result.curve.coordinates, result.curve.weights);
   return result;
 }
 
@@ -168,7 +164,8 @@ HomogeneousSurface LiftSurface(const BSplineSurfaceView& surface) {
           .count_v = net.count_v,
           .knots_u = {surface.knots_u.begin(), surface.knots_u.end()},
           .knots_v = {surface.knots_v.begin(), surface.knots_v.end()},
-          .net = Lift({net.dimension, net.coordinates}, surface.weights)};
+          .net = internal::LiftedValues({net.dimension, net.coordinates},
+                                        surface.weights)};
 }
 
 // Reorder copies a count_u x count_v net of `width`-value points between
@@ -276,7 +273,8 @@ absl::StatusOr<SurfaceKnotRemoval> RunOnSurface(
     data.weights.assign(surface.weights.begin(), surface.weights.end());
     return result;
   }
-  Project(current.net, dim, surface.rational(), data.coordinates, data.weights);
+  ProjectRemoved(current.net, dim, surface.rational(), data.coordinates,
+                 data.weights);
   return result;
 }
 

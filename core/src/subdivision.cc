@@ -4,97 +4,33 @@
 #include <cmath>
 #include <cstddef>
 #include <initializer_list>
-#include <limits>
 #include <string>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "absl/types/span.h"
 #include "freeform/core/cancellation.h"
-#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "homogeneous.h"
+#include "knot_insertion.h"
 #include "knots.h"
+#include "point_array.h"
 
 namespace freeform {
 namespace {
 
-// Control points of `dim` values each (homogeneous ones included), point
-// after point.
-struct Polygon {
-  int dim = 0;
-  std::vector<double> values;
+using internal::Lift;
+using internal::PointArray;
+using internal::ProjectAllowingDirections;
+using internal::RefineKnots;
+using internal::Spline;
+using internal::TransposeBlocks;
 
-  int count() const {
-    return dim > 0 ? static_cast<int>(values.size() / static_cast<size_t>(dim))
-                   : 0;
-  }
-  double* at(int i) { return values.data() + static_cast<size_t>(i) * dim; }
-  const double* at(int i) const {
-    return values.data() + static_cast<size_t>(i) * dim;
-  }
-};
-
-// Lift returns the points, homogeneous (dimension + 1 values each) when
-// there are weights.
-Polygon Lift(const PointsView& points, absl::Span<const double> weights) {
-  if (weights.empty()) {
-    return {points.dimension, std::vector<double>(points.coordinates.begin(),
-                                                  points.coordinates.end())};
-  }
-  return {points.dimension + 1, HomogeneousPoints(points, weights)};
-}
-
-// Project writes `points` (homogeneous when `rational`) back as coordinates
-// and weights. A weight within rounding of 0 (relative to the largest one)
-// is a point at infinity: it becomes exactly 0 and the homogeneous
-// coordinates are kept as its direction (rational.h).
-void Project(const Polygon& points, bool rational,
-             std::vector<double>& coordinates, std::vector<double>& weights) {
-  if (!rational) {
-    coordinates = points.values;
-    weights.clear();
-    return;
-  }
-  const int dim = points.dim - 1;
-  const int count = points.count();
-  double largest = 0.0;
-  for (int i = 0; i < count; ++i) {
-    largest = std::max(largest, std::abs(points.at(i)[dim]));
-  }
-  const double zero = 8.0 * std::numeric_limits<double>::epsilon() * largest;
-  coordinates.resize(static_cast<size_t>(count) * dim);
-  weights.resize(static_cast<size_t>(count));
-  for (int i = 0; i < count; ++i) {
-    const double* h = points.at(i);
-    const double w = std::abs(h[dim]) <= zero ? 0.0 : h[dim];
-    const double scale = w == 0.0 ? 1.0 : 1.0 / w;
-    for (int x = 0; x < dim; ++x) {
-      coordinates[static_cast<size_t>(i) * dim + x] = scale * h[x];
-    }
-    weights[static_cast<size_t>(i)] = w;
-  }
-}
-
-BezierCurveData ToBezierCurve(const Polygon& points, bool rational) {
+BezierCurveData ToBezierCurve(const PointArray& points, bool rational) {
   BezierCurveData curve;
   curve.dimension = rational ? points.dim - 1 : points.dim;
-  Project(points, rational, curve.coordinates, curve.weights);
+  ProjectAllowingDirections(points, rational, curve.coordinates, curve.weights);
   return curve;
-}
-
-// Transpose swaps the indices of a rows x cols grid of blocks of `block`
-// values.
-std::vector<double> Transpose(const std::vector<double>& values, int rows,
-                              int cols, int block) {
-  std::vector<double> result(values.size());
-  for (int i = 0; i < rows; ++i) {
-    for (int j = 0; j < cols; ++j) {
-      std::copy_n(values.data() + (static_cast<size_t>(i) * cols + j) * block,
-                  block,
-                  result.data() + (static_cast<size_t>(j) * rows + i) * block);
-    }
-  }
-  return result;
 }
 
 // ---------------------------------------------------------------------------
@@ -103,12 +39,13 @@ std::vector<double> Transpose(const std::vector<double>& values, int rows,
 
 // SplitAt writes the left ([0, t]) and right ([t, 1]) halves of the Bezier
 // polygon `points`; either output may be null.
-void SplitAt(const Polygon& points, double t, Polygon* left, Polygon* right) {
-  const int n = points.count() - 1;
+void SplitAt(const PointArray& points, double t, PointArray* left,
+             PointArray* right) {
+  const int n = static_cast<int>(points.count()) - 1;
   const int dim = points.dim;
-  Polygon work = points;
-  if (left != nullptr) *left = Polygon{dim, points.values};
-  if (right != nullptr) *right = Polygon{dim, points.values};
+  PointArray work = points;
+  if (left != nullptr) *left = PointArray{dim, points.values};
+  if (right != nullptr) *right = PointArray{dim, points.values};
   for (int r = 1; r <= n; ++r) {
     for (int i = 0; i <= n - r; ++i) {
       double* a = work.at(i);
@@ -121,11 +58,11 @@ void SplitAt(const Polygon& points, double t, Polygon* left, Polygon* right) {
 }
 
 // Piece returns the Bezier polygon of the curve on [a, b] within [0, 1].
-Polygon Piece(const Polygon& points, double a, double b) {
-  Polygon left = points;
+PointArray Piece(const PointArray& points, double a, double b) {
+  PointArray left = points;
   if (b < 1.0) SplitAt(points, b, &left, nullptr);
   if (a <= 0.0) return left;
-  Polygon right;
+  PointArray right;
   SplitAt(left, a / b, nullptr, &right);
   return right;
 }
@@ -146,24 +83,6 @@ absl::Status CheckSplitParameters(absl::Span<const double> parameters) {
 
 // ---------------------------------------------------------------------------
 // Knot refinement.
-
-// A B-spline's knots and (possibly homogeneous) control points.
-struct Spline {
-  int degree = 0;
-  std::vector<double> knots;
-  Polygon points;
-};
-
-// LastKnotAtOrBelow returns the largest index i in [p, n] with
-// knots[i] <= u (p when there is none), the span A5.4 starts from.
-int LastKnotAtOrBelow(const std::vector<double>& knots, int p, int n,
-                      double u) {
-  const int i =
-      static_cast<int>(std::upper_bound(knots.begin(), knots.end(), u) -
-                       knots.begin()) -
-      1;
-  return std::clamp(i, p, n);
-}
 
 // CheckKnotsToInsert checks the rules of InsertKnots for `x` against a
 // spline of degree p with `knots` and domain [lo, hi].
@@ -198,64 +117,6 @@ absl::Status CheckKnotsToInsert(int p, absl::Span<const double> knots,
   return absl::OkStatus();
 }
 
-// Refine inserts the non-decreasing knots `x` into `spline` (The NURBS Book
-// A5.4, RefineKnotVectCurve), with the spans found by LastKnotAtOrBelow.
-absl::StatusOr<Spline> Refine(const Spline& spline, absl::Span<const double> x,
-                              const CancellationToken* cancel) {
-  if (x.empty()) return spline;
-  CancellationPoll poll(cancel);
-  const int p = spline.degree;
-  const std::vector<double>& u = spline.knots;
-  const Polygon& pw = spline.points;
-  const int dim = pw.dim;
-  const int n = pw.count() - 1;
-  const int m = n + p + 1;
-  const int r = static_cast<int>(x.size()) - 1;
-  const int a = LastKnotAtOrBelow(u, p, n, x[0]);
-  const int b = LastKnotAtOrBelow(u, p, n, x[r]) + 1;
-  Spline out{
-      p, std::vector<double>(static_cast<size_t>(m + r + 2)),
-      Polygon{dim, std::vector<double>(static_cast<size_t>(n + r + 2) * dim)}};
-  std::vector<double>& ubar = out.knots;
-  Polygon& qw = out.points;
-  for (int j = 0; j <= a - p; ++j) std::copy_n(pw.at(j), dim, qw.at(j));
-  for (int j = b - 1; j <= n; ++j) std::copy_n(pw.at(j), dim, qw.at(j + r + 1));
-  for (int j = 0; j <= a; ++j) ubar[j] = u[j];
-  for (int j = b + p; j <= m; ++j) ubar[j + r + 1] = u[j];
-  int i = b + p - 1;
-  int k = b + p + r;
-  for (int j = r; j >= 0; --j) {
-    if (absl::Status status = poll.Done(static_cast<size_t>(p + 1) * dim);
-        !status.ok()) {
-      return status;
-    }
-    while (x[j] <= u[i] && i > a) {
-      std::copy_n(pw.at(i - p - 1), dim, qw.at(k - p - 1));
-      ubar[k] = u[i];
-      --k;
-      --i;
-    }
-    std::copy_n(qw.at(k - p), dim, qw.at(k - p - 1));
-    for (int l = 1; l <= p; ++l) {
-      const int ind = k - p + l;
-      double alpha = ubar[k + l] - x[j];
-      double* target = qw.at(ind - 1);
-      const double* next = qw.at(ind);
-      if (alpha == 0.0) {
-        std::copy_n(next, dim, target);
-        continue;
-      }
-      alpha /= ubar[k + l] - u[i - p + l];
-      for (int c = 0; c < dim; ++c) {
-        target[c] = alpha * target[c] + (1.0 - alpha) * next[c];
-      }
-    }
-    ubar[k] = x[j];
-    --k;
-  }
-  return out;
-}
-
 Spline LiftCurve(const BSplineCurveView& curve) {
   return {curve.degree,
           std::vector<double>(curve.knots.begin(), curve.knots.end()),
@@ -284,15 +145,16 @@ int FloorDiv2(int a) { return a >= 0 ? a / 2 : -((1 - a) / 2); }
 // RefinePolygon applies one subdivision step: point r of the result is
 // Q_{r+d} = sum_i s_{r+d-2i} P_i, the indices i taken modulo m when closed;
 // open polygons keep r in [0, 2m - d), where every P_i lies in the polygon.
-absl::StatusOr<Polygon> RefinePolygon(const Polygon& points, bool closed,
-                                      const std::vector<double>& mask,
-                                      const CancellationToken* cancel) {
+absl::StatusOr<PointArray> RefinePolygon(const PointArray& points, bool closed,
+                                         const std::vector<double>& mask,
+                                         const CancellationToken* cancel) {
   CancellationPoll poll(cancel);
   const int d = static_cast<int>(mask.size()) - 2;
-  const int m = points.count();
+  const int m = static_cast<int>(points.count());
   const int dim = points.dim;
   const int count = closed ? 2 * m : 2 * m - d;
-  Polygon out{dim, std::vector<double>(static_cast<size_t>(count) * dim, 0.0)};
+  PointArray out{dim,
+                 std::vector<double>(static_cast<size_t>(count) * dim, 0.0)};
   for (int r = 0; r < count; ++r) {
     if (absl::Status status = poll.Done(static_cast<size_t>(d + 2) * dim);
         !status.ok()) {
@@ -334,28 +196,29 @@ absl::Status CheckSubdivision(size_t points, bool closed, int degree,
 
 // RowsOf returns the net as a polygon of count_u "points", each a whole
 // (homogeneous) row of count_v points, or of count_v columns when !in_u.
-Polygon RowsOf(const ControlNetView& net, absl::Span<const double> weights,
-               bool in_u) {
-  const Polygon lifted =
+PointArray RowsOf(const ControlNetView& net, absl::Span<const double> weights,
+                  bool in_u) {
+  const PointArray lifted =
       Lift(PointsView{net.dimension, net.coordinates}, weights);
   if (in_u) return {lifted.dim * net.count_v, lifted.values};
   return {lifted.dim * net.count_u,
-          Transpose(lifted.values, net.count_u, net.count_v, lifted.dim)};
+          TransposeBlocks(lifted.values, net.count_u, net.count_v, lifted.dim)};
 }
 
 // FillNet writes `rows` (from RowsOf with the same in_u) into `surface`,
 // whose degrees, dimension and knots are already set.
-void FillNet(const Polygon& rows, bool in_u, bool rational,
+void FillNet(const PointArray& rows, bool in_u, bool rational,
              SurfaceData& surface) {
   const int point_dim = surface.dimension + (rational ? 1 : 0);
-  const int lines = rows.count();
+  const int lines = static_cast<int>(rows.count());
   const int per_line = rows.dim / point_dim;
   surface.count_u = in_u ? lines : per_line;
   surface.count_v = in_u ? per_line : lines;
-  Polygon net{
-      point_dim,
-      in_u ? rows.values : Transpose(rows.values, lines, per_line, point_dim)};
-  Project(net, rational, surface.coordinates, surface.weights);
+  PointArray net{point_dim, in_u ? rows.values
+                                 : TransposeBlocks(rows.values, lines, per_line,
+                                                   point_dim)};
+  ProjectAllowingDirections(net, rational, surface.coordinates,
+                            surface.weights);
 }
 
 // ---------------------------------------------------------------------------
@@ -374,14 +237,15 @@ absl::Status CheckTrianglePoint(double u, double v) {
 
 // Pyramid returns the triangular de Casteljau levels R^0..R^n at (u, v, w):
 // level l holds the degree n - l net in storage order (triangular.h).
-std::vector<Polygon> Pyramid(const Polygon& points, int n, double u, double v) {
+std::vector<PointArray> Pyramid(const PointArray& points, int n, double u,
+                                double v) {
   const double w = 1.0 - u - v;
   const int dim = points.dim;
-  std::vector<Polygon> levels{points};
+  std::vector<PointArray> levels{points};
   for (int l = 1; l <= n; ++l) {
-    const Polygon& prev = levels.back();
+    const PointArray& prev = levels.back();
     const int deg = n - l;
-    Polygon next{dim, std::vector<double>(TriangularPointCount(deg) * dim)};
+    PointArray next{dim, std::vector<double>(TriangularPointCount(deg) * dim)};
     for (int i = 0; i <= deg; ++i) {
       for (int j = 0; i + j <= deg; ++j) {
         const double* a =
@@ -402,16 +266,16 @@ std::vector<Polygon> Pyramid(const Polygon& points, int n, double u, double v) {
 // SubPatch returns the control points of the piece that replaces vertex
 // `vertex` (0, 1, 2) by the pyramid's point: P(a,b,c) = R^a(0,b,c),
 // R^b(a,0,c) or R^c(a,b,0).
-Polygon SubPatch(const std::vector<Polygon>& levels, int n, int vertex) {
+PointArray SubPatch(const std::vector<PointArray>& levels, int n, int vertex) {
   const int dim = levels[0].dim;
-  Polygon out{dim, std::vector<double>(TriangularPointCount(n) * dim)};
+  PointArray out{dim, std::vector<double>(TriangularPointCount(n) * dim)};
   for (int a = 0; a <= n; ++a) {
     for (int b = 0; a + b <= n; ++b) {
       const int c = n - a - b;
       const int level = vertex == 0 ? a : (vertex == 1 ? b : c);
       const int i = vertex == 0 ? 0 : a;
       const int j = vertex == 1 ? 0 : b;
-      const Polygon& source = levels[static_cast<size_t>(level)];
+      const PointArray& source = levels[static_cast<size_t>(level)];
       std::copy_n(source.at(static_cast<int>(TriangularIndex(n - level, i, j))),
                   dim, out.at(static_cast<int>(TriangularIndex(n, a, b))));
     }
@@ -426,7 +290,7 @@ std::vector<TriangularPatchData> SplitPieces(
     const TriangularPatchView& patch, double u, double v,
     std::initializer_list<int> vertices) {
   const int n = patch.degree;
-  const std::vector<Polygon> levels =
+  const std::vector<PointArray> levels =
       Pyramid(Lift(patch.control_points, patch.weights), n, u, v);
   const double barycentric[3] = {u, v, 1.0 - u - v};
   std::vector<TriangularPatchData> result;
@@ -434,8 +298,8 @@ std::vector<TriangularPatchData> SplitPieces(
     TriangularPatchData& piece = result.emplace_back();
     piece.degree = n;
     piece.dimension = patch.control_points.dimension;
-    Project(SubPatch(levels, n, vertex), patch.rational(), piece.coordinates,
-            piece.weights);
+    ProjectAllowingDirections(SubPatch(levels, n, vertex), patch.rational(),
+                              piece.coordinates, piece.weights);
     if (patch.domain_triangle.empty()) continue;
     piece.domain_triangle.assign(patch.domain_triangle.begin(),
                                  patch.domain_triangle.end());
@@ -527,7 +391,7 @@ absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
   if (absl::Status status = CheckSplitParameters(parameters); !status.ok()) {
     return status;
   }
-  const Polygon points = Lift(curve.control_points, curve.weights);
+  const PointArray points = Lift(curve.control_points, curve.weights);
   std::vector<BezierCurveData> pieces;
   pieces.reserve(parameters.size() + 1);
   const size_t piece_work = points.values.size() * points.values.size();
@@ -551,14 +415,14 @@ absl::StatusOr<BSplineCurveData> InsertKnots(const BSplineCurveView& curve,
       !status.ok()) {
     return status;
   }
-  absl::StatusOr<Spline> refined = Refine(LiftCurve(curve), knots, cancel);
+  absl::StatusOr<Spline> refined = RefineKnots(LiftCurve(curve), knots, cancel);
   if (!refined.ok()) return refined.status();
   BSplineCurveData result;
   result.degree = curve.degree;
   result.dimension = curve.control_points.dimension;
   result.knots = refined->knots;
-  Project(refined->points, curve.rational(), result.coordinates,
-          result.weights);
+  ProjectAllowingDirections(refined->points, curve.rational(),
+                            result.coordinates, result.weights);
   return result;
 }
 
@@ -591,17 +455,17 @@ absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
     const BSplineCurveView& curve, const CancellationToken* cancel) {
   const int p = curve.degree;
   absl::StatusOr<Spline> refined =
-      Refine(LiftCurve(curve), KnotsToDecompose(curve.knots, p), cancel);
+      RefineKnots(LiftCurve(curve), KnotsToDecompose(curve.knots, p), cancel);
   if (!refined.ok()) return refined.status();
-  const std::vector<int> spans =
-      NonEmptySpans(refined->knots, p, refined->points.count());
+  const std::vector<int> spans = NonEmptySpans(
+      refined->knots, p, static_cast<int>(refined->points.count()));
   const int dim = refined->points.dim;
   BezierDecomposition result;
   result.breakpoints = SpanBreakpoints(refined->knots, spans);
   for (const int s : spans) {
     const auto first = refined->points.values.begin() +
                        static_cast<std::ptrdiff_t>(s - p) * dim;
-    Polygon segment{
+    PointArray segment{
         dim, std::vector<double>(
                  first, first + static_cast<std::ptrdiff_t>(p + 1) * dim)};
     result.segments.push_back(ToBezierCurve(segment, curve.rational()));
@@ -618,13 +482,13 @@ absl::StatusOr<std::vector<std::vector<double>>> SubdividePolygon(
     return status;
   }
   const std::vector<double> mask = Mask(d);
-  Polygon current{polygon.dimension,
-                  std::vector<double>(polygon.coordinates.begin(),
-                                      polygon.coordinates.end())};
+  PointArray current{polygon.dimension,
+                     std::vector<double>(polygon.coordinates.begin(),
+                                         polygon.coordinates.end())};
   std::vector<std::vector<double>> result;
   result.reserve(static_cast<size_t>(levels));
   for (int level = 0; level < levels; ++level) {
-    absl::StatusOr<Polygon> refined =
+    absl::StatusOr<PointArray> refined =
         RefinePolygon(current, closed, mask, cancel);
     if (!refined.ok()) return refined.status();
     current = *std::move(refined);
@@ -646,7 +510,7 @@ absl::StatusOr<SurfaceData> InsertSurfaceKnots(
   const Spline lines{degree,
                      std::vector<double>(old_knots.begin(), old_knots.end()),
                      RowsOf(surface.control_net, surface.weights, in_u)};
-  absl::StatusOr<Spline> refined = Refine(lines, knots, cancel);
+  absl::StatusOr<Spline> refined = RefineKnots(lines, knots, cancel);
   if (!refined.ok()) return refined.status();
   SurfaceData result;
   result.degree_u = surface.degree_u;
@@ -664,8 +528,8 @@ absl::StatusOr<std::vector<SurfaceData>> SplitBezierSurface(
   if (!std::isfinite(t) || t <= 0.0 || t >= 1.0) {
     return InvalidFieldError("parameter", "must lie strictly between 0 and 1");
   }
-  const Polygon lines = RowsOf(surface.control_net, surface.weights, in_u);
-  Polygon halves[2];
+  const PointArray lines = RowsOf(surface.control_net, surface.weights, in_u);
+  PointArray halves[2];
   SplitAt(lines, t, &halves[0], &halves[1]);
   std::vector<SurfaceData> result(2);
   for (int h = 0; h < 2; ++h) {

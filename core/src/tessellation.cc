@@ -9,9 +9,9 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
-#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
+#include "homogeneous.h"
 #include "tessellation_checks.h"
 #include "variant_dispatch.h"
 
@@ -69,9 +69,11 @@ bool IsFlat(const double* control, const PieceShape& shape, double tolerance,
   if (shape.rational) {
     projected.resize(static_cast<size_t>(shape.degree + 1) * d);
     for (int i = 0; i <= shape.degree; ++i) {
-      const double* h = control + static_cast<size_t>(i) * shape.stride();
-      if (!(h[d] > 0.0)) return false;
-      for (int j = 0; j < d; ++j) projected[i * d + j] = h[j] / h[d];
+      if (!internal::ProjectPositive(
+              control + static_cast<size_t>(i) * shape.stride(), d,
+              projected.data() + static_cast<size_t>(i) * d)) {
+        return false;
+      }
     }
     points = projected.data();
   }
@@ -157,9 +159,12 @@ absl::Status SubdivideBezierPiece(const double* control,
   return absl::OkStatus();
 }
 
-// ValidateCurveRequest checks the tolerance and that a polyline (two
-// points at least) fits in max_points.
-absl::Status ValidateCurveRequest(double tolerance, size_t max_points) {
+// ValidateCurveRequest checks the curve (`validation`, the status of its
+// Validate* function), the tolerance and that a polyline (two points at
+// least) fits in max_points.
+absl::Status ValidateCurveRequest(const absl::Status& validation,
+                                  double tolerance, size_t max_points) {
+  if (!validation.ok()) return validation;
   if (absl::Status status = ValidateTolerance(tolerance); !status.ok()) {
     return status;
   }
@@ -167,13 +172,28 @@ absl::Status ValidateCurveRequest(double tolerance, size_t max_points) {
   return absl::OkStatus();
 }
 
-// PieceControl returns the control points to subdivide: homogeneous
-// (w P, w) for a rational curve, the points themselves otherwise.
-std::vector<double> PieceControl(const PointsView& points,
-                                 absl::Span<const double> weights) {
-  if (!weights.empty()) return HomogeneousPoints(points, weights);
-  return std::vector<double>(points.coordinates.begin(),
-                             points.coordinates.end());
+// The control points of a Bezier piece or a B-spline ready to subdivide:
+// their layout and their values, homogeneous (w P, w) when rational.
+struct PieceControl {
+  PieceShape shape;
+  std::vector<double> values;
+};
+
+// ResolvableControl returns the control points of degree `degree` to
+// subdivide, once the tolerance is known to be resolvable at their scale
+// (CheckResolvable).
+absl::StatusOr<PieceControl> ResolvableControl(const PointsView& points,
+                                               absl::Span<const double> weights,
+                                               int degree, double tolerance) {
+  if (absl::Status status =
+          CheckResolvable(tolerance, points.coordinates, degree);
+      !status.ok()) {
+    return status;
+  }
+  return PieceControl{.shape = {.degree = degree,
+                                .dimension = points.dimension,
+                                .rational = !weights.empty()},
+                      .values = internal::LiftedValues(points, weights)};
 }
 
 // PolylineAt evaluates the points at `parameters` with `evaluate`.
@@ -230,32 +250,23 @@ void BlossomBezierPoints(const std::vector<double>& control, int stride, int p,
 absl::StatusOr<Polyline> TessellateBezierCurve(
     const BezierCurveView& curve, double tolerance, size_t max_points,
     const CancellationToken* cancel) {
-  if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateCurveRequest(tolerance, max_points);
+  if (absl::Status status = ValidateCurveRequest(ValidateBezierCurve(curve),
+                                                 tolerance, max_points);
       !status.ok()) {
     return status;
   }
-  if (absl::Status status = CheckResolvable(
-          tolerance, curve.control_points.coordinates, curve.degree());
-      !status.ok()) {
-    return status;
-  }
-  const PieceShape shape{.degree = curve.degree(),
-                         .dimension = curve.control_points.dimension,
-                         .rational = curve.rational()};
-  const std::vector<double> control =
-      PieceControl(curve.control_points, curve.weights);
+  absl::StatusOr<PieceControl> control = ResolvableControl(
+      curve.control_points, curve.weights, curve.degree(), tolerance);
+  if (!control.ok()) return control.status();
   std::vector<double> parameters = {0.0};
   if (absl::Status status =
-          SubdivideBezierPiece(control.data(), shape, 0.0, 1.0, tolerance,
-                               max_points, cancel, parameters);
+          SubdivideBezierPiece(control->values.data(), control->shape, 0.0, 1.0,
+                               tolerance, max_points, cancel, parameters);
       !status.ok()) {
     return status;
   }
   return PolylineAt(
-      shape.dimension, std::move(parameters),
+      control->shape.dimension, std::move(parameters),
       [&](absl::Span<const double> t, CurveOutput output,
           const ExecutionContext& context) {
         return EvaluateBezierCurve(curve, t, output, context);
@@ -266,24 +277,16 @@ absl::StatusOr<Polyline> TessellateBezierCurve(
 absl::StatusOr<Polyline> TessellateBSplineCurve(
     const BSplineCurveView& curve, double tolerance, size_t max_points,
     const CancellationToken* cancel) {
-  if (absl::Status status = ValidateBSplineCurve(curve); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateCurveRequest(tolerance, max_points);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = CheckResolvable(
-          tolerance, curve.control_points.coordinates, curve.degree);
+  if (absl::Status status = ValidateCurveRequest(ValidateBSplineCurve(curve),
+                                                 tolerance, max_points);
       !status.ok()) {
     return status;
   }
   const int p = curve.degree;
-  const PieceShape shape{.degree = p,
-                         .dimension = curve.control_points.dimension,
-                         .rational = curve.rational()};
-  const std::vector<double> control =
-      PieceControl(curve.control_points, curve.weights);
+  absl::StatusOr<PieceControl> control =
+      ResolvableControl(curve.control_points, curve.weights, p, tolerance);
+  if (!control.ok()) return control.status();
+  const PieceShape& shape = control->shape;
   const int n = static_cast<int>(curve.control_points.size()) - 1;
   std::vector<double> parameters = {curve.knots[p]};
   std::vector<double> bezier(shape.size()), work;
@@ -291,8 +294,8 @@ absl::StatusOr<Polyline> TessellateBSplineCurve(
     if (!(curve.knots[s] < curve.knots[s + 1])) continue;
     if (absl::Status status = CheckCancelled(cancel); !status.ok())
       return status;
-    BlossomBezierPoints(control, shape.stride(), p, s, curve.knots, work,
-                        bezier.data());
+    BlossomBezierPoints(control->values, shape.stride(), p, s, curve.knots,
+                        work, bezier.data());
     if (absl::Status status = SubdivideBezierPiece(
             bezier.data(), shape, curve.knots[s], curve.knots[s + 1], tolerance,
             max_points, cancel, parameters);
@@ -316,7 +319,8 @@ namespace {
 absl::StatusOr<Polyline> TessellatePieces(const Curve& curve, double tolerance,
                                           size_t max_points,
                                           const CancellationToken* cancel) {
-  if (absl::Status status = ValidateCurveRequest(tolerance, max_points);
+  if (absl::Status status =
+          ValidateCurveRequest(absl::OkStatus(), tolerance, max_points);
       !status.ok()) {
     return status;
   }
@@ -325,20 +329,13 @@ absl::StatusOr<Polyline> TessellatePieces(const Curve& curve, double tolerance,
   std::vector<double> parameters = {pieces->breakpoints.front()};
   for (size_t k = 0; k < pieces->segments.size(); ++k) {
     const BezierCurveView piece = pieces->segments[k].view();
-    if (absl::Status status = CheckResolvable(
-            tolerance, piece.control_points.coordinates, piece.degree());
-        !status.ok()) {
-      return status;
-    }
-    const PieceShape shape{.degree = piece.degree(),
-                           .dimension = piece.control_points.dimension,
-                           .rational = piece.rational()};
-    const std::vector<double> control =
-        PieceControl(piece.control_points, piece.weights);
-    if (absl::Status status =
-            SubdivideBezierPiece(control.data(), shape, pieces->breakpoints[k],
-                                 pieces->breakpoints[k + 1], tolerance,
-                                 max_points, cancel, parameters);
+    absl::StatusOr<PieceControl> control = ResolvableControl(
+        piece.control_points, piece.weights, piece.degree(), tolerance);
+    if (!control.ok()) return control.status();
+    if (absl::Status status = SubdivideBezierPiece(
+            control->values.data(), control->shape, pieces->breakpoints[k],
+            pieces->breakpoints[k + 1], tolerance, max_points, cancel,
+            parameters);
         !status.ok()) {
       return status;
     }

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/tensor_surface.h"
+#include "homogeneous.h"
 #include "validated.h"
 
 namespace freeform {
@@ -202,11 +202,7 @@ class PatchEvaluator {
         top_(std::min(max_order, patch.degree)),
         rational_(patch.rational()),
         map_(map),
-        control_(rational_
-                     ? HomogeneousPoints(patch.control_points, patch.weights)
-                     : std::vector<double>(
-                           patch.control_points.coordinates.begin(),
-                           patch.control_points.coordinates.end())) {}
+        control_(internal::LiftedValues(patch.control_points, patch.weights)) {}
 
   size_t partials_size() const {
     return PartialCount(max_order_) * static_cast<size_t>(dimension_);

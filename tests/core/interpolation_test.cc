@@ -10,6 +10,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "freeform/core/bspline.h"
@@ -396,6 +397,36 @@ TEST(CubicSplineTest, ClampedAndNotAKnotReproduceCubics) {
         << count;
     // Knots at every abscissa, as for the other end conditions.
     EXPECT_EQ(not_a_knot->curve.knots, clamped->curve.knots);
+  }
+}
+
+TEST(CubicSplineTest, NotAKnotHasContinuousThirdDerivativeAtX1AndXnm1) {
+  // s''' is constant on each interval of a cubic spline; not-a-knot makes
+  // it the same on both sides of x_1 and of x_{n-1}, the knots that the
+  // spline is solved without and that knot insertion puts back.
+  std::mt19937_64 rng(11);
+  for (int count : {4, 5, 9, 30}) {
+    const std::vector<double> x = SortedAbscissas(rng, count);
+    std::vector<double> y;
+    for (double value : x) y.insert(y.end(), {std::sin(3 * value), value});
+    absl::StatusOr<CurveInterpolation> spline = InterpolateCubicSpline(
+        {.dimension = 2, .coordinates = y}, x, SplineEnd::kNotAKnot, {}, {});
+    ASSERT_TRUE(spline.ok()) << spline.status();
+    std::vector<double> midpoints;
+    for (size_t i = 0; i + 1 < x.size(); ++i) {
+      midpoints.push_back(0.5 * (x[i] + x[i + 1]));
+    }
+    const std::vector<double> third = Evaluate(spline->curve, midpoints, 4)[3];
+    const double scale = MaxAbs(third);
+    const size_t last = midpoints.size() - 1;
+    for (const auto& [left, right] :
+         {std::pair<size_t, size_t>{0, 1}, {last - 1, last}}) {
+      EXPECT_NEAR(third[2 * left], third[2 * right], 1e-9 * scale)
+          << count << " at interval " << left;
+    }
+    EXPECT_LT(MaxDifference(Evaluate(spline->curve, x, 1)[0], y),
+              1e-12 * MaxAbs(y))
+        << count;
   }
 }
 

@@ -1,4 +1,4 @@
-#include "freeform/core/file.h"
+#include "freeform/client/file.h"
 
 #include <fstream>
 #include <sstream>
