@@ -17,10 +17,13 @@
 #include "freeform/core/fitting.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
+#include "interpolation_result.h"
 #include "tolerance_refinement.h"
 
 namespace freeform {
 namespace {
+
+using internal::MakeCurve;
 
 using internal::FixedEndLeastSquares;
 
@@ -60,15 +63,6 @@ absl::StatusOr<KnotFit> FitOnKnots(const PointsView& points, int p,
     fit.errors[k] = std::sqrt(sum);
   }
   return fit;
-}
-
-BSplineCurveData MakeCurve(int p, int dimension, std::vector<double> control,
-                           std::vector<double> knots) {
-  return {.degree = p,
-          .dimension = dimension,
-          .coordinates = std::move(control),
-          .knots = std::move(knots),
-          .weights = {}};
 }
 
 // Largest and root-mean-square of `errors`.

@@ -140,7 +140,7 @@ absl::StatusOr<std::vector<double>> ExplicitParameters(
   return std::vector<double>(parameters.begin(), parameters.end());
 }
 
-absl::Status ValidateDegree(int degree, absl::string_view field) {
+absl::Status ValidatePositiveDegree(int degree, absl::string_view field) {
   if (degree < 1) {
     return InvalidFieldError(field, absl::StrCat("must be >= 1, got ", degree));
   }
@@ -148,7 +148,8 @@ absl::Status ValidateDegree(int degree, absl::string_view field) {
 }
 
 absl::Status ValidateCurveData(const PointsView& points, int degree) {
-  if (absl::Status status = ValidateDegree(degree, "degree"); !status.ok()) {
+  if (absl::Status status = ValidatePositiveDegree(degree, "degree");
+      !status.ok()) {
     return status;
   }
   return ValidatePoints(points, "points", static_cast<size_t>(degree) + 1);

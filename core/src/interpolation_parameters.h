@@ -36,8 +36,8 @@ absl::Status ValidateParameters(absl::Span<const double> parameters);
 absl::StatusOr<std::vector<double>> ExplicitParameters(
     absl::Span<const double> parameters, size_t count);
 
-// ValidateDegree checks that the degree named `field` is at least 1.
-absl::Status ValidateDegree(int degree, absl::string_view field);
+// ValidatePositiveDegree checks that the degree named `field` is at least 1.
+absl::Status ValidatePositiveDegree(int degree, absl::string_view field);
 
 // ValidateCurveData checks "degree" (>= 1) and "points" (at least
 // degree + 1 of them).

@@ -29,7 +29,7 @@ using internal::FactorOpenSystem;
 using internal::KnotsFor;
 using internal::UniformValues;
 using internal::UniversalParameters;
-using internal::ValidateDegree;
+using internal::ValidatePositiveDegree;
 
 // GridParameters averages the parameters of the count_u "columns"
 // Q[.][l] (u direction) or of the rows (v direction, `along_u` false),
@@ -112,11 +112,11 @@ absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
         "knot_rule",
         "kAtParameters needs end derivatives, which surfaces do not take");
   }
-  if (absl::Status status = ValidateDegree(degree_u, "degree_u");
+  if (absl::Status status = ValidatePositiveDegree(degree_u, "degree_u");
       !status.ok()) {
     return status;
   }
-  if (absl::Status status = ValidateDegree(degree_v, "degree_v");
+  if (absl::Status status = ValidatePositiveDegree(degree_v, "degree_v");
       !status.ok()) {
     return status;
   }

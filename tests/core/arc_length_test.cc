@@ -16,6 +16,8 @@
 namespace freeform {
 namespace {
 
+constexpr auto Distance = testing_util::PointDistance;
+
 using testing_util::EvenlySpaced;
 using testing_util::NurbsCircle;
 using testing_util::RandomKnots;
@@ -27,12 +29,6 @@ std::vector<double> Points(const Curve& curve,
   const absl::Span<double> output[] = {absl::MakeSpan(points)};
   EXPECT_TRUE(EvaluateCurve(curve, parameters, output).ok());
   return points;
-}
-
-double Distance(const double* a, const double* b, int dimension) {
-  double sum = 0.0;
-  for (int j = 0; j < dimension; ++j) sum += (a[j] - b[j]) * (a[j] - b[j]);
-  return std::sqrt(sum);
 }
 
 // PolylineLength returns the length of the polyline through `segments` + 1

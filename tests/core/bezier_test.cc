@@ -20,6 +20,8 @@
 namespace freeform {
 namespace {
 
+using ::freeform::testing_util::RandomValues;
+
 using ::testing::DoubleNear;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
@@ -46,13 +48,6 @@ BezierCurveView View(const std::vector<double>& coordinates, int dimension,
   return BezierCurveView{
       .control_points = {.dimension = dimension, .coordinates = coordinates},
       .weights = weights};
-}
-
-std::vector<double> RandomValues(std::mt19937_64& rng, size_t count) {
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<double> values(count);
-  for (double& value : values) value = uniform(rng);
-  return values;
 }
 
 long double Binomial(int n, int k) {

@@ -18,6 +18,8 @@
 namespace freeform {
 namespace {
 
+using ::freeform::testing_util::RandomValues;
+
 using ::freeform::testing_util::RandomKnots;
 using ::testing::DoubleNear;
 using ::testing::HasSubstr;
@@ -78,13 +80,6 @@ std::vector<double> Uniform(int intervals, double start = 0.0,
   }
   params.back() = end;
   return params;
-}
-
-std::vector<double> RandomValues(std::mt19937_64& rng, size_t count) {
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<double> values(count);
-  for (double& value : values) value = uniform(rng);
-  return values;
 }
 
 std::vector<double> RandomWeights(std::mt19937_64& rng, size_t count) {

@@ -17,6 +17,9 @@
 namespace freeform {
 namespace {
 
+using ::freeform::testing_util::MaxAbs;
+using ::freeform::testing_util::MaxDifference;
+
 using ::freeform::testing_util::EvenlySpaced;
 using ::freeform::testing_util::RandomValues;
 
@@ -25,22 +28,6 @@ using ::testing::ElementsAreArray;
 using ::testing::Optional;
 
 using Buffers = std::vector<std::vector<double>>;
-
-double MaxAbs(const std::vector<double>& values) {
-  double result = 0.0;
-  for (double value : values) result = std::max(result, std::abs(value));
-  return result;
-}
-
-double MaxDifference(const std::vector<double>& a,
-                     const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  double result = 0.0;
-  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
-    result = std::max(result, std::abs(a[i] - b[i]));
-  }
-  return result;
-}
 
 Buffers MakeBuffers(size_t orders, size_t size) {
   return Buffers(orders, std::vector<double>(size));

@@ -14,9 +14,13 @@
 
 #include "freeform/core/cancellation.h"
 #include "freeform/core/status.h"
+#include "test_util.h"
 
 namespace freeform {
 namespace {
+
+using ::freeform::testing_util::MaxAbs;
+using ::freeform::testing_util::RandomValues;
 
 using ::testing::DoubleNear;
 using ::testing::ElementsAre;
@@ -24,13 +28,6 @@ using ::testing::HasSubstr;
 using ::testing::Pointwise;
 
 constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
-
-std::vector<double> RandomValues(std::mt19937_64& rng, size_t count) {
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<double> values(count);
-  for (double& value : values) value = uniform(rng);
-  return values;
-}
 
 std::vector<double> UniformNodes(int n, double a, double b) {
   std::vector<double> nodes(static_cast<size_t>(n + 1));
@@ -124,12 +121,6 @@ Reference ReferenceDerivatives(const std::vector<double>& nodes, int k,
   }
   reference.bound = static_cast<double>(bound);
   return reference;
-}
-
-double MaxAbs(const std::vector<double>& values) {
-  double result = 0;
-  for (double value : values) result = std::max(result, std::fabs(value));
-  return result;
 }
 
 LagrangeCurveView View(const std::vector<double>& coordinates, int dimension,

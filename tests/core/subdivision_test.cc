@@ -14,6 +14,8 @@
 namespace freeform {
 namespace {
 
+using ::freeform::testing_util::MaxDifference;
+
 using ::freeform::testing_util::EvenlySpaced;
 using ::freeform::testing_util::RandomValues;
 
@@ -21,16 +23,6 @@ using ::testing::Optional;
 
 constexpr double kTolerance = 1e-12;
 constexpr size_t kSamples = 10000;
-
-double MaxDifference(const std::vector<double>& a,
-                     const std::vector<double>& b) {
-  EXPECT_EQ(a.size(), b.size());
-  double largest = 0.0;
-  for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
-    largest = std::max(largest, std::abs(a[i] - b[i]));
-  }
-  return largest;
-}
 
 std::vector<double> EvaluateBezier(const BezierCurveView& curve,
                                    const std::vector<double>& params) {

@@ -16,18 +16,15 @@
 #include "freeform/core/curve.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
+#include "shapes.h"
 #include "test_util.h"
 
 namespace freeform {
 namespace {
 
-using testing_util::RandomValues;
+constexpr auto Distance = testing_util::PointDistance;
 
-double Distance(const double* a, const double* b, int dimension) {
-  double d2 = 0.0;
-  for (int j = 0; j < dimension; ++j) d2 += (a[j] - b[j]) * (a[j] - b[j]);
-  return std::sqrt(d2);
-}
+using testing_util::RandomValues;
 
 double DistanceToSegment(const double* p, const double* a, const double* b,
                          int dimension) {

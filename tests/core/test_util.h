@@ -39,6 +39,25 @@ inline std::vector<double> RandomValues(std::mt19937_64& rng, size_t count,
   return values;
 }
 
+// MaxAbs returns the largest magnitude in `values` (0 when empty).
+inline double MaxAbs(const std::vector<double>& values) {
+  double result = 0.0;
+  for (const double value : values) result = std::max(result, std::fabs(value));
+  return result;
+}
+
+// MaxDifference returns the largest |a[i] - b[i]|, or infinity when the
+// sizes differ (so that a check against a bound fails).
+inline double MaxDifference(const std::vector<double>& a,
+                            const std::vector<double>& b) {
+  if (a.size() != b.size()) return INFINITY;
+  double result = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    result = std::max(result, std::fabs(a[i] - b[i]));
+  }
+  return result;
+}
+
 // EvenlySpaced returns `count` >= 2 values from `start` to `end`, both
 // included exactly.
 inline std::vector<double> EvenlySpaced(double start, double end,

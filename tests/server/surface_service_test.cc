@@ -9,10 +9,13 @@
 #include <random>
 #include <string>
 
+#include "../core/test_util.h"
 #include "in_process_server.h"
 
 namespace freeform::server {
 namespace {
+
+using ::freeform::testing_util::RandomValues;
 
 using ::testing::DoubleNear;
 using ::testing::Pointwise;
@@ -23,13 +26,6 @@ void SetNet(v1::ControlNet* net, int dimension, int count_u, int count_v,
   net->set_count_u(static_cast<uint32_t>(count_u));
   net->set_count_v(static_cast<uint32_t>(count_v));
   net->mutable_coordinates()->Add(coordinates.begin(), coordinates.end());
-}
-
-std::vector<double> RandomValues(std::mt19937_64& rng, size_t count) {
-  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  std::vector<double> values(count);
-  for (double& value : values) value = uniform(rng);
-  return values;
 }
 
 class SurfaceServiceTest : public InProcessServerTest {
