@@ -6,7 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "binomial.h"
-#include "curve_reference.h"
+#include "scalar_reference.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "homogeneous.h"

@@ -9,7 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "bspline_spans.h"
-#include "curve_reference.h"
+#include "scalar_reference.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"

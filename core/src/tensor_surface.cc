@@ -13,6 +13,8 @@
 #include "freeform/core/points.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "scalar_reference.h"
+#include "simd/surface_simd.h"
 #include "validated.h"
 
 namespace freeform {
@@ -165,79 +167,129 @@ void EvaluatePairsChunk(const TensorBatch& batch, absl::Span<const double> uv,
   }
 }
 
-// The v bases of a grid, computed once: span and N^(l)_{span-q+b}(v_j) at
-// ders[(j * (d + 1) + l) * (q + 1) + b].
+// How a grid row combines its v-direction nets with the column bases.
+enum class GridKernel {
+  kLanes,   // simd/surface_simd.h for polynomial surfaces
+  kScalar,  // point by point
+};
+
+// The v bases of a grid, computed once, in the planes of
+// simd::GridRowLanesBatch: N^(l)_{spans[j]-q+b}(v_j) at
+// planes[(l * (q + 1) + b) * stride + j].
 struct GridColumns {
   std::vector<int> spans;
-  std::vector<double> ders;
+  std::vector<size_t> run_ends;  // where the run of equal spans from j ends
+  size_t stride = 0;
+  std::vector<double> planes;
 };
 
 GridColumns ColumnBases(const Direction& v_direction, int max_order,
                         absl::Span<const double> v) {
   const size_t block = (static_cast<size_t>(max_order) + 1) *
                        (static_cast<size_t>(v_direction.degree) + 1);
+  const size_t stride = v.size() + simd::kPlanePadding;
   GridColumns columns{.spans = std::vector<int>(v.size()),
-                      .ders = std::vector<double>(v.size() * block)};
+                      .run_ends = std::vector<size_t>(v.size()),
+                      .stride = stride,
+                      .planes = std::vector<double>(block * stride, 0.0)};
   LocalBasis basis(v_direction, max_order);
   for (size_t j = 0; j < v.size(); ++j) {
     columns.spans[j] = basis.Evaluate(v[j]);
-    std::copy_n(basis.ders(), block, columns.ders.data() + j * block);
+    for (size_t x = 0; x < block; ++x) {
+      columns.planes[x * stride + j] = basis.ders()[x];
+    }
+  }
+  for (size_t j = v.size(); j-- > 0;) {
+    const bool run_goes_on =
+        j + 1 < v.size() && columns.spans[j + 1] == columns.spans[j];
+    columns.run_ends[j] = run_goes_on ? columns.run_ends[j + 1] : j + 1;
   }
   return columns;
+}
+
+// The points of grid row i, columns j, partials m = PartialIndex(k, l),
+// one at a time: out = sum_b N^(l)_b(v_j) Q_k[span_j - q + b].
+void CombineRowScalar(const TensorBatch& batch, const GridColumns& columns,
+                      const double* nets, size_t i, PointPartials& partials,
+                      std::vector<double>& basis) {
+  const int q = batch.v.degree;
+  const int d = batch.max_order;
+  const int w = batch.work;
+  const size_t count_v = columns.spans.size();
+  const size_t net_stride = static_cast<size_t>(batch.count_v) * w;
+  for (size_t j = 0; j < count_v; ++j) {
+    const size_t r = i * count_v + j;
+    const size_t offset = static_cast<size_t>(columns.spans[j] - q) * w;
+    for (int k = 0; k <= d; ++k) {
+      for (int l = 0; l <= d - k; ++l) {
+        for (int b = 0; b <= q; ++b) {
+          basis[b] = columns.planes[(l * (q + 1) + b) * columns.stride + j];
+        }
+        Combine(basis.data(), q + 1, nets + k * net_stride + offset,
+                static_cast<size_t>(w), w,
+                partials.Target(PartialIndex(k, l), r));
+      }
+    }
+    partials.Finish(r);
+  }
 }
 
 // Evaluates grid rows [begin, end): per u_i the whole v-direction net
 // Q_k[j] = sum_a N^(k)_a(u_i) P[su-p+a][j] of each order k, then per v_j
 // the dot products with the precomputed v basis.
 void EvaluateGridRows(const TensorBatch& batch, absl::Span<const double> u,
-                      const GridColumns& columns, size_t begin, size_t end) {
+                      const GridColumns& columns, GridKernel kernel,
+                      size_t begin, size_t end) {
   const int p = batch.u.degree;
-  const int q = batch.v.degree;
   const int d = batch.max_order;
-  const int w = batch.work;
   const size_t count_v = columns.spans.size();
-  const size_t row_stride = static_cast<size_t>(batch.count_v) * w;
-  const size_t block = static_cast<size_t>(d + 1) * (q + 1);
+  const size_t net_stride = static_cast<size_t>(batch.count_v) * batch.work;
   LocalBasis basis_u(batch.u, d);
-  std::vector<double> rows(static_cast<size_t>(d + 1) * row_stride);
+  std::vector<double> nets(static_cast<size_t>(d + 1) * net_stride);
+  std::vector<double> basis_v(static_cast<size_t>(batch.v.degree) + 1);
+  std::vector<double*> row_output(batch.partials());
   PointPartials partials(batch);
+  const bool lanes = kernel == GridKernel::kLanes && !batch.rational();
   for (size_t i = begin; i < end; ++i) {
     const int su = basis_u.Evaluate(u[i]);
-    const double* first_row = batch.control + (su - p) * row_stride;
+    const double* first_row = batch.control + (su - p) * net_stride;
     for (int k = 0; k <= d; ++k) {
       const double* basis = basis_u.ders() + k * (p + 1);
-      double* row = rows.data() + k * row_stride;
-      std::fill_n(row, row_stride, 0.0);
+      double* net = nets.data() + k * net_stride;
+      std::fill_n(net, net_stride, 0.0);
       for (int a = 0; a <= p; ++a) {
-        const double* points = first_row + a * row_stride;
-        for (size_t x = 0; x < row_stride; ++x) row[x] += basis[a] * points[x];
+        const double* points = first_row + a * net_stride;
+        for (size_t x = 0; x < net_stride; ++x) net[x] += basis[a] * points[x];
       }
     }
-    for (size_t j = 0; j < count_v; ++j) {
-      const size_t r = i * count_v + j;
-      const double* column = columns.ders.data() + j * block;
-      const size_t offset = static_cast<size_t>(columns.spans[j] - q) * w;
-      for (int k = 0; k <= d; ++k) {
-        for (int l = 0; l <= d - k; ++l) {
-          Combine(column + l * (q + 1), q + 1,
-                  rows.data() + k * row_stride + offset, static_cast<size_t>(w),
-                  w, partials.Target(PartialIndex(k, l), r));
-        }
-      }
-      partials.Finish(r);
+    if (!lanes) {
+      CombineRowScalar(batch, columns, nets.data(), i, partials, basis_v);
+      continue;
     }
+    for (size_t m = 0; m < row_output.size(); ++m) {
+      row_output[m] = batch.output[m] + i * count_v * batch.dimension;
+    }
+    simd::EvaluateGridRow({.q = batch.v.degree,
+                           .dimension = batch.dimension,
+                           .max_order = d,
+                           .columns = count_v,
+                           .spans = columns.spans.data(),
+                           .run_ends = columns.run_ends.data(),
+                           .planes = columns.planes.data(),
+                           .plane_stride = columns.stride,
+                           .nets = nets.data(),
+                           .net_stride = net_stride,
+                           .output = row_output.data()});
   }
 }
 
 // Validates the samples and output, then evaluates the surface over
 // directions u and v with the net (and weights) of `net`.
-absl::Status EvaluateTensorSurface(const Direction& u, const Direction& v,
-                                   const ControlNetView& net,
-                                   absl::Span<const double> weights,
-                                   const SurfaceDomain& domain,
-                                   const SurfaceSamples& samples,
-                                   SurfaceOutput output,
-                                   const ExecutionContext& context) {
+absl::Status EvaluateTensorSurface(
+    const Direction& u, const Direction& v, const ControlNetView& net,
+    absl::Span<const double> weights, const SurfaceDomain& domain,
+    const SurfaceSamples& samples, SurfaceOutput output,
+    const ExecutionContext& context, GridKernel kernel = GridKernel::kLanes) {
   if (absl::Status status = ValidateSurfaceSamples(
           samples, domain.u_start, domain.u_end, domain.v_start, domain.v_end);
       !status.ok()) {
@@ -276,7 +328,7 @@ absl::Status EvaluateTensorSurface(const Direction& u, const Direction& v,
   rows_context.grain = std::max<size_t>(
       1, context.grain / std::max<size_t>(1, samples.v.size()));
   return ParallelFor(samples.u.size(), rows_context, [&](size_t b, size_t e) {
-    EvaluateGridRows(batch, samples.u, columns, b, e);
+    EvaluateGridRows(batch, samples.u, columns, kernel, b, e);
   });
 }
 
@@ -415,6 +467,20 @@ absl::Status ValidateDenominator(const Direction& u, const Direction& v,
 Direction BSplineDirection(int degree, int count,
                            absl::Span<const double> knots) {
   return {.degree = degree, .n = count - 1, .knots = knots};
+}
+
+// EvaluateValidBSplineSurface with the grid rows finished by `kernel`.
+absl::Status EvaluateValidBSplineSurfaceWith(const BSplineSurfaceView& surface,
+                                             const SurfaceSamples& samples,
+                                             SurfaceOutput output,
+                                             const ExecutionContext& context,
+                                             GridKernel kernel) {
+  const ControlNetView& net = surface.control_net;
+  return EvaluateTensorSurface(
+      BSplineDirection(surface.degree_u, net.count_u, surface.knots_u),
+      BSplineDirection(surface.degree_v, net.count_v, surface.knots_v), net,
+      surface.weights, BSplineSurfaceDomain(surface), samples, output, context,
+      kernel);
 }
 
 }  // namespace
@@ -580,11 +646,18 @@ absl::Status EvaluateValidBSplineSurface(const BSplineSurfaceView& surface,
                                          const SurfaceSamples& samples,
                                          SurfaceOutput output,
                                          const ExecutionContext& context) {
-  const ControlNetView& net = surface.control_net;
-  return EvaluateTensorSurface(
-      BSplineDirection(surface.degree_u, net.count_u, surface.knots_u),
-      BSplineDirection(surface.degree_v, net.count_v, surface.knots_v), net,
-      surface.weights, BSplineSurfaceDomain(surface), samples, output, context);
+  return EvaluateValidBSplineSurfaceWith(surface, samples, output, context,
+                                         GridKernel::kLanes);
+}
+
+absl::Status EvaluateBSplineSurfaceScalar(const BSplineSurfaceView& surface,
+                                          const SurfaceSamples& samples,
+                                          SurfaceOutput output) {
+  if (absl::Status status = ValidateBSplineSurface(surface); !status.ok()) {
+    return status;
+  }
+  return EvaluateValidBSplineSurfaceWith(surface, samples, output, {},
+                                         GridKernel::kScalar);
 }
 
 }  // namespace internal

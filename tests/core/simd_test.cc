@@ -1,8 +1,6 @@
-// The kernels across parameters (core/src/simd/) against the scalar
-// reference evaluators, bit for bit, on every instruction set Highway
-// compiled them for and this CPU runs (forced one at a time).
-#include "simd/curve_simd.h"
-
+// The kernels across parameters and grid columns (core/src/simd/) against
+// the scalar reference evaluators, bit for bit, on every instruction set
+// Highway compiled them for and this CPU runs (forced one at a time).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -14,12 +12,15 @@
 #include <string>
 #include <vector>
 
-#include "curve_reference.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/surface_output.h"
+#include "freeform/core/tensor_surface.h"
 #include "hwy/targets.h"
+#include "scalar_reference.h"
+#include "simd/curve_simd.h"
 #include "test_util.h"
 
 namespace freeform {
@@ -319,6 +320,107 @@ TEST(CurveSimdTest, DegreeTwentyBezierMatchesLongDoubleDeCasteljau) {
       }
     }
     EXPECT_LT(worst, 1e-13);
+  });
+}
+
+// A random non-rational B-spline surface of degrees p x q; the vectors own
+// its data.
+struct RandomSurface {
+  RandomSurface(std::mt19937_64& rng, int p, int q, int dimension) {
+    const int n = p + std::uniform_int_distribution<int>(0, 6)(rng);
+    const int m = q + std::uniform_int_distribution<int>(0, 12)(rng);
+    knots_u = RandomKnots(rng, p, n, rng() % 2 == 0);
+    knots_v = RandomKnots(rng, q, m, rng() % 2 == 0);
+    points =
+        RandomValues(rng, static_cast<size_t>((n + 1) * (m + 1) * dimension));
+    view = {.degree_u = p,
+            .degree_v = q,
+            .control_net = {.dimension = dimension,
+                            .count_u = n + 1,
+                            .count_v = m + 1,
+                            .coordinates = points},
+            .knots_u = knots_u,
+            .knots_v = knots_v};
+  }
+  std::vector<double> points;
+  std::vector<double> knots_u;
+  std::vector<double> knots_v;
+  BSplineSurfaceView view;
+};
+
+// The grid kernel and the scalar grid give the same bits for every partial
+// with k + l <= max_order.
+void ExpectGridMatchesScalar(const BSplineSurfaceView& surface,
+                             const std::vector<double>& u,
+                             const std::vector<double>& v, int max_order,
+                             const std::string& what) {
+  const int partials = static_cast<int>(PartialCount(max_order));
+  const int dimension = surface.control_net.dimension;
+  const size_t count = u.size() * v.size();
+  Output simd_out(partials, count, dimension);
+  Output scalar_out(partials, count, dimension);
+  const SurfaceSamples samples = SurfaceSamples::Grid(u, v);
+  ASSERT_TRUE(EvaluateBSplineSurface(surface, samples, simd_out.spans).ok())
+      << what;
+  ASSERT_TRUE(
+      internal::EvaluateBSplineSurfaceScalar(surface, samples, scalar_out.spans)
+          .ok())
+      << what;
+  ExpectSameBits(simd_out.buffers, scalar_out.buffers, what);
+}
+
+// u degrees 1..20 against v degrees 1..20 (in a rotating pairing),
+// dimensions 1..16, partials up to order 0..3 (orders above the degree
+// included), on random knot vectors with repeated knots; the columns hold
+// every knot, both ends, sorted runs and unsorted values, 37 of them (no
+// multiple of any vector length).
+TEST(SurfaceSimdTest, GridMatchesScalarBitForBit) {
+  OnEveryTarget([] {
+    std::mt19937_64 rng(33);
+    for (int p = 1; p <= 20; ++p) {
+      for (int dimension = 1; dimension <= 16; ++dimension) {
+        const int q = 1 + (p * 7 + dimension) % 20;
+        const RandomSurface surface(rng, p, q, dimension);
+        const auto domain = BSplineSurfaceDomain(surface.view);
+        const std::vector<double> u = MixedParameters(
+            rng, domain.u_start, domain.u_end, surface.knots_u, 5);
+        const std::vector<double> v = MixedParameters(
+            rng, domain.v_start, domain.v_end, surface.knots_v, 37);
+        const int max_order = (p + dimension) % 4;
+        ExpectGridMatchesScalar(surface.view, u, v, max_order,
+                                "degrees " + std::to_string(p) + " x " +
+                                    Case(q, dimension, max_order + 1));
+      }
+    }
+  });
+}
+
+// Rows of 1, 3, 7 and 4097 sorted columns (long runs on one span, and runs
+// that end inside a vector), and unsorted ones (runs of one column).
+TEST(SurfaceSimdTest, GridRowsOfEveryLength) {
+  OnEveryTarget([] {
+    std::mt19937_64 rng(8);
+    for (const int q : {1, 3, 6}) {
+      for (const int dimension : {1, 3, 5}) {
+        const RandomSurface surface(rng, 3, q, dimension);
+        const auto domain = BSplineSurfaceDomain(surface.view);
+        const std::vector<double> u =
+            EvenlySpaced(domain.u_start, domain.u_end, 3);
+        for (const size_t count : {1u, 3u, 7u, 4097u}) {
+          const std::string what =
+              Case(q, dimension, 2) + ", columns " + std::to_string(count);
+          ExpectGridMatchesScalar(
+              surface.view, u,
+              count == 1 ? std::vector<double>{domain.v_end}
+                         : EvenlySpaced(domain.v_start, domain.v_end, count),
+              1, what + " sorted");
+          ExpectGridMatchesScalar(
+              surface.view, u,
+              RandomValues(rng, count, domain.v_start, domain.v_end), 1,
+              what + " unsorted");
+        }
+      }
+    }
   });
 }
 
