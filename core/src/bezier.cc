@@ -6,10 +6,10 @@
 
 #include "absl/strings/str_cat.h"
 #include "binomial.h"
-#include "scalar_reference.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "homogeneous.h"
+#include "scalar_reference.h"
 #include "simd/curve_simd.h"
 #include "validated.h"
 
@@ -162,7 +162,7 @@ void LadderBezierPoint(const double* scaled, int n, int dimension, double t,
 
 BezierAlgorithm ResolveBezierAlgorithm(BezierAlgorithm algorithm, int degree) {
   if (algorithm != BezierAlgorithm::kAuto) return algorithm;
-  return degree <= kHornerMaxAutoDegree ? BezierAlgorithm::kHorner
+  return degree <= kLinearMaxAutoDegree ? BezierAlgorithm::kLadder
                                         : BezierAlgorithm::kDeCasteljau;
 }
 
@@ -355,12 +355,12 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
 
 namespace {
 
-// Evaluates a polynomial curve by Horner's rule with the kernel across
-// parameters (simd/curve_simd.h).
-absl::Status EvaluateHornerLanes(const BezierCurveView& curve,
-                                 absl::Span<const double> parameters,
-                                 CurveOutput output,
-                                 const ExecutionContext& context) {
+// Evaluates a polynomial curve by `scheme` (Warren's ladder or Horner's
+// rule) with the kernel across parameters (simd/curve_simd.h).
+absl::Status EvaluateLanes(const BezierCurveView& curve,
+                           absl::Span<const double> parameters,
+                           CurveOutput output, const ExecutionContext& context,
+                           BezierAlgorithm scheme) {
   const int n = curve.degree();
   const int max_order = static_cast<int>(output.size()) - 1;
   const std::vector<std::vector<double>> hodographs =
@@ -375,6 +375,7 @@ absl::Status EvaluateHornerLanes(const BezierCurveView& curve,
     buffers.push_back(buffer.data());
   }
   const simd::BezierLanesBatch batch{
+      .ladder = scheme == BezierAlgorithm::kLadder,
       .n = n,
       .dimension = curve.control_points.dimension,
       .max_order = max_order,
@@ -382,7 +383,7 @@ absl::Status EvaluateHornerLanes(const BezierCurveView& curve,
       .parameters = parameters.data(),
       .output = buffers.data()};
   return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
-    simd::EvaluateBezierHornerChunk(batch, begin, end);
+    simd::EvaluateBezierChunk(batch, begin, end);
   });
 }
 
@@ -428,9 +429,11 @@ absl::Status EvaluateValidBezierCurve(const BezierCurveView& curve,
       !status.ok()) {
     return status;
   }
-  if (!curve.rational() && ResolveBezierAlgorithm(algorithm, curve.degree()) ==
-                               BezierAlgorithm::kHorner) {
-    return EvaluateHornerLanes(curve, parameters, output, context);
+  const BezierAlgorithm scheme =
+      ResolveBezierAlgorithm(algorithm, curve.degree());
+  if (!curve.rational() && (scheme == BezierAlgorithm::kHorner ||
+                            scheme == BezierAlgorithm::kLadder)) {
+    return EvaluateLanes(curve, parameters, output, context, scheme);
   }
   return EvaluatePointByPoint(curve, parameters, output, context, algorithm);
 }

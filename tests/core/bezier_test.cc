@@ -169,14 +169,14 @@ TEST(BezierTest, SchemesAgreeOnRationalCurves) {
   }
 }
 
-TEST(BezierTest, AutoPicksHornerUpToTheMeasuredDegree) {
+TEST(BezierTest, AutoPicksTheLadderUpToTheMeasuredDegree) {
   EXPECT_EQ(ResolveBezierAlgorithm(BezierAlgorithm::kAuto, 3),
-            BezierAlgorithm::kHorner);
+            BezierAlgorithm::kLadder);
   EXPECT_EQ(
-      ResolveBezierAlgorithm(BezierAlgorithm::kAuto, kHornerMaxAutoDegree),
-      BezierAlgorithm::kHorner);
+      ResolveBezierAlgorithm(BezierAlgorithm::kAuto, kLinearMaxAutoDegree),
+      BezierAlgorithm::kLadder);
   EXPECT_EQ(
-      ResolveBezierAlgorithm(BezierAlgorithm::kAuto, kHornerMaxAutoDegree + 1),
+      ResolveBezierAlgorithm(BezierAlgorithm::kAuto, kLinearMaxAutoDegree + 1),
       BezierAlgorithm::kDeCasteljau);
   EXPECT_EQ(ResolveBezierAlgorithm(BezierAlgorithm::kLadder, 3),
             BezierAlgorithm::kLadder);
@@ -455,7 +455,7 @@ double MaxRelativeError(const std::vector<double>& points, int dimension,
 
 // Degrees 1..64 at 10^4 parameters against long double: de Casteljau,
 // Horner, the ladder and the basis sum all stay within 1e-13 of the scale of
-// the control points; the errors printed here are what kHornerMaxAutoDegree
+// the control points; the errors printed here are what kLinearMaxAutoDegree
 // was chosen from.
 TEST(BezierAccuracyTest, AlgorithmsMatchLongDoubleReference) {
   std::mt19937_64 rng(2024);

@@ -150,18 +150,24 @@ void ExpectBSplineMatchesScalar(const BSplineCurveView& curve,
       what);
 }
 
+// For the kernels' two schemes: the ladder (kAuto) and Horner.
 void ExpectBezierMatchesScalar(const BezierCurveView& curve,
                                const std::vector<double>& parameters,
                                int orders, const std::string& what) {
-  ExpectSameAsScalar(
-      curve.control_points.dimension, parameters, orders,
-      [&](const std::vector<double>& t, CurveOutput output) {
-        return EvaluateBezierCurve(curve, t, output);
-      },
-      [&](const std::vector<double>& t, CurveOutput output) {
-        return internal::EvaluateBezierCurveScalar(curve, t, output);
-      },
-      what);
+  for (const BezierAlgorithm algorithm :
+       {BezierAlgorithm::kAuto, BezierAlgorithm::kHorner}) {
+    ExpectSameAsScalar(
+        curve.control_points.dimension, parameters, orders,
+        [&](const std::vector<double>& t, CurveOutput output) {
+          return EvaluateBezierCurve(curve, t, output, {}, algorithm);
+        },
+        [&](const std::vector<double>& t, CurveOutput output) {
+          return internal::EvaluateBezierCurveScalar(curve, t, output,
+                                                     algorithm);
+        },
+        what +
+            (algorithm == BezierAlgorithm::kAuto ? " (ladder)" : " (Horner)"));
+  }
 }
 
 std::string Case(int degree, int dimension, int orders) {

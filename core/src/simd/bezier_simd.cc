@@ -1,6 +1,7 @@
-// Bezier curve evaluation across parameters: HornerBezierPoint (bezier.cc),
-// Horner's rule in t/(1-t) below t = 1/2 and in (1-t)/t above, with one
-// vector lane per parameter. Each lane picks its form (and so the order of
+// Bezier curve evaluation across parameters, with one vector lane per
+// parameter: LadderBezierPoint (bezier.cc), Warren's ladder, which needs no
+// division; and HornerBezierPoint, Horner's rule in t/(1-t) below t = 1/2
+// and in (1-t)/t above, where each lane picks its form (and so the order of
 // the coefficients) with a mask, so lanes on both sides of 1/2 share a
 // vector.
 #include <algorithm>
@@ -71,6 +72,36 @@ HWY_INLINE void HornerPointLanes(LaneTag d, const HornerLanes& horner,
   }
 }
 
+// LadderBezierPoint for the degree-n curve whose scaled control points are
+// `scaled`: point = (1-t) point + t^k scaled[k], k = 1..n; coordinate c of
+// every lane's point to points[c].
+template <int kDegree, int kDimension>
+HWY_INLINE void LadderPointLanes(LaneTag d, LaneVec t, const double* scaled,
+                                 int runtime_n, int runtime_dimension,
+                                 double* points) {
+  const int n = DegreeOf<kDegree>(runtime_n);
+  const int dimension = SizeOf<kDimension>(runtime_dimension);
+  const size_t lanes = hn::Lanes(d);
+  const LaneVec s = hn::Sub(hn::Set(d, 1.0), t);
+#pragma GCC unroll 4
+  for (int c = 0; c < dimension; ++c) {
+    hn::Store(hn::Set(d, scaled[c]), d, points + c * lanes);
+  }
+  LaneVec power = hn::Set(d, 1.0);
+#pragma GCC unroll 8
+  for (int k = 1; k <= n; ++k) {
+    power = hn::Mul(power, t);
+    const double* rung = scaled + k * dimension;
+#pragma GCC unroll 4
+    for (int c = 0; c < dimension; ++c) {
+      double* point = points + c * lanes;
+      hn::Store(hn::Add(hn::Mul(s, hn::Load(d, point)),
+                        hn::Mul(power, hn::Set(d, rung[c]))),
+                d, point);
+    }
+  }
+}
+
 // Evaluates the derivatives 0..top of one group into `sums`, derivative k
 // from the hodograph of degree n - k (its own compiled-in degree for k = 0).
 template <int kDegree, int kDimension>
@@ -78,6 +109,16 @@ HWY_INLINE void EvaluateGroup(LaneTag d, const BezierLanesBatch& batch, int top,
                               LaneVec t, double* sums) {
   const int dimension = SizeOf<kDimension>(batch.dimension);
   const size_t lanes = hn::Lanes(d);
+  if (batch.ladder) {
+    LadderPointLanes<kDegree, kDimension>(d, t, batch.hodographs[0], batch.n,
+                                          dimension, sums);
+    for (int k = 1; k <= top; ++k) {
+      LadderPointLanes<internal::kAnyDegree, kDimension>(
+          d, t, batch.hodographs[k], batch.n - k, dimension,
+          sums + static_cast<size_t>(k * dimension) * lanes);
+    }
+    return;
+  }
   const HornerLanes horner = PrepareHorner(d, t);
   HornerPointLanes<kDegree, kDimension>(d, horner, batch.hodographs[0], batch.n,
                                         dimension, sums);
@@ -109,8 +150,8 @@ void EvaluateChunk(const BezierLanesBatch& batch, size_t begin, size_t end) {
 
 }  // namespace
 
-void EvaluateBezierHornerChunkLanes(const BezierLanesBatch& batch, size_t begin,
-                                    size_t end) {
+void EvaluateBezierChunkLanes(const BezierLanesBatch& batch, size_t begin,
+                              size_t end) {
   WithDegreeAndDimension(
       batch.n, batch.dimension, [&]<int kDegree, int kDimension>() {
         EvaluateChunk<kDegree, kDimension>(batch, begin, end);
@@ -123,11 +164,11 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace freeform::simd {
 
-HWY_EXPORT(EvaluateBezierHornerChunkLanes);
+HWY_EXPORT(EvaluateBezierChunkLanes);
 
-void EvaluateBezierHornerChunk(const BezierLanesBatch& batch, size_t begin,
-                               size_t end) {
-  HWY_DYNAMIC_DISPATCH(EvaluateBezierHornerChunkLanes)(batch, begin, end);
+void EvaluateBezierChunk(const BezierLanesBatch& batch, size_t begin,
+                         size_t end) {
+  HWY_DYNAMIC_DISPATCH(EvaluateBezierChunkLanes)(batch, begin, end);
 }
 
 }  // namespace freeform::simd

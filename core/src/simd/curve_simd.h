@@ -34,8 +34,10 @@ void EvaluateBSplineChunk(const BSplineLanesBatch& batch, size_t begin,
                           size_t end);
 
 // A polynomial Bezier curve of degree n and a batch of parameters in
-// [0, 1], evaluated by Horner's rule in t/(1-t) (HornerBezierPoint).
+// [0, 1], evaluated by Warren's ladder (LadderBezierPoint) or by Horner's
+// rule in t/(1-t) (HornerBezierPoint).
 struct BezierLanesBatch {
+  bool ladder = false;  // else Horner
   int n = 0;
   int dimension = 0;
   int max_order = 0;
@@ -46,9 +48,9 @@ struct BezierLanesBatch {
   double* const* output = nullptr;  // max_order + 1 buffers
 };
 
-// EvaluateBezierHornerChunk evaluates parameters [begin, end) of `batch`.
-void EvaluateBezierHornerChunk(const BezierLanesBatch& batch, size_t begin,
-                               size_t end);
+// EvaluateBezierChunk evaluates parameters [begin, end) of `batch`.
+void EvaluateBezierChunk(const BezierLanesBatch& batch, size_t begin,
+                         size_t end);
 
 // DispatchedTarget returns the Highway target (HWY_AVX2, HWY_SSE4, ...) the
 // kernels run on now; tests force one with hwy::SetSupportedTargetsForTest.

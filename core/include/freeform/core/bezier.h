@@ -50,9 +50,10 @@ absl::Status ValidateBezierCurve(const BezierCurveView& curve);
 
 // How EvaluateBezierCurve computes each point. All agree to rounding.
 enum class BezierAlgorithm {
-  // Horner up to kHornerMaxAutoDegree, de Casteljau above (chosen by
-  // measured accuracy against a long-double reference: see
-  // tests/core/bezier_test.cc, AlgorithmsMatchLongDoubleReference).
+  // Warren's ladder up to kLinearMaxAutoDegree, de Casteljau above (chosen
+  // by measured accuracy against a long-double reference: see
+  // tests/core/bezier_test.cc, AlgorithmsMatchLongDoubleReference; the
+  // ladder needs no division, so it is the fastest across parameters).
   kAuto,
   // The de Casteljau triangle, O(n^2) per point; derivatives from forward
   // differences of its intermediate levels.
@@ -65,13 +66,14 @@ enum class BezierAlgorithm {
   kLadder,
 };
 
-// The highest degree kAuto evaluates with Horner. Against a long-double
-// reference all three schemes stay within 3.5e-15 of the control points'
-// scale through degree 64 (AlgorithmsMatchLongDoubleReference prints the
-// figures) and Horner is 3-7x faster than de Casteljau; above degree 48 the
-// binomial coefficients are no longer exact doubles, so kAuto falls back to
-// de Casteljau there.
-inline constexpr int kHornerMaxAutoDegree = 48;
+// The highest degree kAuto evaluates with an O(n) scheme (the ladder).
+// Against a long-double reference all three schemes stay within 3.5e-15 of
+// the control points' scale through degree 64
+// (AlgorithmsMatchLongDoubleReference prints the figures) and the O(n)
+// schemes are 3-7x faster than de Casteljau; above degree 48 the binomial
+// coefficients they scale by are no longer exact doubles, so kAuto falls
+// back to de Casteljau there.
+inline constexpr int kLinearMaxAutoDegree = 48;
 
 // ResolveBezierAlgorithm returns the scheme kAuto picks for `degree`, or
 // `algorithm` itself when it is not kAuto.
