@@ -10,7 +10,6 @@
 // curve (result: 197 control points).
 #include <benchmark/benchmark.h>
 
-#include <cmath>
 #include <vector>
 
 #include "freeform/core/elevation.h"
@@ -19,21 +18,7 @@
 
 namespace {
 
-std::vector<double> W5Points(size_t count) {
-  freeform::bench::Lcg lcg(4);
-  std::vector<double> points;
-  points.reserve(3 * count);
-  for (size_t i = 0; i < count; ++i) {
-    const double t = 0.01 * static_cast<double>(i);
-    const double r1 = lcg.Next();
-    const double r2 = lcg.Next();
-    const double r3 = lcg.Next();
-    points.push_back(10 * std::cos(t) + 0.1 * r1);
-    points.push_back(10 * std::sin(t) + 0.1 * r2);
-    points.push_back(t + 0.1 * r3);
-  }
-  return points;
-}
+using freeform::bench::W5Points;
 
 void BM_W5_GlobalCubicInterpolation(benchmark::State& state) {
   const std::vector<double> points =

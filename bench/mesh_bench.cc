@@ -17,6 +17,7 @@
 #include <random>
 #include <vector>
 
+#include "core_workloads.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/fitting.h"
 #include "freeform/core/mesh.h"
@@ -26,9 +27,8 @@
 
 namespace {
 
-using freeform::bench::ClampedUniformKnots;
-using freeform::bench::RandomPoints;
 using freeform::bench::RandomSpline;
+using freeform::bench::W3Surface;
 
 // The NURBS torus: the tube circle (radius `minor` about (major, 0)) turned
 // a full turn about z.
@@ -50,18 +50,6 @@ freeform::SurfaceData Torus(double major, double minor) {
   torus.knots_u = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
   torus.knots_v = torus.knots_u;
   return torus;
-}
-
-freeform::SurfaceData W3Surface() {
-  return {.degree_u = 3,
-          .degree_v = 3,
-          .dimension = 3,
-          .count_u = 20,
-          .count_v = 20,
-          .coordinates = RandomPoints(2, 20 * 20, 3),
-          .knots_u = ClampedUniformKnots(20, 3),
-          .knots_v = ClampedUniformKnots(20, 3),
-          .weights = {}};
 }
 
 void MeshSurface(benchmark::State& state, const freeform::SurfaceData& data,

@@ -6,6 +6,7 @@
 #define FREEFORM_BENCH_WORKLOADS_H_
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -95,6 +96,25 @@ inline std::vector<double> PointsInBox(const std::vector<double>& points,
     result[k] = centre + half * lcg.Next();
   }
   return result;
+}
+
+// W5Points returns W5's `count` points P_i = (10 cos(0.01 i) + 0.1 r1,
+// 10 sin(0.01 i) + 0.1 r2, 0.01 i + 0.1 r3), with r1, r2, r3 drawn in that
+// order from LCG seed 4 for each i (3 coordinates a point).
+inline std::vector<double> W5Points(size_t count) {
+  Lcg lcg(4);
+  std::vector<double> points;
+  points.reserve(3 * count);
+  for (size_t i = 0; i < count; ++i) {
+    const double t = 0.01 * static_cast<double>(i);
+    const double r1 = lcg.Next();
+    const double r2 = lcg.Next();
+    const double r3 = lcg.Next();
+    points.push_back(10 * std::cos(t) + 0.1 * r1);
+    points.push_back(10 * std::sin(t) + 0.1 * r2);
+    points.push_back(t + 0.1 * r3);
+  }
+  return points;
 }
 
 }  // namespace freeform::bench

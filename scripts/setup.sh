@@ -1,7 +1,18 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages freeform needs to build and test, and only
 # those that are missing. Safe to run again; needs root (or sudo).
+#   scripts/setup.sh [--peers]
+# --peers  also the peer libraries that scripts/performance.sh measures
+#          freeform against (OpenCASCADE, scipy, Eigen).
 set -euo pipefail
+
+peers=0
+for arg in "$@"; do
+  case "$arg" in
+    --peers) peers=1 ;;
+    *) echo "usage: $0 [--peers]" >&2; exit 2 ;;
+  esac
+done
 
 packages=(
   cmake ninja-build g++ pkg-config
@@ -18,6 +29,12 @@ packages=(
   # (docs/fuzzing.md).
   clang-14 libfuzzer-14-dev lld-14
 )
+if [ "$peers" = 1 ]; then
+  packages+=(
+    libocct-modeling-data-dev libocct-modeling-algorithms-dev
+    libocct-foundation-dev python3-scipy libeigen3-dev
+  )
+fi
 
 missing=()
 for package in "${packages[@]}"; do
@@ -27,7 +44,7 @@ for package in "${packages[@]}"; do
 done
 
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "setup: all ${#packages[@]} build packages are installed"
+  echo "setup: all ${#packages[@]} packages are installed"
   exit 0
 fi
 

@@ -67,27 +67,14 @@
 #include <string>
 #include <vector>
 
-#include "peers/occt_knots.h"
+#include "peers/occt_geometry.h"
 #include "workloads.h"
 
 namespace {
 
-using freeform::bench::ClampedUniformKnots;
-using freeform::bench::RandomPoints;
-
-// A tensor-product net as bench/mesh_bench.cc builds it: row-major with u
-// the row index, coordinates[(i * count_v + j) * 3 + c]; no weights for a
-// polynomial surface.
-struct NetData {
-  int degree_u = 3;
-  int degree_v = 3;
-  int count_u = 0;
-  int count_v = 0;
-  std::vector<double> coordinates;
-  std::vector<double> weights;
-  std::vector<double> knots_u;
-  std::vector<double> knots_v;
-};
+using freeform::bench::NetData;
+using freeform::bench::SurfaceOf;
+using freeform::bench::W3Net;
 
 // The NURBS torus of bench/mesh_bench.cc: the tube circle (radius `minor`
 // about (major, 0)) turned a full turn about z.
@@ -110,45 +97,6 @@ NetData Torus(double major, double minor) {
   torus.knots_u = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
   torus.knots_v = torus.knots_u;
   return torus;
-}
-
-NetData W3Surface() {
-  return {.degree_u = 3,
-          .degree_v = 3,
-          .count_u = 20,
-          .count_v = 20,
-          .coordinates = RandomPoints(2, 20 * 20, 3),
-          .weights = {},
-          .knots_u = ClampedUniformKnots(20, 3),
-          .knots_v = ClampedUniformKnots(20, 3)};
-}
-
-using OccKnots = freeform::bench::OccKnots;
-
-Handle(Geom_BSplineSurface) SurfaceOf(const NetData& data) {
-  TColgp_Array2OfPnt poles(1, data.count_u, 1, data.count_v);
-  TColStd_Array2OfReal weights(1, data.count_u, 1, data.count_v);
-  for (int i = 0; i < data.count_u; ++i) {
-    for (int j = 0; j < data.count_v; ++j) {
-      const size_t k = static_cast<size_t>(i * data.count_v + j);
-      poles.SetValue(
-          i + 1, j + 1,
-          gp_Pnt(data.coordinates[3 * k], data.coordinates[3 * k + 1],
-                 data.coordinates[3 * k + 2]));
-      weights.SetValue(i + 1, j + 1,
-                       data.weights.empty() ? 1.0 : data.weights[k]);
-    }
-  }
-  const OccKnots u(data.knots_u);
-  const OccKnots v(data.knots_v);
-  if (data.weights.empty()) {
-    return new Geom_BSplineSurface(poles, u.values, v.values, u.multiplicities,
-                                   v.multiplicities, data.degree_u,
-                                   data.degree_v);
-  }
-  return new Geom_BSplineSurface(poles, weights, u.values, v.values,
-                                 u.multiplicities, v.multiplicities,
-                                 data.degree_u, data.degree_v);
 }
 
 double CpuSeconds() {
@@ -412,7 +360,7 @@ int main(int argc, char** argv) {
       Run("M1 NURBS torus 3/1", Torus(3.0, 1.0), options, /*torus=*/true);
     }
     if (options.only != "M1") {
-      Run("M2 W3 bicubic 20 x 20", W3Surface(), options, /*torus=*/false);
+      Run("M2 W3 bicubic 20 x 20", W3Net(), options, /*torus=*/false);
     }
     return 0;
   } catch (const Standard_Failure& failure) {

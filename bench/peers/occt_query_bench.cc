@@ -42,44 +42,18 @@
 #include <utility>
 #include <vector>
 
-#include "peers/occt_knots.h"
+#include "peers/occt_geometry.h"
 #include "workloads.h"
 
 namespace {
 
+using freeform::bench::Curve2d;
+using freeform::bench::Curve3d;
 using freeform::bench::PointsInBox;
 using freeform::bench::RandomSpline;
 using freeform::bench::SplineData;
 
 constexpr size_t kQueries = 100'000;
-
-using OccKnots = freeform::bench::OccKnots;
-
-// SplineOf returns the OCCT B-spline (Geom_BSplineCurve with gp_Pnt poles,
-// or Geom2d_BSplineCurve with gp_Pnt2d) of `data`.
-template <typename Spline, typename Poles, typename Point>
-Handle(Spline) SplineOf(const SplineData& data) {
-  const size_t dim = static_cast<size_t>(data.dimension);
-  const int count = static_cast<int>(data.points.size() / dim);
-  Poles poles(1, count);
-  for (int i = 0; i < count; ++i) {
-    Point pole;
-    for (size_t x = 0; x < dim; ++x) {
-      pole.SetCoord(static_cast<int>(x) + 1, data.points[i * dim + x]);
-    }
-    poles.SetValue(i + 1, pole);
-  }
-  const OccKnots knots(data.knots);
-  return new Spline(poles, knots.values, knots.multiplicities, data.degree);
-}
-
-Handle(Geom_BSplineCurve) Curve3d(const SplineData& data) {
-  return SplineOf<Geom_BSplineCurve, TColgp_Array1OfPnt, gp_Pnt>(data);
-}
-
-Handle(Geom2d_BSplineCurve) Curve2d(const SplineData& data) {
-  return SplineOf<Geom2d_BSplineCurve, TColgp_Array1OfPnt2d, gp_Pnt2d>(data);
-}
 
 double CpuSeconds() {
   return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
