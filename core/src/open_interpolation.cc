@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
 #include <limits>
+#include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -16,6 +15,7 @@
 #include "collocation_lu.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/status.h"
+#include "simd/range_simd.h"
 
 namespace freeform::internal {
 namespace {
@@ -122,19 +122,6 @@ class OpenRowSource {
   int inverse_span_ = -1;
 };
 
-// AllFinite reports whether no value is infinite or NaN, without a branch
-// per value: the exponent field is all ones exactly for those, and adding
-// one to it then carries into the sign bit.
-bool AllFinite(const double* values, size_t size) {
-  constexpr uint64_t kExponent = 0x7ff0000000000000;
-  constexpr uint64_t kExponentOne = 0x0010000000000000;
-  uint64_t carry = 0;
-  for (size_t i = 0; i < size; ++i) {
-    carry |= (std::bit_cast<uint64_t>(values[i]) & kExponent) + kExponentOne;
-  }
-  return (carry >> 63) == 0;
-}
-
 // The solver of one open system: Eliminate computes the rows of A9.1 / A9.2
 // in BuildOpenRows' order (the value at t_0, the start condition, values at
 // t_1..t_{n-1}, the end condition, the value at t_n) and eliminates each as
@@ -162,8 +149,8 @@ class OpenSolver {
         rows_(system),
         poll_(cancel) {
     const size_t data_rows = measure ? system.t.size() : 1;
-    first_.resize(data_rows);
-    basis_.resize(data_rows * w_);
+    first_.reset(new int[data_rows]);
+    basis_.reset(new double[data_rows * w_]);
   }
 
   absl::Status Eliminate() {
@@ -176,7 +163,7 @@ class OpenSolver {
         return SingularSystemError();
       }
       const size_t kept = measure_ ? k : 0;
-      double* values = basis_.data() + kept * w_;
+      double* values = basis_.get() + kept * w_;
       first_[kept] = rows_.ValueRow(t[k], hint, values);
       if (!lu_.AddRow(first_[kept], values)) return SingularSystemError();
       if (k == 0 && system_.start.order > 0 &&
@@ -192,7 +179,8 @@ class OpenSolver {
   absl::StatusOr<double> Finish() {
     constexpr int kBlock = 1024;
     int pending = static_cast<int>(system_.t.size()) - 1;  // last unmeasured
-    bool finite = true;
+    constexpr double kLargest = std::numeric_limits<double>::max();
+    bool finite = true;  // every control point solved so far
     double largest = 0.0;
     const size_t d = static_cast<size_t>(system_.dimension);
     for (int begin = count_; begin > 0; begin -= kBlock) {
@@ -202,8 +190,10 @@ class OpenSolver {
       const int end = std::max(0, begin - kBlock);
       lu_.BackSubstituteRows(begin, end);
       if (!measure_) continue;
-      finite = finite && AllFinite(system_.rhs + static_cast<size_t>(end) * d,
-                                   static_cast<size_t>(begin - end) * d);
+      finite =
+          finite && simd::AllInRange(system_.rhs + static_cast<size_t>(end) * d,
+                                     static_cast<size_t>(begin - end) * d,
+                                     -kLargest, kLargest);
       for (; pending >= 0 && first_[static_cast<size_t>(pending)] >= end;
            --pending) {
         largest = std::max(largest, SquaredResidual(pending));
@@ -226,7 +216,7 @@ class OpenSolver {
     const int p = DegreeOf<kDegree>(p_);
     const int d = kDimension > 0 ? kDimension : system_.dimension;
     const size_t row = static_cast<size_t>(k);
-    const double* basis = basis_.data() + row * w_;
+    const double* basis = basis_.get() + row * w_;
     const double* control =
         system_.rhs + static_cast<size_t>(first_[row]) * static_cast<size_t>(d);
     const double* point = points_.point(row);
@@ -252,9 +242,10 @@ class OpenSolver {
   OpenRowSource<kDegree> rows_;
   CancellationPoll poll_;
   // The value rows' first columns and coefficients: all of them when
-  // measuring, else only the current one.
-  std::vector<int> first_;
-  std::vector<double> basis_;
+  // measuring, else only the current one (written before read, so not
+  // initialized).
+  std::unique_ptr<int[]> first_;
+  std::unique_ptr<double[]> basis_;
 };
 
 // SolveOpenOf solves the system in place (system.rhs) and, with `measured`
