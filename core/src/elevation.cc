@@ -1,12 +1,15 @@
 #include "freeform/core/elevation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "absl/types/span.h"
+#include "bspline_spans.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/status.h"
 #include "homogeneous.h"
@@ -17,11 +20,14 @@
 namespace freeform {
 namespace {
 
+using internal::DegreeOf;
+using internal::kAnyDegree;
 using internal::Lift;
 using internal::PointArray;
 using internal::ProjectAllowingDirections;
 using internal::Spline;
 using internal::TransposeBlocks;
+using internal::WithDegree;
 
 absl::Status CheckPositive(int value, absl::string_view field) {
   if (value < 1) return InvalidFieldError(field, "must be at least 1");
@@ -179,28 +185,42 @@ std::vector<double> ElevatedKnots(const std::vector<double>& knots, int by) {
 // knot-insertion-like combination, so nothing is extrapolated beyond what
 // evaluation does, unlike the knot removal of The NURBS Book's A5.9, which
 // loses up to 6 digits at degree 11 (measured on uniform knots).
+// kDegree, kDim and kBy are the degree p, the point size and the
+// elevation compiled in (the steps then unroll and the levels stay on the
+// stack), or kAnyDegree and 0 for values known only at run time; the
+// arithmetic is the same.
+template <int kDegree, int kDim, int kBy = 0>
 class BlossomElevator {
  public:
   BlossomElevator(const Spline& spline, int by)
-      : p_(spline.degree),
+      : p_(DegreeOf<kDegree>(spline.degree)),
         ph_(spline.degree + by),
-        dim_(spline.points.dim),
+        dim_(kDim > 0 ? kDim : spline.points.dim),
         knots_(spline.knots),
-        points_(spline.points),
-        levels_(static_cast<size_t>(p_ + 1)) {
-    for (int c = 0; c <= p_; ++c) {
-      levels_[c].resize(static_cast<size_t>(p_ + 1 - c) * dim_);
+        points_(spline.points) {
+    // Level c starts at dim * sum_{c' < c} (p + 1 - c').
+    if constexpr (kDegree == kAnyDegree || kDim == 0) {
+      levels_.resize(static_cast<size_t>(p_ + 1) * (p_ + 2) / 2 * dim_);
+    }
+    // The weights of A_k[c] for k = 1..ph, c = 1..min(k, p).
+    keep_.resize(static_cast<size_t>(ph_ + 1) * (p_ + 1));
+    add_.resize(keep_.size());
+    for (int k = 1; k <= ph_; ++k) {
+      for (int c = 1; c <= std::min(k, p_); ++c) {
+        keep_[Weight(k, c)] = c < k ? static_cast<double>(k - c) / k : 0.0;
+        add_[Weight(k, c)] = static_cast<double>(c) / k;
+      }
     }
   }
 
   absl::StatusOr<Spline> Run(const CancellationToken* cancel) {
-    Spline result{ph_, ElevatedKnots(knots_, ph_ - p_), PointArray{dim_, {}}};
+    Spline result{ph_, ElevatedKnots(knots_, ph_ - p()), PointArray{dim_, {}}};
     const std::vector<double>& uh = result.knots;
     const int count = static_cast<int>(uh.size()) - ph_ - 1;
     result.points.values.resize(static_cast<size_t>(count) * dim_);
     CancellationPoll poll(cancel);
     const size_t work_per_point =
-        static_cast<size_t>(ph_) * (p_ + 1) * (p_ + 1) * dim_;
+        static_cast<size_t>(ph_) * (p() + 1) * (p() + 1) * dim_;
     for (int i = 0; i < count; ++i) {
       if (absl::Status status = poll.Done(work_per_point); !status.ok()) {
         return status;
@@ -212,6 +232,23 @@ class BlossomElevator {
   }
 
  private:
+  int p() const { return DegreeOf<kDegree>(p_); }
+  int ph() const {
+    if constexpr (kDegree != kAnyDegree && kBy > 0) {
+      return kDegree + kBy;
+    } else {
+      return ph_;
+    }
+  }
+  int dim() const { return kDim > 0 ? kDim : dim_; }
+  size_t Weight(int k, int c) const {
+    return static_cast<size_t>(k) * (p() + 1) + c;
+  }
+  double* Level(int c) {
+    return levels_.data() +
+           static_cast<size_t>(c * (2 * p() + 3 - c) / 2) * dim();
+  }
+
   // SpanFor returns the original span of the non-empty new span nearest the
   // middle of Q_i's support [Uh_i, Uh_{i+ph+1}].
   int SpanFor(const std::vector<double>& uh, int i) const {
@@ -231,31 +268,53 @@ class BlossomElevator {
 
   // Blossom writes F(args[0..ph-1]) of the elevated piece on span s.
   void Blossom(int s, const double* args, double* out) {
-    std::copy_n(points_.at(s - p_), (p_ + 1) * dim_, levels_[0].begin());
-    for (int k = 1; k <= ph_; ++k) {
-      for (int c = std::min(k, p_); c >= 1; --c) {
-        const double keep = c < k ? static_cast<double>(k - c) / k : 0.0;
-        Step(s, c, args[k - 1], keep, static_cast<double>(c) / k);
+    const int p = this->p();
+    std::copy_n(points_.at(s - p), (p + 1) * dim(), Level(0));
+#pragma GCC unroll 8
+    for (int k = 1; k <= ph(); ++k) {
+#pragma GCC unroll 8
+      for (int c = std::min(k, p); c >= 1; --c) {
+        Step(s, c, args[k - 1], k);
       }
     }
-    std::copy_n(levels_[p_].begin(), dim_, out);
+    std::copy_n(Level(p), dim(), out);
   }
 
   // Step sets level c to keep * level c + add * (the de Boor step of level
-  // c - 1 at x on span s; The NURBS Book eq. 5.15 with x for the knot).
-  void Step(int s, int c, double x, double keep, double add) {
-    const std::vector<double>& from = levels_[c - 1];
-    std::vector<double>& to = levels_[c];
-    for (int idx = 0; idx <= p_ - c; ++idx) {
-      const int i = s - p_ + c + idx;
+  // c - 1 at x on span s; The NURBS Book eq. 5.15 with x for the knot), the
+  // weights of argument k; for c = k, where keep is 0 and add 1, to the
+  // step itself.
+  void Step(int s, int c, double x, int k) {
+    const int p = this->p();
+    const int d = dim();
+    // Constants once the loops over k and c unroll.
+    constexpr bool kUnrolled = kDegree != kAnyDegree && kBy > 0;
+    const double keep = kUnrolled
+                            ? (c < k ? static_cast<double>(k - c) / k : 0.0)
+                            : keep_[Weight(k, c)];
+    const double add =
+        kUnrolled ? static_cast<double>(c) / k : add_[Weight(k, c)];
+    const double* from = Level(c - 1);
+    double* to = Level(c);
+#pragma GCC unroll 8
+    for (int idx = 0; idx <= p - c; ++idx) {
+      const int i = s - p + c + idx;
       const double alpha =
-          (x - knots_[i]) / (knots_[i + p_ + 1 - c] - knots_[i]);
-      const double* left = &from[static_cast<size_t>(idx) * dim_];
-      const double* right = left + dim_;
-      double* target = &to[static_cast<size_t>(idx) * dim_];
-      for (int d = 0; d < dim_; ++d) {
-        const double value = (1.0 - alpha) * left[d] + alpha * right[d];
-        target[d] = keep * target[d] + add * value;
+          (x - knots_[i]) / (knots_[i + p + 1 - c] - knots_[i]);
+      const double* left = from + static_cast<size_t>(idx) * d;
+      const double* right = left + d;
+      double* target = to + static_cast<size_t>(idx) * d;
+      if (c == k) {
+#pragma GCC unroll 4
+        for (int e = 0; e < d; ++e) {
+          target[e] = (1.0 - alpha) * left[e] + alpha * right[e];
+        }
+        continue;
+      }
+#pragma GCC unroll 4
+      for (int e = 0; e < d; ++e) {
+        const double value = (1.0 - alpha) * left[e] + alpha * right[e];
+        target[e] = keep * target[e] + add * value;
       }
     }
   }
@@ -265,8 +324,37 @@ class BlossomElevator {
   const int dim_;
   const std::vector<double>& knots_;
   const PointArray& points_;
-  std::vector<std::vector<double>> levels_;
+  // Level c (p + 1 - c points) at Level(c).
+  std::conditional_t<kDegree == kAnyDegree || kDim == 0, std::vector<double>,
+                     std::array<double, (std::max(kDegree, 0) + 1) *
+                                            (std::max(kDegree, 0) + 2) / 2 *
+                                            std::max(kDim, 1)>>
+      levels_{};
+  std::vector<double> keep_;  // at Weight(k, c)
+  std::vector<double> add_;
 };
+
+// RunBlossomElevator runs BlossomElevator compiled for the spline's degree
+// (up to 5) and a point size of 3 (and an elevation by 1) or 4, else for
+// any.
+absl::StatusOr<Spline> RunBlossomElevator(const Spline& spline, int by,
+                                          const CancellationToken* cancel) {
+  absl::StatusOr<Spline> result;
+  WithDegree(spline.degree, [&]<int kDegree>() {
+    if constexpr (kDegree == kAnyDegree) {
+      result = BlossomElevator<kAnyDegree, 0>(spline, by).Run(cancel);
+    } else if (spline.points.dim == 3 && by == 1) {
+      result = BlossomElevator<kDegree, 3, 1>(spline, by).Run(cancel);
+    } else if (spline.points.dim == 3) {
+      result = BlossomElevator<kDegree, 3>(spline, by).Run(cancel);
+    } else if (spline.points.dim == 4) {
+      result = BlossomElevator<kDegree, 4>(spline, by).Run(cancel);
+    } else {
+      result = BlossomElevator<kAnyDegree, 0>(spline, by).Run(cancel);
+    }
+  });
+  return result;
+}
 
 // ElevateSpline raises a spline by `by` (see ElevateBSplineCurve).
 absl::StatusOr<Spline> ElevateSpline(Spline spline, int by,
@@ -276,7 +364,7 @@ absl::StatusOr<Spline> ElevateSpline(Spline spline, int by,
       return status;
     }
   }
-  return BlossomElevator(spline, by).Run(cancel);
+  return RunBlossomElevator(spline, by, cancel);
 }
 
 absl::Status CheckSurfaceElevation(int by_u, int by_v) {

@@ -8,6 +8,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "absl/types/span.h"
 #include "banded_lu.h"
 #include "freeform/core/status.h"
 #include "interpolation_at_parameters.h"
@@ -22,14 +23,14 @@ namespace {
 
 using internal::EndCondition;
 using internal::ExplicitParameters;
-using internal::FinishInterpolation;
+using internal::FinishMeasuredInterpolation;
 using internal::InterpolateAtParameters;
 using internal::InterpolateClosed;
 using internal::KnotsFor;
 using internal::MakeCurve;
-using internal::Matrix;
 using internal::OpenParameters;
-using internal::SolveOpen;
+using internal::OpenSolution;
+using internal::SolveOpenMeasured;
 using internal::UniversalParameters;
 using internal::ValidateCurveData;
 using internal::ValidateEndDerivatives;
@@ -80,10 +81,14 @@ absl::StatusOr<CurveInterpolation> InterpolateCurve(
     if (!computed.ok()) return computed.status();
     t = *std::move(computed);
   }
-  std::vector<double> sites;  // t with the derivative ends doubled
-  if (has_start) sites.push_back(t.front());
-  sites.insert(sites.end(), t.begin(), t.end());
-  if (has_end) sites.push_back(t.back());
+  std::vector<double> doubled;  // t with the derivative ends doubled
+  if (has_start || has_end) {
+    if (has_start) doubled.push_back(t.front());
+    doubled.insert(doubled.end(), t.begin(), t.end());
+    if (has_end) doubled.push_back(t.back());
+  }
+  const absl::Span<const double> sites =
+      has_start || has_end ? absl::Span<const double>(doubled) : t;
   std::vector<double> knots = KnotsFor(
       sites, p,
       universal ? Parameterization::kUniversal : Parameterization::kUniform,
@@ -92,12 +97,13 @@ absl::StatusOr<CurveInterpolation> InterpolateCurve(
                            .value = options.start_derivative};
   const EndCondition end{.order = has_end ? 1 : 0,
                          .value = options.end_derivative};
-  absl::StatusOr<Matrix> control =
-      SolveOpen(points, p, knots, t, start, end, options.cancel);
-  if (!control.ok()) return control.status();
-  return FinishInterpolation(
-      MakeCurve(p, points.dimension, *std::move(control), std::move(knots)),
-      std::move(t), points, options.cancel);
+  absl::StatusOr<OpenSolution> solved =
+      SolveOpenMeasured(points, p, knots, t, start, end, true, options.cancel);
+  if (!solved.ok()) return solved.status();
+  return FinishMeasuredInterpolation(
+      MakeCurve(p, points.dimension, std::move(solved->control),
+                std::move(knots)),
+      std::move(t), solved->max_residual, points, options.cancel);
 }
 
 }  // namespace freeform

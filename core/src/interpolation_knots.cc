@@ -1,5 +1,6 @@
 #include "interpolation_knots.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -9,14 +10,15 @@ namespace {
 // AveragingKnots returns the clamped knots u_{j+p} = (s_j + ... +
 // s_{j+p-1}) / p, j = 1..N-p-1, for N sites s (eq. 9.8).
 std::vector<double> AveragingKnots(absl::Span<const double> s, int p) {
-  const int count = static_cast<int>(s.size());
-  std::vector<double> knots(static_cast<size_t>(p) + 1, s.front());
-  for (int j = 1; j < count - p; ++j) {
+  const size_t count = s.size();
+  const size_t degree = static_cast<size_t>(p);
+  std::vector<double> knots(count + degree + 1, s.back());
+  std::fill_n(knots.begin(), degree + 1, s.front());
+  for (size_t j = 1; j + degree < count; ++j) {
     double sum = 0;
-    for (int i = j; i < j + p; ++i) sum += s[static_cast<size_t>(i)];
-    knots.push_back(sum / p);
+    for (size_t i = j; i < j + degree; ++i) sum += s[i];
+    knots[j + degree] = sum / p;
   }
-  knots.insert(knots.end(), static_cast<size_t>(p) + 1, s.back());
   return knots;
 }
 

@@ -1,6 +1,7 @@
 #include "interpolation_result.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -48,6 +49,30 @@ absl::StatusOr<CurveInterpolation> FinishInterpolation(
   return CurveInterpolation{.curve = std::move(curve),
                             .parameters = std::move(t),
                             .max_residual = residuals->first};
+}
+
+absl::StatusOr<CurveInterpolation> FinishMeasuredInterpolation(
+    BSplineCurveData curve, std::vector<double> t, double max_residual,
+    const PointsView& points, const CancellationToken* cancel) {
+  // EvaluateBSplineCurve's checks, but for the control points' coordinates,
+  // which the measurement found finite when max_residual is.
+  const size_t p = static_cast<size_t>(curve.degree);
+  const size_t count = curve.coordinates.size() /
+                       static_cast<size_t>(std::max(curve.dimension, 1));
+  const bool checked =
+      std::isfinite(max_residual) && curve.degree >= 0 && !t.empty() &&
+      count >= p + 1 && curve.knots.size() == count + p + 1 &&
+      t.front() >= curve.knots[p] && t.back() <= curve.knots[count] &&
+      ValidateBSplineBasis(curve.degree, curve.knots, {}).ok();
+  if (!checked) {
+    return FinishInterpolation(std::move(curve), std::move(t), points, cancel);
+  }
+  if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
+    return status;
+  }
+  return CurveInterpolation{.curve = std::move(curve),
+                            .parameters = std::move(t),
+                            .max_residual = max_residual};
 }
 
 }  // namespace freeform::internal

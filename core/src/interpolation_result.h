@@ -36,6 +36,16 @@ absl::StatusOr<CurveInterpolation> FinishInterpolation(
     BSplineCurveData curve, std::vector<double> t, const PointsView& points,
     const CancellationToken* cancel);
 
+// FinishMeasuredInterpolation is FinishInterpolation for a residual
+// already measured as EvaluateBSplineCurve would (SolveOpenMeasured; NaN
+// when a control point is not finite): it checks the knots and the
+// parameters as that evaluation does and, when they pass and the residual
+// is finite, returns the interpolation with `max_residual`; otherwise it
+// returns FinishInterpolation's answer (its error).
+absl::StatusOr<CurveInterpolation> FinishMeasuredInterpolation(
+    BSplineCurveData curve, std::vector<double> t, double max_residual,
+    const PointsView& points, const CancellationToken* cancel);
+
 }  // namespace freeform::internal
 
 #endif  // FREEFORM_CORE_SRC_INTERPOLATION_RESULT_H_

@@ -54,6 +54,23 @@ absl::StatusOr<Matrix> SolveOpen(const PointsView& points, int p,
                                  EndCondition end,
                                  const CancellationToken* cancel);
 
+// An open system's control points and, when measured, max_k |C(t_k) - Q_k|
+// over the data points Q_k, with C(t_k) computed as EvaluateBSplineCurve
+// computes it (the same basis values, summed in the same order).
+struct OpenSolution {
+  Matrix control;
+  double max_residual = 0;
+};
+
+// SolveOpenMeasured is SolveOpen that also measures the residual when
+// `measure`.
+absl::StatusOr<OpenSolution> SolveOpenMeasured(const PointsView& points, int p,
+                                               absl::Span<const double> knots,
+                                               absl::Span<const double> t,
+                                               EndCondition start,
+                                               EndCondition end, bool measure,
+                                               const CancellationToken* cancel);
+
 // ValidateDerivative checks an end derivative named `field`: empty unless
 // `required` (only clamped ends take one), else `dimension` finite values.
 absl::Status ValidateDerivative(absl::Span<const double> value,
