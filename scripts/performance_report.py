@@ -234,7 +234,11 @@ def document(about, workloads, figures, operations):
             "other builds may run beside the benchmarks) and from machine to "
             "machine, so only ratios measured in the same run mean anything; "
             "compare a figure with one from another run only through its "
-            "ratio.", "", "## Machine", ""]
+            "ratio.", "",
+            "Where the cycles go in each workload, and what would close the "
+            "gaps to the targets: [performance_profile.md]"
+            "(performance_profile.md) (perf profiles, written by hand).", "",
+            "## Machine", ""]
     text += ["- %s: %s" % (key, value) for key, value in about.items()]
     text += ["", "## Workloads", ""] + workloads + [
         "", "Ratio: freeform's rate / the best peer's rate (W1-W4), the best "

@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "binomial.h"
+#include "checked_chunks.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "homogeneous.h"
@@ -382,9 +383,11 @@ absl::Status EvaluateLanes(const BezierCurveView& curve,
       .hodographs = hodograph_data.data(),
       .parameters = parameters.data(),
       .output = buffers.data()};
-  return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
-    simd::EvaluateBezierChunk(batch, begin, end);
-  });
+  return internal::ParallelForInRange(parameters, 0.0, 1.0, "parameters",
+                                      context, [&](size_t begin, size_t end) {
+                                        simd::EvaluateBezierChunk(batch, begin,
+                                                                  end);
+                                      });
 }
 
 // Evaluates `curve` point by point with a BezierPointEvaluator.
@@ -424,8 +427,9 @@ absl::Status EvaluateValidBezierCurve(const BezierCurveView& curve,
                                       CurveOutput output,
                                       const ExecutionContext& context,
                                       BezierAlgorithm algorithm) {
-  if (absl::Status status = ValidateBatch(parameters, 0.0, 1.0, output,
-                                          curve.control_points.dimension);
+  // The lanes check the parameters chunk by chunk (checked_chunks.h).
+  if (absl::Status status = ValidateCurveOutput(output, parameters.size(),
+                                                curve.control_points.dimension);
       !status.ok()) {
     return status;
   }
@@ -434,6 +438,10 @@ absl::Status EvaluateValidBezierCurve(const BezierCurveView& curve,
   if (!curve.rational() && (scheme == BezierAlgorithm::kHorner ||
                             scheme == BezierAlgorithm::kLadder)) {
     return EvaluateLanes(curve, parameters, output, context, scheme);
+  }
+  if (absl::Status status = ValidateInRange(parameters, 0.0, 1.0, "parameters");
+      !status.ok()) {
+    return status;
   }
   return EvaluatePointByPoint(curve, parameters, output, context, algorithm);
 }

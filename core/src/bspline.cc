@@ -9,10 +9,11 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "bspline_spans.h"
-#include "scalar_reference.h"
+#include "checked_chunks.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "scalar_reference.h"
 #include "simd/curve_simd.h"
 #include "validated.h"
 
@@ -607,11 +608,17 @@ absl::Status EvaluateBSplineBatch(const BSplineCurveView& curve,
                                   CurveKernel kernel) {
   const ParameterDomain domain = BSplineDomain(curve);
   const int dimension = curve.control_points.dimension;
-  if (absl::Status status = ValidateBatch(parameters, domain.start, domain.end,
-                                          output, dimension);
+  // The parameters are checked chunk by chunk (checked_chunks.h).
+  if (absl::Status status =
+          ValidateCurveOutput(output, parameters.size(), dimension);
       !status.ok()) {
     return status;
   }
+  const auto in_domain_chunks =
+      [&](absl::FunctionRef<void(size_t, size_t)> body) {
+        return internal::ParallelForInRange(
+            parameters, domain.start, domain.end, "parameters", context, body);
+      };
   const std::vector<double> homogeneous =
       curve.rational() ? HomogeneousPoints(curve.control_points, curve.weights)
                        : std::vector<double>();
@@ -635,12 +642,11 @@ absl::Status EvaluateBSplineBatch(const BSplineCurveView& curve,
                                         .knots = batch.knots,
                                         .parameters = batch.parameters,
                                         .output = batch.output.data()};
-    return ParallelFor(parameters.size(), context,
-                       [&](size_t begin, size_t end) {
-                         simd::EvaluateBSplineChunk(lanes, begin, end);
-                       });
+    return in_domain_chunks([&](size_t begin, size_t end) {
+      simd::EvaluateBSplineChunk(lanes, begin, end);
+    });
   }
-  return ParallelFor(parameters.size(), context, [&](size_t begin, size_t end) {
+  return in_domain_chunks([&](size_t begin, size_t end) {
     WithDegree(batch.p, [&]<int kDegree>() {
       EvaluateCurveChunk<kDegree>(batch, begin, end);
     });

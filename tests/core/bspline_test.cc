@@ -706,6 +706,41 @@ TEST(BSplineTest, CancelledTokenStopsTheBatch) {
             absl::StatusCode::kCancelled);
 }
 
+// The parameters of a large batch are checked chunk by chunk on the pool
+// (core/src/checked_chunks.h); the error still names the first offender
+// of the whole batch, however the chunks were claimed, for B-spline and
+// Bezier curves alike.
+TEST(BSplineTest, LargeBatchOnThePoolNamesTheFirstBadParameter) {
+  const std::vector<double> points = {0, 0, 1, 1, 2, 0, 3, 1};
+  const std::vector<double> knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  ThreadPool pool(2);
+  const ExecutionContext context{.pool = &pool, .grain = 100};
+  const double nan = std::nan("");
+  struct Bad {
+    std::vector<std::pair<size_t, double>> values;
+    std::string field;
+  };
+  const std::vector<Bad> cases = {
+      {{{77'777, 1.5}}, "parameters[77777]"},
+      {{{90'000, -0.5}, {5, nan}}, "parameters[5]"},
+      {{{99'999, HUGE_VAL}, {60'000, 2.0}}, "parameters[60000]"},
+      {{{0, -HUGE_VAL}}, "parameters[0]"}};
+  for (const Bad& bad : cases) {
+    std::vector<double> params = Uniform(100'000);
+    for (const auto& [index, value] : bad.values) params[index] = value;
+    Output out(2, params.size(), 2);
+    const absl::Status bspline = EvaluateBSplineCurve(
+        Curve(3, points, 2, knots), params, out.spans, context);
+    EXPECT_EQ(bspline.code(), absl::StatusCode::kInvalidArgument) << bspline;
+    EXPECT_EQ(FieldPathOf(bspline).value_or(""), bad.field) << bspline;
+    const BezierCurveView bezier{
+        .control_points = {.dimension = 2, .coordinates = points}};
+    const absl::Status ladder =
+        EvaluateBezierCurve(bezier, params, out.spans, context);
+    EXPECT_EQ(FieldPathOf(ladder).value_or(""), bad.field) << ladder;
+  }
+}
+
 struct InvalidCase {
   int degree;
   std::vector<double> coordinates;  // 2D
