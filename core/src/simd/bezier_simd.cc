@@ -102,31 +102,42 @@ HWY_INLINE void LadderPointLanes(LaneTag d, LaneVec t, const double* scaled,
   }
 }
 
-// Evaluates the derivatives 0..top of one group into `sums`, derivative k
-// from the hodograph of degree n - k (its own compiled-in degree for k = 0).
+// Runs point.template operator()<degree>(scaled, n, out) for derivatives
+// k = 0..top: on the hodograph of degree n - k, into sums + k dimension
+// lanes (its own compiled-in degree for k = 0).
+template <int kDegree, typename Point>
+HWY_INLINE void EachDerivative(const BezierLanesBatch& batch, int top,
+                               size_t stride, double* sums, Point point) {
+  point.template operator()<kDegree>(batch.hodographs[0], batch.n, sums);
+  for (int k = 1; k <= top; ++k) {
+    point.template operator()<internal::kAnyDegree>(
+        batch.hodographs[k], batch.n - k,
+        sums + static_cast<size_t>(k) * stride);
+  }
+}
+
+// Evaluates the derivatives 0..top of one group into `sums` by the batch's
+// scheme.
 template <int kDegree, int kDimension>
 HWY_INLINE void EvaluateGroup(LaneTag d, const BezierLanesBatch& batch, int top,
                               LaneVec t, double* sums) {
   const int dimension = SizeOf<kDimension>(batch.dimension);
-  const size_t lanes = hn::Lanes(d);
+  const size_t stride = static_cast<size_t>(dimension) * hn::Lanes(d);
   if (batch.ladder) {
-    LadderPointLanes<kDegree, kDimension>(d, t, batch.hodographs[0], batch.n,
-                                          dimension, sums);
-    for (int k = 1; k <= top; ++k) {
-      LadderPointLanes<internal::kAnyDegree, kDimension>(
-          d, t, batch.hodographs[k], batch.n - k, dimension,
-          sums + static_cast<size_t>(k * dimension) * lanes);
-    }
-    return;
+    return EachDerivative<kDegree>(
+        batch, top, stride, sums,
+        [&]<int kPointDegree>(const double* scaled, int n, double* out) {
+          LadderPointLanes<kPointDegree, kDimension>(d, t, scaled, n, dimension,
+                                                     out);
+        });
   }
   const HornerLanes horner = PrepareHorner(d, t);
-  HornerPointLanes<kDegree, kDimension>(d, horner, batch.hodographs[0], batch.n,
-                                        dimension, sums);
-  for (int k = 1; k <= top; ++k) {
-    HornerPointLanes<internal::kAnyDegree, kDimension>(
-        d, horner, batch.hodographs[k], batch.n - k, dimension,
-        sums + static_cast<size_t>(k * dimension) * lanes);
-  }
+  EachDerivative<kDegree>(
+      batch, top, stride, sums,
+      [&]<int kPointDegree>(const double* scaled, int n, double* out) {
+        HornerPointLanes<kPointDegree, kDimension>(d, horner, scaled, n,
+                                                   dimension, out);
+      });
 }
 
 template <int kDegree, int kDimension>
