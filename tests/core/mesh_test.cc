@@ -25,15 +25,16 @@
 
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
+#include "shapes.h"
 #include "teapot.h"
 
 namespace freeform {
 namespace {
 
+using testing_util::NurbsSphere;
+using testing_util::NurbsTorus;
 using testing_util::Patches;
 using testing_util::ReadTeapot;
-
-constexpr double kHalfSqrt2 = 0.70710678118654752440;
 
 double Distance(const double* a, const double* b) {
   return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
@@ -88,55 +89,6 @@ struct Shapes {
     surfaces.push_back(*made);
   }
 };
-
-// Revolve returns the NURBS surface swept by turning the profile (rho_i,
-// z_i, weight w_i) on `profile_knots` a full turn about z with the
-// nine-point quadratic circle (The NURBS Book, ex. 7.1 and section 8.5):
-// P_ij = (rho_i x_j, rho_i y_j, z_i), w_ij = w_i c_j.
-SurfaceData Revolve(const std::vector<std::array<double, 3>>& profile,
-                    std::vector<double> profile_knots) {
-  const double x[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
-  const double y[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
-  const double c[9] = {1,          kHalfSqrt2, 1,          kHalfSqrt2, 1,
-                       kHalfSqrt2, 1,          kHalfSqrt2, 1};
-  SurfaceData surface{.degree_u = 2,
-                      .degree_v = 2,
-                      .dimension = 3,
-                      .count_u = static_cast<int>(profile.size()),
-                      .count_v = 9};
-  for (const auto& [rho, z, w] : profile) {
-    for (int j = 0; j < 9; ++j) {
-      surface.coordinates.insert(surface.coordinates.end(),
-                                 {rho * x[j], rho * y[j], z});
-      surface.weights.push_back(w * c[j]);
-    }
-  }
-  surface.knots_u = std::move(profile_knots);
-  surface.knots_v = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
-  return surface;
-}
-
-// The sphere of `radius` about the origin: a half circle from the south to
-// the north pole, turned a full turn. Both poles are collapsed rows.
-SurfaceData NurbsSphere(double radius) {
-  const double r = radius, s = kHalfSqrt2;
-  return Revolve({{0, -r, 1}, {r, -r, s}, {r, 0, 1}, {r, r, s}, {0, r, 1}},
-                 {0, 0, 0, 0.5, 0.5, 1, 1, 1});
-}
-
-// The torus with major radius `major` and minor radius `minor`: the full
-// tube circle turned a full turn, closed both ways.
-SurfaceData NurbsTorus(double major, double minor) {
-  const double s = kHalfSqrt2;
-  const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
-  const double cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
-  const double cw[9] = {1, s, 1, s, 1, s, 1, s, 1};
-  std::vector<std::array<double, 3>> profile;
-  for (int i = 0; i < 9; ++i) {
-    profile.push_back({major + minor * cx[i], minor * cy[i], cw[i]});
-  }
-  return Revolve(profile, {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1});
-}
 
 // A bicubic rational Bezier patch with uneven weights over a wavy net.
 SurfaceData RationalBezierPatch() {

@@ -1,14 +1,16 @@
-// Curves and surfaces with exactly known geometry that the query tests
-// (arc length, differential geometry, bounding boxes, closest points,
-// intersections, sections) share, each owning its arrays: the NURBS circle,
-// the twisted cubic, and sphere and torus patches as rational surfaces of
-// revolution; and the evaluation helpers those tests use to check answers.
+// Curves and surfaces with exactly known geometry that the query, mesh and
+// service tests share, each owning its arrays: the NURBS circle, the twisted
+// cubic, sphere and torus patches as rational surfaces of revolution, and
+// the closed NURBS sphere and torus; and the evaluation helpers those tests
+// use to check answers.
 #ifndef FREEFORM_TESTS_CORE_SHAPES_H_
 #define FREEFORM_TESTS_CORE_SHAPES_H_
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "absl/types/span.h"
@@ -34,6 +36,52 @@ inline BSplineCurveData NurbsCircle(double radius, double cx = 0.0,
   circle.weights = {1, w, 1, w, 1, w, 1, w, 1};
   circle.knots = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
   return circle;
+}
+
+// Revolve returns the NURBS surface swept by turning the profile (rho_i,
+// z_i, weight w_i) on `profile_knots` a full turn about z with the
+// nine-point quadratic circle (The NURBS Book, ex. 7.1 and section 8.5):
+// P_ij = (rho_i x_j, rho_i y_j, z_i), w_ij = w_i c_j.
+inline SurfaceData Revolve(const std::vector<std::array<double, 3>>& profile,
+                           std::vector<double> profile_knots) {
+  const BSplineCurveData circle = NurbsCircle(1.0);
+  SurfaceData surface{.degree_u = 2,
+                      .degree_v = 2,
+                      .dimension = 3,
+                      .count_u = static_cast<int>(profile.size()),
+                      .count_v = 9};
+  for (const auto& [rho, z, w] : profile) {
+    for (size_t j = 0; j < 9; ++j) {
+      surface.coordinates.insert(surface.coordinates.end(),
+                                 {rho * circle.coordinates[2 * j],
+                                  rho * circle.coordinates[2 * j + 1], z});
+      surface.weights.push_back(w * circle.weights[j]);
+    }
+  }
+  surface.knots_u = std::move(profile_knots);
+  surface.knots_v = circle.knots;
+  return surface;
+}
+
+// The sphere of `radius` about the origin: a half circle from the south to
+// the north pole, turned a full turn. Both poles are collapsed rows.
+inline SurfaceData NurbsSphere(double radius) {
+  const double r = radius, s = std::sqrt(0.5);
+  return Revolve({{0, -r, 1}, {r, -r, s}, {r, 0, 1}, {r, r, s}, {0, r, 1}},
+                 {0, 0, 0, 0.5, 0.5, 1, 1, 1});
+}
+
+// The torus with major radius `major` and minor radius `minor`: the full
+// tube circle (NurbsCircle about (major, 0)) turned a full turn, closed both
+// ways.
+inline SurfaceData NurbsTorus(double major, double minor) {
+  const BSplineCurveData tube = NurbsCircle(minor, major, 0.0);
+  std::vector<std::array<double, 3>> profile;
+  for (size_t i = 0; i < tube.weights.size(); ++i) {
+    profile.push_back({tube.coordinates[2 * i], tube.coordinates[2 * i + 1],
+                       tube.weights[i]});
+  }
+  return Revolve(profile, tube.knots);
 }
 
 // The twisted cubic (t, t^2, t^3) on [0, 1] as a cubic Bezier curve.

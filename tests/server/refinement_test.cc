@@ -14,7 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "../core/shapes.h"
 #include "../core/test_util.h"
+#include "geometry_out.h"
 #include "in_process_server.h"
 #include "teapot.h"
 
@@ -270,67 +272,19 @@ TEST_F(RefinementTest, TessellatesLagrangeAndHermiteCurves) {
   }
 }
 
-// RevolvedRequest asks to mesh the NURBS surface that turns the profile
-// (rho_i, z_i, weight w_i) with quadratic `profile_knots` a full turn about
-// z with the nine-point circle: P_ij = (rho_i x_j, rho_i y_j, z_i), w_ij =
-// w_i c_j.
-v1::TessellateSurfaceRequest RevolvedRequest(
-    const std::vector<std::array<double, 3>>& profile,
-    std::initializer_list<double> profile_knots) {
-  const double s = std::numbers::sqrt2 / 2;
-  const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
-  const double cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
-  const double cw[9] = {1, s, 1, s, 1, s, 1, s, 1};
+// A request to mesh one surface (NurbsTorus, NurbsSphere of
+// tests/core/shapes.h).
+v1::TessellateSurfaceRequest MeshRequestOf(const SurfaceData& surface) {
   v1::TessellateSurfaceRequest request;
-  v1::BSplineSurface* surface = request.add_surfaces()->mutable_bspline();
-  surface->set_degree_u(2);
-  surface->set_degree_v(2);
-  surface->mutable_control_net()->set_dimension(3);
-  surface->mutable_control_net()->set_count_u(static_cast<int>(profile.size()));
-  surface->mutable_control_net()->set_count_v(9);
-  for (const auto& [rho, z, w] : profile) {
-    for (int j = 0; j < 9; ++j) {
-      Append(surface->mutable_control_net()->mutable_coordinates(),
-             {rho * cx[j], rho * cy[j], z});
-      surface->add_weights(w * cw[j]);
-    }
-  }
-  surface->mutable_knots_u()->Add(profile_knots.begin(), profile_knots.end());
-  for (const double knot :
-       {0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0}) {
-    surface->add_knots_v(knot);
-  }
+  ToProto(surface, *request.add_surfaces());
   return request;
-}
-
-// A NURBS torus: the tube circle turned a full turn, nine-point quadratic
-// circles both ways.
-v1::TessellateSurfaceRequest TorusRequest(double major, double minor) {
-  const double s = std::numbers::sqrt2 / 2;
-  const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
-  const double cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
-  const double cw[9] = {1, s, 1, s, 1, s, 1, s, 1};
-  std::vector<std::array<double, 3>> profile;
-  for (int i = 0; i < 9; ++i) {
-    profile.push_back({major + minor * cx[i], minor * cy[i], cw[i]});
-  }
-  return RevolvedRequest(profile, {0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75,
-                                   0.75, 1.0, 1.0, 1.0});
-}
-
-// The sphere of `radius` about the origin: a half circle from pole to pole
-// turned a full turn.
-v1::TessellateSurfaceRequest SphereRequest(double radius) {
-  const double r = radius, s = std::numbers::sqrt2 / 2;
-  return RevolvedRequest(
-      {{0, -r, 1}, {r, -r, s}, {r, 0, 1}, {r, r, s}, {0, r, 1}},
-      {0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0});
 }
 
 // The torus meshed by the server: every vertex on the torus, and the mesh
 // closed, every edge used by exactly two triangles.
 TEST_F(RefinementTest, TessellatesAClosedNurbsTorus) {
-  v1::TessellateSurfaceRequest request = TorusRequest(3.0, 1.0);
+  v1::TessellateSurfaceRequest request =
+      MeshRequestOf(testing_util::NurbsTorus(3.0, 1.0));
   request.set_tolerance(1e-3);
   request.set_normals(true);
   absl::StatusOr<v1::TessellateSurfaceResponse> mesh =
@@ -394,7 +348,8 @@ double Angle(const double* a, const double* b) {
 // refused naming it.
 TEST_F(RefinementTest, TessellatesASphereWithinANormalAngle) {
   constexpr double kRadius = 2.0, kLimit = 0.05;
-  v1::TessellateSurfaceRequest request = SphereRequest(kRadius);
+  v1::TessellateSurfaceRequest request =
+      MeshRequestOf(testing_util::NurbsSphere(kRadius));
   request.set_tolerance(1e-2);
   request.set_normals(true);
   absl::StatusOr<v1::TessellateSurfaceResponse> plain =
