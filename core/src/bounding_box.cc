@@ -127,11 +127,12 @@ absl::StatusOr<double> Extreme(const std::vector<Net>& nets, int j, double sign,
     heap.push_back({net, HullBound(net, j, sign), 0, 0});
   }
   std::make_heap(heap.begin(), heap.end(), LowerBound<Net>);
-  while (true) {
+  for (int halvings = 0;; ++halvings) {
     std::pop_heap(heap.begin(), heap.end(), LowerBound<Net>);
     Piece<Net> top = std::move(heap.back());
     heap.pop_back();
-    if (top.bound - best <= tolerance || top.depth >= kMaxBoxDepth) {
+    if (top.bound - best <= tolerance || top.depth >= kMaxBoxDepth ||
+        halvings >= kMaxBoxHalvings) {
       return top.bound;
     }
     auto halves = Halves(top.net, top.next);

@@ -251,6 +251,41 @@ TEST(SurfaceBoundingBox, NurbsSurfaceContainsDenseSamplesAndIsTight) {
   CheckSurfaceBox(surface, "NURBS surface");
 }
 
+// z = 1 - (u - v)^2 on the biquadratic patch (u / 2, v / 2 net spacing):
+// its largest z, 1, is attained along the diagonal u = v, a ridge that the
+// halvings cross, so the search for that side needs about
+// sqrt(size / tolerance) pieces along it. Within a reachable tolerance the
+// side is tight; below it (the margin) the budget of kMaxBoxHalvings ends the
+// search with a bound still above the surface, within 4 size / budget^2
+// (2.2e-8 here; 1.49e-8 measured). Before the budget, the 1e-14 box took
+// minutes (4 million pieces).
+TEST(SurfaceBoundingBox, RidgeExtremeEndsWithinTheHalvingBudget) {
+  // z_ij = 1 - a_i - a_j + 2 b_i b_j: the Bernstein coefficients of 1, u^2
+  // (a = 0, 0, 1) and u (b = 0, 1/2, 1).
+  const double z[3][3] = {{1, 1, 0}, {1, 1.5, 1}, {0, 1, 1}};
+  std::vector<double> net;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      net.insert(net.end(), {i / 2.0, j / 2.0, z[i][j]});
+  }
+  const Surface ridge = *BezierSurface::Create(
+      {.control_net = {
+           .dimension = 3, .count_u = 3, .count_v = 3, .coordinates = net}});
+  for (const double tolerance : {1e-6, 1e-14}) {
+    SCOPED_TRACE(tolerance);
+    absl::StatusOr<BoundingBox> box = SurfaceBoundingBox(ridge, tolerance);
+    ASSERT_TRUE(box.ok()) << box.status();
+    EXPECT_NEAR(box->lower[0], 0.0, 1e-12);
+    EXPECT_NEAR(box->upper[0], 1.0, 1e-12);
+    EXPECT_NEAR(box->lower[1], 0.0, 1e-12);
+    EXPECT_NEAR(box->upper[1], 1.0, 1e-12);
+    EXPECT_NEAR(box->lower[2], 0.0, 1e-12);  // at the corners (0, 1), (1, 0)
+    EXPECT_GE(box->upper[2], 1.0);
+    EXPECT_LE(box->upper[2], 1.0 + std::max(tolerance, 4 * 1.5 / (1 << 28)))
+        << box->upper[2] - 1.0;
+  }
+}
+
 // A rational cubic triangular patch with random positive weights, and the
 // flat triangle, whose box is its vertices' box.
 TEST(SurfaceBoundingBox, TriangularPatches) {

@@ -28,6 +28,15 @@
 // tolerance of at least the margin never reaches on pieces of a sensible
 // size.
 //
+// Work bound: the search for one side halves at most kMaxBoxHalvings
+// pieces. An isolated extreme needs about log4(size / tolerance) halvings,
+// but an extreme attained along a curve (a ridge of the surface that the
+// halvings cross) needs about sqrt(size / tolerance) pieces along it: 4
+// million for a tolerance at the margin. Past the budget the side is the
+// best upper bound reached, still a bound of the geometry; on such a ridge
+// it is within about 4 size / kMaxBoxHalvings^2 of it (1.5e-8 of the size;
+// tests/core/bounding_box_test.cc, RidgeExtremeEndsWithinTheHalvingBudget).
+//
 // Thread-safe; allocates per call.
 #ifndef FREEFORM_CORE_BOUNDING_BOX_H_
 #define FREEFORM_CORE_BOUNDING_BOX_H_
@@ -44,6 +53,10 @@ namespace freeform {
 
 // The most halvings of one piece (in u and v together for a patch).
 inline constexpr int kMaxBoxDepth = 120;
+
+// The most halvings in the search for one side of a box (see the file
+// comment).
+inline constexpr int kMaxBoxHalvings = 1 << 14;
 
 // An axis-aligned box: lower[j] <= x_j <= upper[j] for every point x.
 struct BoundingBox {
