@@ -324,6 +324,8 @@ class Search {
   std::vector<double> box_gaps_;
   std::vector<double> centre_gaps_;
   const double* query_ = nullptr;
+  // How much a distance to the query can change by rounding alone.
+  double distance_rounding_ = 0.0;
   std::vector<Node> heap_;
   std::vector<Net> spare_;
   std::vector<Candidate> candidates_;
@@ -347,7 +349,14 @@ Candidate Search::Newton(const Candidate& start, const double* lo,
       [&](const double* x, LocalModel& model) { Model(start.piece, x, model); },
       iterations);
   result.distance = std::sqrt(2.0 * value);
-  return result.distance <= start.distance ? result : start;
+  // Near a minimum the distance is flat: a start off by 1e-8 in its
+  // parameters can compute a distance an ulp below Newton's exact point.
+  // Newton's point wins unless it is farther by more than the rounding of
+  // a distance between points of the query's size.
+  const double slack =
+      distance_rounding_ +
+      16.0 * std::numeric_limits<double>::epsilon() * start.distance;
+  return result.distance <= start.distance + slack ? result : start;
 }
 
 double* Search::PointOf(const Candidate& candidate) {
@@ -541,6 +550,11 @@ bool Search::Examine(Node node, CancellationPoll& poll, absl::Status& status) {
 absl::Status Search::Run(const double* query, size_t r, CancellationPoll& poll,
                          ClosestPoints& answer) {
   query_ = query;
+  double size = 0.0;
+  for (int j = 0; j < pieces_.dimension; ++j) {
+    size = std::max(size, std::abs(query[j]));
+  }
+  distance_rounding_ = 16.0 * std::numeric_limits<double>::epsilon() * size;
   heap_.clear();
   candidates_.clear();
   best_ = kInfinity;

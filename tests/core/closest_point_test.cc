@@ -500,6 +500,96 @@ TEST(ClosestPointTest, SurfacesNeverFartherThanDenseReference) {
   }
 }
 
+// A point at height h along the normal of an affine patch S(u, v) = A + u U
+// + v V (a biquadratic net, so the patch is in its general Bezier form) is
+// nearest at (u, v) itself. The search's corners are dyadic, and a corner
+// 1e-8 from (u, v) computes a distance within rounding of the true one: the
+// polished parameters must still be those of the minimum, not the corner's
+// (the load test once got v = 0.871246337890625 for 0.87124635020443231).
+TEST(ClosestPointTest, AffinePatchesGiveTheFootOfThePerpendicular) {
+  // The load test's case: the patch's (u, v) by the normal equations.
+  {
+    const std::vector<double> net = {
+        1.7686087357451359, 0.11562001138377509,  1.7900250632644954,
+        1.9612998414213036, -0.44790479057845622, 2.77520519391732,
+        2.1539909470974714, -1.0114295925406875,  3.7603853245701453,
+        1.5604571278687134, -0.27218948132447907, 2.4683680347297043,
+        1.7531482335448811, -0.83571428328671038, 3.4535481653825295,
+        1.9458393392210489, -1.3992390852489418,  4.4387282960353538,
+        1.3523055199922906, -0.65999897403273322, 3.1467110061949137,
+        1.5449966256684584, -1.2235237759949644,  4.1318911368477389,
+        1.7376877313446262, -1.7870485779571958,  5.1170712675005632};
+    const std::vector<double> query = {1.8932993578398798, -2.0717408664820223,
+                                       3.7279828050298676};
+    double normal_matrix[2][2] = {}, right[2] = {};
+    for (int c = 0; c < 3; ++c) {
+      const double axes[2] = {net[18 + c] - net[c], net[6 + c] - net[c]};
+      for (int k = 0; k < 2; ++k) {
+        right[k] += axes[k] * (query[c] - net[c]);
+        for (int l = 0; l < 2; ++l) normal_matrix[k][l] += axes[k] * axes[l];
+      }
+    }
+    const double det = normal_matrix[0][0] * normal_matrix[1][1] -
+                       normal_matrix[0][1] * normal_matrix[1][0];
+    const double u =
+        (right[0] * normal_matrix[1][1] - right[1] * normal_matrix[0][1]) / det;
+    const double v =
+        (right[1] * normal_matrix[0][0] - right[0] * normal_matrix[1][0]) / det;
+    const Surface patch = *BezierSurface::Create(
+        {.control_net = {
+             .dimension = 3, .count_u = 3, .count_v = 3, .coordinates = net}});
+    absl::StatusOr<ClosestPoints> found =
+        SurfaceClosestPoints(patch, {.dimension = 3, .coordinates = query});
+    ASSERT_TRUE(found.ok()) << found.status();
+    EXPECT_NEAR(found->parameters[0], u, 1e-12);
+    EXPECT_NEAR(found->parameters[1], v, 1e-12);
+  }
+  std::mt19937_64 rng(1112510476);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int checked = 0;
+  while (checked < 300) {
+    double a[3], u_axis[3], v_axis[3];
+    for (int j = 0; j < 3; ++j) {
+      a[j] = 2 * unit(rng);
+      u_axis[j] = unit(rng);
+      v_axis[j] = unit(rng);
+    }
+    const double normal[3] = {u_axis[1] * v_axis[2] - u_axis[2] * v_axis[1],
+                              u_axis[2] * v_axis[0] - u_axis[0] * v_axis[2],
+                              u_axis[0] * v_axis[1] - u_axis[1] * v_axis[0]};
+    const double area = std::hypot(normal[0], normal[1], normal[2]);
+    const double lengths = std::hypot(u_axis[0], u_axis[1], u_axis[2]) *
+                           std::hypot(v_axis[0], v_axis[1], v_axis[2]);
+    if (area < 0.3 * lengths) continue;  // axes at least 17 degrees apart
+    std::vector<double> net;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        for (int c = 0; c < 3; ++c) {
+          net.push_back(a[c] + i / 2.0 * u_axis[c] + j / 2.0 * v_axis[c]);
+        }
+      }
+    }
+    const Surface patch = *BezierSurface::Create(
+        {.control_net = {
+             .dimension = 3, .count_u = 3, .count_v = 3, .coordinates = net}});
+    const double u = 0.05 + 0.9 * (unit(rng) + 1) / 2;
+    const double v = 0.05 + 0.9 * (unit(rng) + 1) / 2;
+    const double height = 3 * unit(rng);
+    std::vector<double> query(3);
+    for (int c = 0; c < 3; ++c) {
+      query[c] =
+          a[c] + u * u_axis[c] + v * v_axis[c] + height * normal[c] / area;
+    }
+    absl::StatusOr<ClosestPoints> found =
+        SurfaceClosestPoints(patch, {.dimension = 3, .coordinates = query});
+    ASSERT_TRUE(found.ok()) << found.status();
+    EXPECT_NEAR(found->distances[0], std::abs(height), 1e-12) << checked;
+    EXPECT_NEAR(found->parameters[0], u, 1e-12) << checked;
+    EXPECT_NEAR(found->parameters[1], v, 1e-12) << checked;
+    ++checked;
+  }
+}
+
 TEST(ClosestPointTest, PatchBoundaryAndCorner) {
   // A planar bicubic patch over the unit square, unevenly parameterized.
   const double x[4] = {0, 0.2, 0.7, 1};
