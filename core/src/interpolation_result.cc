@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "freeform/core/bspline.h"
+#include "freeform/core/points.h"
 
 namespace freeform::internal {
 
@@ -54,17 +55,14 @@ absl::StatusOr<CurveInterpolation> FinishInterpolation(
 absl::StatusOr<CurveInterpolation> FinishMeasuredInterpolation(
     BSplineCurveData curve, std::vector<double> t, double max_residual,
     const PointsView& points, const CancellationToken* cancel) {
-  // EvaluateBSplineCurve's checks, but for the control points' coordinates,
-  // which the measurement found finite when max_residual is.
-  const size_t p = static_cast<size_t>(curve.degree);
-  const size_t count = curve.coordinates.size() /
-                       static_cast<size_t>(std::max(curve.dimension, 1));
-  const bool checked =
-      std::isfinite(max_residual) && curve.degree >= 0 && !t.empty() &&
-      count >= p + 1 && curve.knots.size() == count + p + 1 &&
-      t.front() >= curve.knots[p] && t.back() <= curve.knots[count] &&
-      ValidateBSplineBasis(curve.degree, curve.knots, {}).ok();
-  if (!checked) {
+  // The checks EvaluateBSplineCurve would make of the curve and t.
+  bool evaluable =
+      std::isfinite(max_residual) && ValidateBSplineCurve(curve.view()).ok();
+  if (evaluable) {
+    const ParameterDomain domain = BSplineDomain(curve.view());
+    evaluable = ValidateInRange(t, domain.start, domain.end, "parameters").ok();
+  }
+  if (!evaluable) {
     return FinishInterpolation(std::move(curve), std::move(t), points, cancel);
   }
   if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
