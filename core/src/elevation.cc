@@ -202,13 +202,16 @@ class BlossomElevator {
     if constexpr (kDegree == kAnyDegree || kDim == 0) {
       levels_.resize(static_cast<size_t>(p_ + 1) * (p_ + 2) / 2 * dim_);
     }
-    // The weights of A_k[c] for k = 1..ph, c = 1..min(k, p).
-    keep_.resize(static_cast<size_t>(ph_ + 1) * (p_ + 1));
-    add_.resize(keep_.size());
-    for (int k = 1; k <= ph_; ++k) {
-      for (int c = 1; c <= std::min(k, p_); ++c) {
-        keep_[Weight(k, c)] = c < k ? static_cast<double>(k - c) / k : 0.0;
-        add_[Weight(k, c)] = static_cast<double>(c) / k;
+    // The weights of A_k[c] for k = 1..ph, c = 1..min(k, p), unless the
+    // unrolled steps have them as constants.
+    if constexpr (!kUnrolled) {
+      keep_.resize(static_cast<size_t>(ph_ + 1) * (p_ + 1));
+      add_.resize(keep_.size());
+      for (int k = 1; k <= ph_; ++k) {
+        for (int c = 1; c <= std::min(k, p_); ++c) {
+          keep_[Weight(k, c)] = c < k ? static_cast<double>(k - c) / k : 0.0;
+          add_[Weight(k, c)] = static_cast<double>(c) / k;
+        }
       }
     }
   }
@@ -232,9 +235,12 @@ class BlossomElevator {
   }
 
  private:
+  // Whether the loops over k and c unroll, their weights then constants.
+  static constexpr bool kUnrolled = kDegree != kAnyDegree && kBy > 0;
+
   int p() const { return DegreeOf<kDegree>(p_); }
   int ph() const {
-    if constexpr (kDegree != kAnyDegree && kBy > 0) {
+    if constexpr (kUnrolled) {
       return kDegree + kBy;
     } else {
       return ph_;
@@ -287,8 +293,6 @@ class BlossomElevator {
   void Step(int s, int c, double x, int k) {
     const int p = this->p();
     const int d = dim();
-    // Constants once the loops over k and c unroll.
-    constexpr bool kUnrolled = kDegree != kAnyDegree && kBy > 0;
     const double keep = kUnrolled
                             ? (c < k ? static_cast<double>(k - c) / k : 0.0)
                             : keep_[Weight(k, c)];
@@ -330,7 +334,7 @@ class BlossomElevator {
                                             (std::max(kDegree, 0) + 2) / 2 *
                                             std::max(kDim, 1)>>
       levels_{};
-  std::vector<double> keep_;  // at Weight(k, c)
+  std::vector<double> keep_;  // at Weight(k, c); empty when kUnrolled
   std::vector<double> add_;
 };
 
