@@ -13,7 +13,6 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
-#include <numbers>
 #include <random>
 #include <vector>
 
@@ -27,30 +26,9 @@
 
 namespace {
 
+using freeform::bench::NurbsTorus;
 using freeform::bench::RandomSpline;
 using freeform::bench::W3Surface;
-
-// The NURBS torus: the tube circle (radius `minor` about (major, 0)) turned
-// a full turn about z.
-freeform::SurfaceData Torus(double major, double minor) {
-  const double s = std::numbers::sqrt2 / 2;
-  const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
-  const double cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
-  const double cw[9] = {1, s, 1, s, 1, s, 1, s, 1};
-  freeform::SurfaceData torus{
-      .degree_u = 2, .degree_v = 2, .dimension = 3, .count_u = 9, .count_v = 9};
-  for (int i = 0; i < 9; ++i) {
-    const double rho = major + minor * cx[i], z = minor * cy[i];
-    for (int j = 0; j < 9; ++j) {
-      torus.coordinates.insert(torus.coordinates.end(),
-                               {rho * cx[j], rho * cy[j], z});
-      torus.weights.push_back(cw[i] * cw[j]);
-    }
-  }
-  torus.knots_u = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
-  torus.knots_v = torus.knots_u;
-  return torus;
-}
 
 void MeshSurface(benchmark::State& state, const freeform::SurfaceData& data,
                  double tolerance, double max_normal_angle = 0) {
@@ -76,13 +54,13 @@ void MeshSurface(benchmark::State& state, const freeform::SurfaceData& data,
 }
 
 void BM_M1_TorusMesh(benchmark::State& state) {
-  MeshSurface(state, Torus(3.0, 1.0), 1e-3);
+  MeshSurface(state, NurbsTorus(3.0, 1.0), 1e-3);
 }
 BENCHMARK(BM_M1_TorusMesh)->Unit(benchmark::kMillisecond);
 
 // The argument is the limit in milliradians.
 void BM_M1_TorusMeshNormalAngle(benchmark::State& state) {
-  MeshSurface(state, Torus(3.0, 1.0), 1e-3,
+  MeshSurface(state, NurbsTorus(3.0, 1.0), 1e-3,
               static_cast<double>(state.range(0)) / 1000);
 }
 BENCHMARK(BM_M1_TorusMeshNormalAngle)

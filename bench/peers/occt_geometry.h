@@ -16,6 +16,7 @@
 #include <gp_Pnt2d.hxx>
 #include <vector>
 
+#include "core_workloads.h"
 #include "peers/occt_knots.h"
 #include "workloads.h"
 
@@ -47,34 +48,9 @@ inline Handle(Geom2d_BSplineCurve) Curve2d(const SplineData& data) {
   return SplineOf<Geom2d_BSplineCurve, TColgp_Array1OfPnt2d, gp_Pnt2d>(data);
 }
 
-// A 3D tensor-product net as bench/mesh_bench.cc builds it: row-major with u
-// the row index, coordinates[(i * count_v + j) * 3 + c]; no weights for a
-// polynomial surface.
-struct NetData {
-  int degree_u = 3;
-  int degree_v = 3;
-  int count_u = 0;
-  int count_v = 0;
-  std::vector<double> coordinates;
-  std::vector<double> weights;
-  std::vector<double> knots_u;
-  std::vector<double> knots_v;
-};
-
-// The W3 surface: bicubic, 20 x 20 control points from LCG seed 2, clamped
-// uniform knots both ways.
-inline NetData W3Net() {
-  return {.degree_u = 3,
-          .degree_v = 3,
-          .count_u = 20,
-          .count_v = 20,
-          .coordinates = RandomPoints(2, 20 * 20, 3),
-          .weights = {},
-          .knots_u = ClampedUniformKnots(20, 3),
-          .knots_v = ClampedUniformKnots(20, 3)};
-}
-
-inline Handle(Geom_BSplineSurface) SurfaceOf(const NetData& data) {
+// The OCCT surface of a 3D tensor-product net of core_workloads.h: row-major
+// with u the row index, no weights for a polynomial surface.
+inline Handle(Geom_BSplineSurface) SurfaceOf(const SurfaceData& data) {
   TColgp_Array2OfPnt poles(1, data.count_u, 1, data.count_v);
   TColStd_Array2OfReal weights(1, data.count_u, 1, data.count_v);
   for (int i = 0; i < data.count_u; ++i) {

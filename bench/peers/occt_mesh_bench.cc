@@ -61,7 +61,6 @@
 #include <ctime>
 #include <exception>
 #include <gp_Pnt.hxx>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -72,32 +71,10 @@
 
 namespace {
 
-using freeform::bench::NetData;
+using freeform::SurfaceData;
+using freeform::bench::NurbsTorus;
 using freeform::bench::SurfaceOf;
-using freeform::bench::W3Net;
-
-// The NURBS torus of bench/mesh_bench.cc: the tube circle (radius `minor`
-// about (major, 0)) turned a full turn about z.
-NetData Torus(double major, double minor) {
-  const double s = std::numbers::sqrt2 / 2;
-  const double cx[9] = {1, 1, 0, -1, -1, -1, 0, 1, 1};
-  const double cy[9] = {0, 1, 1, 1, 0, -1, -1, -1, 0};
-  const double cw[9] = {1, s, 1, s, 1, s, 1, s, 1};
-  NetData torus;
-  torus.degree_u = torus.degree_v = 2;
-  torus.count_u = torus.count_v = 9;
-  for (int i = 0; i < 9; ++i) {
-    const double rho = major + minor * cx[i], z = minor * cy[i];
-    for (int j = 0; j < 9; ++j) {
-      torus.coordinates.insert(torus.coordinates.end(),
-                               {rho * cx[j], rho * cy[j], z});
-      torus.weights.push_back(cw[i] * cw[j]);
-    }
-  }
-  torus.knots_u = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
-  torus.knots_v = torus.knots_u;
-  return torus;
-}
+using freeform::bench::W3Surface;
 
 double CpuSeconds() {
   timespec t{};
@@ -258,7 +235,7 @@ void Check(const Handle(Geom_BSplineSurface) & surface,
 // 1000 x 1000 grid of bench/surface_bench (W3: 37374.6 in
 // docs/benchmarks.md).
 void CheckGeometry(const Handle(Geom_BSplineSurface) & surface,
-                   const NetData& data) {
+                   const SurfaceData& data) {
   double corner_error = 0.0;
   for (const int i : {0, data.count_u - 1}) {
     for (const int j : {0, data.count_v - 1}) {
@@ -284,7 +261,7 @@ void CheckGeometry(const Handle(Geom_BSplineSurface) & surface,
       corner_error, checksum);
 }
 
-void Run(const char* name, const NetData& data, const Options& options,
+void Run(const char* name, const SurfaceData& data, const Options& options,
          bool torus) {
   const Handle(Geom_BSplineSurface) surface = SurfaceOf(data);
   std::vector<double> times;
@@ -357,10 +334,10 @@ int main(int argc, char** argv) {
         "deflection %g rad, single thread\n",
         options.deflection, options.angle);
     if (options.only != "M2") {
-      Run("M1 NURBS torus 3/1", Torus(3.0, 1.0), options, /*torus=*/true);
+      Run("M1 NURBS torus 3/1", NurbsTorus(3.0, 1.0), options, /*torus=*/true);
     }
     if (options.only != "M1") {
-      Run("M2 W3 bicubic 20 x 20", W3Net(), options, /*torus=*/false);
+      Run("M2 W3 bicubic 20 x 20", W3Surface(), options, /*torus=*/false);
     }
     return 0;
   } catch (const Standard_Failure& failure) {

@@ -121,7 +121,7 @@ void RunCurves(int runs) {
 
 void RunSurface(int runs) {
   const Handle(Geom_BSplineSurface) surface =
-      freeform::bench::SurfaceOf(freeform::bench::W3Net());
+      freeform::bench::SurfaceOf(freeform::bench::W3Surface());
   const GeomAdaptor_Surface adaptor(surface);
   const std::vector<double> t = UniformParameters(kGrid);
   const double n = static_cast<double>(t.size() * t.size());
