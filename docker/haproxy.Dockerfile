@@ -13,7 +13,7 @@ RUN apt-get update -q \
 COPY haproxy.cfg /usr/local/etc/haproxy/haproxy.cfg
 
 USER haproxy
-EXPOSE 50051 8404
+EXPOSE 50051
 # SIGUSR1 = soft stop: stop accepting, let open streams finish.
 STOPSIGNAL SIGUSR1
 ENTRYPOINT ["haproxy", "-W", "-db", "-f", "/usr/local/etc/haproxy/haproxy.cfg"]
