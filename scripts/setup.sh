@@ -21,12 +21,21 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # grpc/health/v1/health.proto for the client's health check.
   grpc-proto
+  # The Python client example and its test (examples/python, docs/clients.md):
+  # stubs come from protoc's grpc_python_plugin (protobuf-compiler-grpc).
+  python3-grpcio python3-protobuf
   # Certificates for the TLS tests.
   openssl
   # The fuzz preset: clang with libFuzzer, ASan and UBSan, linked by lld
   # (docs/fuzzing.md).
   clang-14 libfuzzer-14-dev lld-14
 )
+# The Node client example and its test (examples/node) need node and npm;
+# any node >= 12 serves, so one that is already there (e.g. from
+# NodeSource, whose nodejs bundles npm) is kept.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
 if [ "$peers" = 1 ]; then
   packages+=(
     libocct-modeling-data-dev libocct-modeling-algorithms-dev
