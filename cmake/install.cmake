@@ -21,7 +21,9 @@ install(DIRECTORY client/include/ core/include/
 install(DIRECTORY ${CMAKE_BINARY_DIR}/proto/gen/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
   FILES_MATCHING PATTERN "*.h")
-install(DIRECTORY proto/freeform DESTINATION ${CMAKE_INSTALL_DATADIR}/freeform/proto)
+# The .proto files with their two include roots: proto/ and third_party/.
+install(DIRECTORY proto/freeform proto/third_party
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/freeform/proto)
 
 install(EXPORT freeformTargets NAMESPACE freeform::
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/freeform)

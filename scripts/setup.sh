@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages freeform needs to build and test, and only
 # those that are missing. Safe to run again; needs root (or sudo).
-#   scripts/setup.sh [--peers]
-# --peers  also the peer libraries that scripts/performance.sh measures
-#          freeform against (OpenCASCADE, scipy, Eigen).
+#   scripts/setup.sh [--peers | --build-only]
+# --peers       also the peer libraries that scripts/performance.sh measures
+#               freeform against (OpenCASCADE, scipy, Eigen).
+# --build-only  only what building freeformd, the CLI and the client library
+#               needs, without tests and benchmarks (the container image's
+#               build stage).
 set -euo pipefail
 
-peers=0
+peers=0 build_only=0
 for arg in "$@"; do
   case "$arg" in
     --peers) peers=1 ;;
-    *) echo "usage: $0 [--peers]" >&2; exit 2 ;;
+    --build-only) build_only=1 ;;
+    *) echo "usage: $0 [--peers | --build-only]" >&2; exit 2 ;;
   esac
 done
 
@@ -18,17 +22,29 @@ packages=(
   cmake ninja-build g++ pkg-config
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libabsl-dev libhwy-dev libspdlog-dev libcli11-dev nlohmann-json3-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
-  # google/rpc/status.proto and error_details.proto (google.rpc.BadRequest).
-  golang-github-gogo-googleapis-dev
   # grpc/health/v1/health.proto for the client's health check.
   grpc-proto
+)
+test_packages=(
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # The Python client example and its test (examples/python, docs/clients.md):
+  # stubs come from protoc's grpc_python_plugin (protobuf-compiler-grpc).
+  python3-grpcio python3-protobuf
   # Certificates for the TLS tests.
   openssl
   # The fuzz preset: clang with libFuzzer, ASan and UBSan, linked by lld
   # (docs/fuzzing.md).
   clang-14 libfuzzer-14-dev lld-14
 )
+# The Node client example and its test (examples/node) need node and npm;
+# any node >= 12 serves, so one that is already there (e.g. from
+# NodeSource, whose nodejs bundles npm) is kept.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  test_packages+=(nodejs npm)
+fi
+if [ "$build_only" = 0 ]; then
+  packages+=("${test_packages[@]}")
+fi
 if [ "$peers" = 1 ]; then
   packages+=(
     libocct-modeling-data-dev libocct-modeling-algorithms-dev
