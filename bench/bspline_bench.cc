@@ -93,6 +93,25 @@ BENCHMARK(BM_W7_CubicBSplinePositionsAllThreads)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+// W1 and W7 on a batch of 2^16 parameters, whose 2 MB of parameters and
+// points stay in the caches: how two threads scale when main memory's
+// bandwidth is out of the way (docs/performance_profile.md, W7).
+constexpr size_t kCachedBatch = size_t{1} << 16;
+
+void BM_W1_CachedBatch(benchmark::State& state) {
+  RunBSpline(state, {.parameters = kCachedBatch});
+}
+BENCHMARK(BM_W1_CachedBatch)->Unit(benchmark::kMicrosecond)->UseRealTime();
+
+void BM_W7_CachedBatchAllThreads(benchmark::State& state) {
+  freeform::ThreadPool pool(
+      static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  RunBSpline(state, {.parameters = kCachedBatch, .pool = &pool});
+}
+BENCHMARK(BM_W7_CachedBatchAllThreads)
+    ->Unit(benchmark::kMicrosecond)
+    ->UseRealTime();
+
 void BM_CubicNurbs(benchmark::State& state) {
   RunBSpline(state,
              {.orders = static_cast<int>(state.range(0)), .rational = true});
