@@ -1,22 +1,19 @@
-// The freeform CLI's query subcommands: closest, intersect, arc-length,
-// at-length, sample-length, curvature, frames, bbox and section, each a
-// CurveService (or with --surface a SurfaceService) query RPC with a proto3
-// JSON request, answered as JSON or CSV (section: or an SVG picture).
+// The freeform CLI's query subcommands whose flags add to the request or
+// choose the output: closest (query points from --points and --csv),
+// sample-length (--count), curvature and section (--svg), each answered as
+// JSON, CSV or a picture. The other queries (intersect, arc-length,
+// at-length, frames, bbox) are plain JSON subcommands (json_commands.h).
 #ifndef FREEFORM_CLIENT_CLI_QUERIES_H_
 #define FREEFORM_CLIENT_CLI_QUERIES_H_
 
-#include <functional>
-#include <optional>
+#include <cstdint>
 #include <string>
-#include <utility>
-#include <vector>
 
 #include "CLI/CLI.hpp"
-#include "cli_common.h"
+#include "common.h"
 
 namespace freeform::cli {
 
-// What the query subcommands' flags set (one subcommand runs per call).
 struct QueryOptions {
   std::string file;
   bool surface = false;
@@ -30,29 +27,17 @@ struct QueryOptions {
   std::string svg;
 };
 
-class QueryCommands {
- public:
-  // Adds the subcommands to `app`; their connection flags go to `flags`.
-  QueryCommands(CLI::App& app, CommonFlags& flags);
-  QueryCommands(const QueryCommands&) = delete;
-  QueryCommands& operator=(const QueryCommands&) = delete;
+void AddClosestFlags(CLI::App& command, QueryOptions& options);
+int RunClosest(const CommonFlags& flags, const QueryOptions& options);
 
-  // Run runs the query subcommand that was parsed and returns its exit
-  // status; nullopt when none of them was.
-  std::optional<int> Run() const;
+void AddSampleLengthFlags(CLI::App& command, QueryOptions& options);
+int RunSampleByLength(const CommonFlags& flags, const QueryOptions& options);
 
- private:
-  // Adds a subcommand with the common flags and -f/--file.
-  CLI::App* Add(CLI::App& app, const std::string& name,
-                const std::string& description, const std::string& request,
-                std::function<int()> run);
-  void AddSurfaceFlag(CLI::App* command, const std::string& request);
-  void AddFormatFlag(CLI::App* command);
+void AddCurvatureFlags(CLI::App& command, QueryOptions& options);
+int RunCurvature(const CommonFlags& flags, const QueryOptions& options);
 
-  CommonFlags& flags_;
-  QueryOptions options_;
-  std::vector<std::pair<CLI::App*, std::function<int()>>> commands_;
-};
+void AddSectionFlags(CLI::App& command, QueryOptions& options);
+int RunSection(const CommonFlags& flags, const QueryOptions& options);
 
 }  // namespace freeform::cli
 
