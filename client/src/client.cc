@@ -112,6 +112,30 @@ absl::Status AppendSurface(const v1::EvaluateSurfaceResponse& response,
   return absl::OkStatus();
 }
 
+// Hands every chunk of a server stream to `on_chunk`, checking that each
+// starts where the one before ended; a failing `on_chunk` cancels the call.
+template <typename Response>
+absl::Status ForEachChunk(
+    grpc::ClientContext& context, grpc::ClientReader<Response>& reader,
+    absl::FunctionRef<absl::Status(const Response&)> on_chunk) {
+  Response response;
+  absl::Status handled;
+  uint64_t next_index = 0;
+  while (reader.Read(&response)) {
+    handled = response.first_index() == next_index
+                  ? on_chunk(response)
+                  : absl::DataLossError("the server sent inconsistent chunks");
+    if (!handled.ok()) {
+      context.TryCancel();
+      break;
+    }
+    next_index += response.count();
+  }
+  grpc::Status status = reader.Finish();
+  if (!handled.ok()) return handled;
+  return FromGrpcStatus(status);
+}
+
 // Reads every chunk of a server stream into one result.
 template <typename Response, typename Result>
 absl::StatusOr<Result> ReadChunks(grpc::ClientContext& context,
@@ -119,18 +143,10 @@ absl::StatusOr<Result> ReadChunks(grpc::ClientContext& context,
                                   absl::Status (*append)(const Response&,
                                                          Result&)) {
   Result result;
-  Response response;
-  absl::Status appended;
-  while (reader.Read(&response)) {
-    appended = append(response, result);
-    if (!appended.ok()) {
-      context.TryCancel();
-      break;
-    }
-  }
-  grpc::Status status = reader.Finish();
-  if (!appended.ok()) return appended;
-  if (!status.ok()) return FromGrpcStatus(status);
+  absl::Status status = ForEachChunk<Response>(
+      context, reader,
+      [&](const Response& response) { return append(response, result); });
+  if (!status.ok()) return status;
   return result;
 }
 
@@ -183,6 +199,11 @@ absl::StatusOr<std::unique_ptr<Client>> Client::Create(
   if (!credentials.ok()) return credentials.status();
   grpc::ChannelArguments arguments;
   arguments.SetMaxReceiveMessageSize(options.max_receive_message_bytes);
+  if (options.stream_window_bytes > 0) {
+    arguments.SetInt(GRPC_ARG_HTTP2_BDP_PROBE, 0);
+    arguments.SetInt(GRPC_ARG_HTTP2_STREAM_LOOKAHEAD_BYTES,
+                     options.stream_window_bytes);
+  }
   const bool balance = options.round_robin || !options.replicas.empty();
   const std::string policy = balance ? "round_robin" : "pick_first";
   std::string config =
@@ -249,6 +270,16 @@ absl::StatusOr<CurveSamples> Client::EvaluateCurveStreamed(
   return ReadChunks(*context, *reader, &Append);
 }
 
+absl::Status Client::EvaluateCurveStream(
+    const v1::EvaluateCurveRequest& request,
+    absl::FunctionRef<absl::Status(const v1::EvaluateCurveResponse&)>
+        on_chunk) {
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  std::unique_ptr<grpc::ClientReader<v1::EvaluateCurveResponse>> reader =
+      curves_->EvaluateStream(context.get(), request);
+  return ForEachChunk(*context, *reader, on_chunk);
+}
+
 absl::StatusOr<SurfaceEvaluation> Client::EvaluateSurface(
     const v1::EvaluateSurfaceRequest& request) {
   std::unique_ptr<grpc::ClientContext> context = NewContext();
@@ -271,6 +302,16 @@ absl::StatusOr<SurfaceEvaluation> Client::EvaluateSurfaceStreamed(
   std::unique_ptr<grpc::ClientReader<v1::EvaluateSurfaceResponse>> reader =
       surfaces_->EvaluateStream(context.get(), request);
   return ReadChunks(*context, *reader, &AppendSurface);
+}
+
+absl::Status Client::EvaluateSurfaceStream(
+    const v1::EvaluateSurfaceRequest& request,
+    absl::FunctionRef<absl::Status(const v1::EvaluateSurfaceResponse&)>
+        on_chunk) {
+  std::unique_ptr<grpc::ClientContext> context = NewContext();
+  std::unique_ptr<grpc::ClientReader<v1::EvaluateSurfaceResponse>> reader =
+      surfaces_->EvaluateStream(context.get(), request);
+  return ForEachChunk(*context, *reader, on_chunk);
 }
 
 absl::StatusOr<BasisSamples> Client::EvaluateSurfaceBasis(

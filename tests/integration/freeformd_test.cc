@@ -130,7 +130,7 @@ TEST_F(FreeformdTest, CliInterpolatesPointsFromCsv) {
 }
 
 // --svg draws the control polygon and the result of subdivision and
-// tessellation.
+// tessellation, in a picture that scales (a viewBox).
 TEST_F(FreeformdTest, CliDrawsSvg) {
   for (const char* command :
        {"subdivide --file " FREEFORM_SOURCE_DIR "/examples/chaikin.json",
@@ -139,6 +139,7 @@ TEST_F(FreeformdTest, CliDrawsSvg) {
     CommandResult result = RunCommand(Cli(absl::StrCat(command, " --svg -")));
     EXPECT_EQ(result.exit_code, 0) << result.output;
     EXPECT_THAT(result.output, HasSubstr("<svg"));
+    EXPECT_THAT(result.output, HasSubstr("viewBox=\"0 0 800 "));
     EXPECT_THAT(result.output, HasSubstr("</svg>"));
     EXPECT_THAT(result.output, HasSubstr("stroke=\"#1f5fbf\""));
   }

@@ -29,6 +29,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "absl/functional/function_ref.h"
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
@@ -50,6 +51,12 @@ struct ClientOptions {
   std::chrono::milliseconds timeout{30'000};
   // Largest message the client accepts.
   int max_receive_message_bytes = 64 << 20;
+  // The bytes of a stream gRPC may receive ahead of the reader (the HTTP/2
+  // flow-control window), so that a stream read slowly (EvaluateCurveStream
+  // writing text) holds bounded memory; 0 lets gRPC grow the window with
+  // the bandwidth-delay product, which on a fast link buffers up to
+  // hundreds of MB of a long stream.
+  int stream_window_bytes = 0;
   // Retry calls that fail with UNAVAILABLE (up to 4 attempts, backoff).
   bool retry_unavailable = true;
   // TLS: on when `use_tls`; root CA (empty = system roots) and an optional
@@ -148,6 +155,16 @@ class Client {
   absl::StatusOr<CurveSamples> EvaluateCurveStreamed(
       const v1::EvaluateCurveRequest& request);
 
+  // EvaluateCurveStream runs CurveService.EvaluateStream and hands each
+  // chunk to `on_chunk` as it arrives, so an answer of any size is read in
+  // constant memory. The chunks are checked to follow one another
+  // (first_index); an error from `on_chunk` cancels the call and is
+  // returned.
+  absl::Status EvaluateCurveStream(
+      const v1::EvaluateCurveRequest& request,
+      absl::FunctionRef<absl::Status(const v1::EvaluateCurveResponse&)>
+          on_chunk);
+
   // EvaluateSurface runs SurfaceService.Evaluate.
   absl::StatusOr<SurfaceEvaluation> EvaluateSurface(
       const v1::EvaluateSurfaceRequest& request);
@@ -156,6 +173,13 @@ class Client {
   // chunks.
   absl::StatusOr<SurfaceEvaluation> EvaluateSurfaceStreamed(
       const v1::EvaluateSurfaceRequest& request);
+
+  // EvaluateSurfaceStream runs SurfaceService.EvaluateStream chunk by
+  // chunk, as EvaluateCurveStream does.
+  absl::Status EvaluateSurfaceStream(
+      const v1::EvaluateSurfaceRequest& request,
+      absl::FunctionRef<absl::Status(const v1::EvaluateSurfaceResponse&)>
+          on_chunk);
 
   // EvaluateSurfaceBasis runs SurfaceService.EvaluateBasis (values only:
   // derivatives[0] of the result).

@@ -10,8 +10,10 @@
 
 namespace freeform {
 
-// ReadFileToString returns the whole contents of `path`, or NOT_FOUND when
-// it cannot be opened.
+// ReadFileToString returns the whole contents of `path`, or an error that
+// names the path and the reason ("cannot read PATH: No such file or
+// directory"): NOT_FOUND when it does not exist, FAILED_PRECONDITION when it
+// cannot be opened or read (a directory, no permission).
 absl::StatusOr<std::string> ReadFileToString(const std::string& path);
 
 }  // namespace freeform

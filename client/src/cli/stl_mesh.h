@@ -2,8 +2,8 @@
 // triangle count, and per triangle its unit normal, three vertices as
 // 32-bit floats and a zero attribute word), the format 3D printing and CAD
 // viewers read.
-#ifndef FREEFORM_CLIENT_SRC_STL_MESH_H_
-#define FREEFORM_CLIENT_SRC_STL_MESH_H_
+#ifndef FREEFORM_CLIENT_CLI_STL_MESH_H_
+#define FREEFORM_CLIENT_CLI_STL_MESH_H_
 
 #include <google/protobuf/repeated_field.h>
 
@@ -21,4 +21,4 @@ void WriteBinaryStl(const google::protobuf::RepeatedField<double>& vertices,
 
 }  // namespace freeform::cli
 
-#endif  // FREEFORM_CLIENT_SRC_STL_MESH_H_
+#endif  // FREEFORM_CLIENT_CLI_STL_MESH_H_

@@ -100,8 +100,10 @@ void SvgDrawing::Write(std::ostream& out, double size) const {
   const Frame frame{
       .box = box, .margin = margin, .scale = (size - 2 * margin) / extent};
   const double height = (box.hi_y - box.lo_y) * frame.scale + 2 * margin;
+  // The viewBox lets a viewer scale the picture to any size.
   out << R"(<svg xmlns="http://www.w3.org/2000/svg" width=")" << size
-      << R"(" height=")" << height << R"(">)"
+      << R"(" height=")" << height << R"(" viewBox="0 0 )" << size << " "
+      << height << R"(">)"
       << "\n";
   out << R"(<rect width="100%" height="100%" fill="white"/>)"
       << "\n";

@@ -1,8 +1,8 @@
 // SvgDrawing: curves and control polygons as an SVG picture (for the CLI's
 // --svg output). Points of any dimension are drawn by their first two
 // coordinates, fitted into the picture with y pointing up. Not thread-safe.
-#ifndef FREEFORM_CLIENT_SVG_DRAWING_H_
-#define FREEFORM_CLIENT_SVG_DRAWING_H_
+#ifndef FREEFORM_CLIENT_CLI_SVG_DRAWING_H_
+#define FREEFORM_CLIENT_CLI_SVG_DRAWING_H_
 
 #include <ostream>
 #include <string>
@@ -67,4 +67,4 @@ class SvgDrawing {
 
 }  // namespace freeform::cli
 
-#endif  // FREEFORM_CLIENT_SVG_DRAWING_H_
+#endif  // FREEFORM_CLIENT_CLI_SVG_DRAWING_H_

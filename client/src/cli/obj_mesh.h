@@ -2,8 +2,8 @@
 // --obj output): a grid of nu x nv evaluated points becomes (nu-1)(nv-1)
 // quads, each split into two triangles ordered counter-clockwise seen
 // against the normal S_u x S_v. Not thread-safe (one mesh, one writer).
-#ifndef FREEFORM_CLIENT_OBJ_MESH_H_
-#define FREEFORM_CLIENT_OBJ_MESH_H_
+#ifndef FREEFORM_CLIENT_CLI_OBJ_MESH_H_
+#define FREEFORM_CLIENT_CLI_OBJ_MESH_H_
 
 #include <array>
 #include <cstddef>
@@ -50,4 +50,4 @@ class ObjMesh {
 
 }  // namespace freeform::cli
 
-#endif  // FREEFORM_CLIENT_OBJ_MESH_H_
+#endif  // FREEFORM_CLIENT_CLI_OBJ_MESH_H_

@@ -3,8 +3,8 @@
 // along the normal, pointing away from the centre of curvature (so teeth
 // do not cross the curve in tight bends), and the envelope through the
 // teeth's tips. The curvature comes from CurveService.Curvature.
-#ifndef FREEFORM_CLIENT_CURVATURE_COMB_H_
-#define FREEFORM_CLIENT_CURVATURE_COMB_H_
+#ifndef FREEFORM_CLIENT_CLI_CURVATURE_COMB_H_
+#define FREEFORM_CLIENT_CLI_CURVATURE_COMB_H_
 
 #include <optional>
 #include <vector>
@@ -44,4 +44,4 @@ absl::Status AddCurvatureComb(Client& client, const v1::Curve& curve,
 
 }  // namespace freeform::cli
 
-#endif  // FREEFORM_CLIENT_CURVATURE_COMB_H_
+#endif  // FREEFORM_CLIENT_CLI_CURVATURE_COMB_H_
