@@ -10,10 +10,15 @@ absl::Status CheckDimensionLimit(uint64_t dimension,
                                  absl::string_view field) {
   if (dimension < 1 ||
       dimension > static_cast<uint64_t>(limits.max_dimension)) {
+    // A dimension of 0 is what an unset Points message reads as: say so,
+    // since a client that renames fields (proto-loader without keepCase)
+    // drops the whole message without an error of its own.
+    const absl::string_view hint =
+        dimension == 0 ? " (is the points message missing?)" : "";
     return InvalidFieldError(
         absl::StrCat(field, ".dimension"),
         absl::StrCat("dimension must be between 1 and ", limits.max_dimension,
-                     ", got ", dimension));
+                     ", got ", dimension, hint));
   }
   return absl::OkStatus();
 }

@@ -103,6 +103,19 @@ TEST_F(CurveServiceTest, RationalCurveStaysOnTheCircle) {
   }
 }
 
+// A client that renames fields (proto-loader without keepCase) sends a curve
+// without its control points: the answer names the dimension and says the
+// points are missing.
+TEST_F(CurveServiceTest, MissingControlPointsAreNamed) {
+  v1::EvaluateCurveRequest request = CubicRequest();
+  request.mutable_curve()->mutable_bezier()->clear_control_points();
+  absl::StatusOr<CurveSamples> result = client_->EvaluateCurve(request);
+  ASSERT_FALSE(result.ok());
+  ExpectInvalid(result.status(), "curve.bezier.control_points.dimension");
+  EXPECT_THAT(std::string(result.status().message()),
+              HasSubstr("got 0 (is the points message missing?)"));
+}
+
 TEST_F(CurveServiceTest, InvalidRequestsNameTheField) {
   v1::EvaluateCurveRequest request = CubicRequest();
   request.mutable_curve()
