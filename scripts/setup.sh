@@ -19,6 +19,9 @@ packages=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libabsl-dev libhwy-dev libspdlog-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # freeformd's Prometheus metrics (--metrics_listen): prometheus-cpp core
+  # and pull (its HTTP exposer, on civetweb).
+  prometheus-cpp-dev
   # google/rpc/status.proto and error_details.proto (google.rpc.BadRequest).
   golang-github-gogo-googleapis-dev
   # grpc/health/v1/health.proto for the client's health check.
