@@ -22,6 +22,9 @@ packages=(
   cmake ninja-build g++ pkg-config
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libabsl-dev libhwy-dev libspdlog-dev libcli11-dev nlohmann-json3-dev
+  # freeformd's Prometheus metrics (--metrics_listen): prometheus-cpp core
+  # and pull (its HTTP exposer, on civetweb).
+  prometheus-cpp-dev
   # grpc/health/v1/health.proto for the client's health check.
   grpc-proto
 )

@@ -3,8 +3,10 @@
 //   freeformd --listen=0.0.0.0:50051 --threads=0 --log_level=info
 //
 // Prints "freeformd listening on HOST:PORT" on stdout once it serves (with
-// --listen=127.0.0.1:0 the kernel picks the port). SIGTERM or SIGINT: health
-// turns NOT_SERVING, in-flight RPCs get --grace_period to finish, exit 0.
+// --listen=127.0.0.1:0 the kernel picks the port), and with --metrics_listen
+// a second line "freeformd metrics on HOST:PORT" after it. SIGTERM or
+// SIGINT: health turns NOT_SERVING, in-flight RPCs get --grace_period to
+// finish, exit 0.
 #include <unistd.h>
 
 #include <algorithm>
@@ -35,6 +37,10 @@
 
 ABSL_FLAG(std::string, listen, "0.0.0.0:50051",
           "Address to listen on; port 0 picks a free port (printed on stdout)");
+ABSL_FLAG(std::string, metrics_listen, "",
+          "Address of the Prometheus metrics, http://HOST:PORT/metrics (HOST "
+          "numeric, e.g. 127.0.0.1:9464; port 0 picks a free port, printed "
+          "on stdout); empty serves none");
 ABSL_FLAG(int, threads, 0, "Math threads; 0 = one per hardware thread");
 ABSL_FLAG(std::string, log_level, "info",
           "trace, debug, info, warn, error, critical or off");
@@ -87,6 +93,7 @@ freeform::server::ServerOptions OptionsFromFlags() {
   freeform::server::ServerOptions options;
   options.listen_address = absl::GetFlag(FLAGS_listen);
   options.threads = absl::GetFlag(FLAGS_threads);
+  options.metrics_listen_address = absl::GetFlag(FLAGS_metrics_listen);
   options.tls = {.cert_file = absl::GetFlag(FLAGS_tls_cert),
                  .key_file = absl::GetFlag(FLAGS_tls_key),
                  .client_ca_file = absl::GetFlag(FLAGS_tls_client_ca)};
@@ -201,6 +208,11 @@ namespace {
 
 constexpr char kUsage[] = "freeform curve and surface gRPC server";
 
+// HostOf returns the host of a HOST:PORT address.
+std::string HostOf(const std::string& address) {
+  return address.substr(0, address.rfind(':'));
+}
+
 // PrintHelp lists the server's own flags (those of this file), sorted, with
 // their help and default values.
 void PrintHelp() {
@@ -266,10 +278,14 @@ int main(int argc, char** argv) {
     spdlog::critical("cannot start: {}", server.status().ToString());
     return 1;
   }
-  const std::string listen = absl::GetFlag(FLAGS_listen);
-  const std::string host = listen.substr(0, listen.rfind(':'));
+  const std::string host = HostOf(absl::GetFlag(FLAGS_listen));
   std::cout << "freeformd listening on " << host << ":" << (*server)->port()
             << std::endl;
+  if ((*server)->metrics_port() != 0) {
+    std::cout << "freeformd metrics on "
+              << HostOf(absl::GetFlag(FLAGS_metrics_listen)) << ":"
+              << (*server)->metrics_port() << std::endl;
+  }
   spdlog::info("serving on {}:{} with {} math threads", host, (*server)->port(),
                (*server)->pool_size());
 

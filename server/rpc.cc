@@ -51,6 +51,12 @@ int RetryAttempt(const grpc::CallbackServerContext& context) {
   return previous + 1;
 }
 
+// LogLevel is the access-log level of a call that ends with `status`.
+spdlog::level::level_enum LogLevel(const absl::Status& status) {
+  return status.code() == absl::StatusCode::kInternal ? spdlog::level::err
+                                                      : spdlog::level::info;
+}
+
 // Responses larger than this are freed before their call's reservation.
 constexpr size_t kFreeResponseBytes = 1 << 20;
 
@@ -74,7 +80,9 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
         planner_(std::move(planner)) {}
 
   void Start() {
-    if (record_.frame().draining()) return Answer(DrainingError());
+    if (absl::Status status = record_.CheckNotDraining(); !status.ok()) {
+      return Answer(status);
+    }
     if (record_.PlanOnPool()) {
       if (!record_.Schedule([this] { PlanAndRun(/*on_pool=*/true); })) {
         Answer(QueueFullError());
@@ -196,7 +204,10 @@ CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
       request_(request),
       request_bytes_(request->ByteSizeLong()),
       planning_(planning),
-      started_(std::chrono::steady_clock::now()) {
+      started_(std::chrono::steady_clock::now()),
+      observer_(frame->observer_ == nullptr
+                    ? nullptr
+                    : &frame->observer_->ForMethod(method)) {
   WatchCall(*context, token_);
   frame_->calls_in_flight_.fetch_add(1, std::memory_order_acq_rel);
   frame_->calls_started_.fetch_add(1, std::memory_order_acq_rel);
@@ -222,7 +233,10 @@ absl::Status CallRecord::Reserve(const CallPlan& plan) {
   // The request stays in memory for the whole call too.
   absl::StatusOr<MemoryBudget::Reservation> reservation =
       frame_->budget().Reserve(plan.memory_bytes + request_bytes_, method_);
-  if (!reservation.ok()) return reservation.status();
+  if (!reservation.ok()) {
+    Refuse(Refusal::kMemoryBudget);
+    return reservation.status();
+  }
   reservation_ = *std::move(reservation);
   planned_bytes_ = plan.memory_bytes;
   return absl::OkStatus();
@@ -248,21 +262,35 @@ bool CallRecord::PlanOnPool() const {
          request_bytes_ > kInlinePlanningBytes;
 }
 
-bool CallRecord::Schedule(absl::AnyInvocable<void() &&> task) {
-  return frame_->pool()->TrySchedule(std::move(task));
+absl::Status CallRecord::CheckNotDraining() {
+  if (!frame_->draining()) return absl::OkStatus();
+  Refuse(Refusal::kDraining);
+  return DrainingError();
+}
+
+void CallRecord::Refuse(Refusal reason) {
+  if (frame_->observer_ != nullptr && !refused_.exchange(true)) {
+    frame_->observer_->Refused(reason);
+  }
 }
 
 void CallRecord::Done(const absl::Status& status, size_t response_bytes) {
+  const bool log = spdlog::should_log(LogLevel(status));
+  if (observer_ == nullptr && !log) return;
+  const auto elapsed = std::chrono::steady_clock::now() - started_;
+  if (observer_ != nullptr) {
+    observer_->CallDone(status.code(), elapsed, request_bytes_, response_bytes);
+  }
+  if (log) Log(status, response_bytes, elapsed);
+}
+
+void CallRecord::Log(const absl::Status& status, size_t response_bytes,
+                     std::chrono::steady_clock::duration elapsed) const {
   const bool failed = !status.ok();
-  const auto level = failed && status.code() == absl::StatusCode::kInternal
-                         ? spdlog::level::err
-                         : spdlog::level::info;
-  if (!spdlog::should_log(level)) return;
-  const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
-                          std::chrono::steady_clock::now() - started_)
-                          .count();
+  const auto micros =
+      std::chrono::duration_cast<std::chrono::microseconds>(elapsed).count();
   const int attempt = RetryAttempt(*context_);
-  spdlog::log(level,
+  spdlog::log(LogLevel(status),
               "rpc method={} peer={} request_bytes={} response_bytes={} "
               "status={} micros={}{}{}{}{}",
               std::string(method_), context_->peer(), request_bytes_,

@@ -13,7 +13,9 @@
 //      (chunks_in_flight);
 //   5. answers with the status (field paths as google.rpc.BadRequest), and
 //      writes one access-log line: method, peer, sizes, status, microseconds,
-//      and `attempt=N` for a call gRPC's retry policy sent again.
+//      and `attempt=N` for a call gRPC's retry policy sent again;
+//   6. reports the call and admission's refusals to the server's
+//      CallObserver, when it has one (call_observer.h: the metrics).
 // Every OK answer (each streamed message too) is checked to be finite: a
 // value that overflowed double precision turns the answer into
 // INVALID_ARGUMENT on the request's geometry. Debug and sanitizer builds
@@ -42,6 +44,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "admission.h"
+#include "call_observer.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/thread_pool.h"
 #include "grpc_handoff.h"
@@ -139,15 +142,26 @@ class CallRecord {
   // `answer` holds a NaN or an infinity (OverflowError), and, in debug and
   // sanitizer builds, INTERNAL when it is larger than the reserved plan.
   absl::Status CheckAnswer(const google::protobuf::Message& answer) const;
-  // Schedule runs `task` on the pool; false when its queue is full.
-  bool Schedule(absl::AnyInvocable<void() &&> task);
+  // Schedule runs `task` on the pool; false (a refusal) when its queue is
+  // full.
+  template <typename Task>
+  bool Schedule(Task task);
+  // CheckNotDraining returns DrainingError (a refusal) when the server
+  // drains.
+  absl::Status CheckNotDraining();
   void Cancel() { token_.Cancel(); }
-  // Done writes the access-log line for the call's final status. The
-  // reservation is held until the record is destroyed, after the call's
-  // messages (declare the record first in a reactor, so it goes last).
+  // Done reports the call's final status to the observer and writes the
+  // access-log line. The reservation is held until the record is
+  // destroyed, after the call's messages (declare the record first in a
+  // reactor, so it goes last).
   void Done(const absl::Status& status, size_t response_bytes);
 
  private:
+  // Refuse reports the call's refusal, once, to the frame's observer.
+  void Refuse(Refusal reason);
+  void Log(const absl::Status& status, size_t response_bytes,
+           std::chrono::steady_clock::duration elapsed) const;
+
   RpcFrame* const frame_;
   const absl::string_view method_;
   grpc::CallbackServerContext* const context_;
@@ -156,15 +170,20 @@ class CallRecord {
   const Planning planning_;
   uint64_t planned_bytes_ = 0;
   const std::chrono::steady_clock::time_point started_;
+  // The method's observer, or null when the frame has none.
+  MethodObserver* const observer_;
+  std::atomic<bool> refused_{false};
   CancellationToken token_;
   MemoryBudget::Reservation reservation_;
 };
 
 class RpcFrame {
  public:
-  // `pool` and `budget` must outlive the frame.
-  RpcFrame(ThreadPool* pool, MemoryBudget* budget, const ServiceLimits& limits)
-      : pool_(pool), budget_(budget), limits_(limits) {}
+  // `pool`, `budget` and `observer` (null: calls are not reported) must
+  // outlive the frame.
+  RpcFrame(ThreadPool* pool, MemoryBudget* budget, const ServiceLimits& limits,
+           CallObserver* observer = nullptr)
+      : pool_(pool), budget_(budget), limits_(limits), observer_(observer) {}
 
   const ServiceLimits& limits() const { return limits_; }
   ThreadPool* pool() const { return pool_; }
@@ -179,6 +198,15 @@ class RpcFrame {
   int64_t calls_started() const {
     return calls_started_.load(std::memory_order_acquire);
   }
+  // tasks_queued counts the calls' tasks waiting in the pool's queue
+  // (those Schedule queued and no pool thread has started yet).
+  int64_t tasks_queued() const {
+    return tasks_queued_.load(std::memory_order_relaxed);
+  }
+  // Schedule runs `task` on the pool, counted in tasks_queued until it
+  // starts; false (`task` dropped) when the pool's queue is full.
+  template <typename Task>
+  bool Schedule(Task task);
   // BeginDrain makes every call that starts from now on fail at once with
   // UNAVAILABLE (DrainingError), before any work: a client retries it on
   // another replica, while the calls already running finish.
@@ -207,8 +235,10 @@ class RpcFrame {
   ThreadPool* const pool_;
   MemoryBudget* const budget_;
   const ServiceLimits limits_;
+  CallObserver* const observer_;
   std::atomic<int64_t> calls_in_flight_{0};
   std::atomic<int64_t> calls_started_{0};
+  std::atomic<int64_t> tasks_queued_{0};
   std::atomic<bool> draining_{false};
 };
 
@@ -253,6 +283,26 @@ inline constexpr bool kCheckAnswers = true;
 // details (errors.h).
 grpc::Status AnswerStatus(const absl::Status& status);
 
+template <typename Task>
+bool RpcFrame::Schedule(Task task) {
+  tasks_queued_.fetch_add(1, std::memory_order_relaxed);
+  if (pool_->TrySchedule([this, task = std::move(task)]() mutable {
+        tasks_queued_.fetch_sub(1, std::memory_order_relaxed);
+        std::move(task)();
+      })) {
+    return true;
+  }
+  tasks_queued_.fetch_sub(1, std::memory_order_relaxed);
+  return false;
+}
+
+template <typename Task>
+bool CallRecord::Schedule(Task task) {
+  if (frame_->Schedule(std::move(task))) return true;
+  Refuse(Refusal::kQueueFull);
+  return false;
+}
+
 // A server-streaming call: compute on the pool overlapped with writes.
 template <typename Response>
 class StreamCall final : public grpc::ServerWriteReactor<Response> {
@@ -266,7 +316,9 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
         slots_(frame->chunks_in_flight()) {}
 
   void Start() {
-    if (record_.frame().draining()) return Fail(DrainingError());
+    if (absl::Status status = record_.CheckNotDraining(); !status.ok()) {
+      return Fail(status);
+    }
     if (record_.PlanOnPool()) {
       if (!record_.Schedule([this] { Plan(); })) Fail(QueueFullError());
       return;

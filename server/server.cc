@@ -13,6 +13,7 @@
 #include "curve_service.h"
 #include "freeform/client/file.h"
 #include "grpc_handoff.h"
+#include "metrics.h"
 #include "parse_errors.h"
 #include "surface_service.h"
 
@@ -46,6 +47,19 @@ absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> Credentials(
   return grpc::SslServerCredentials(options);
 }
 
+// MakeMetrics returns the metrics of `server`, which read its frame and
+// budget when scraped.
+std::unique_ptr<ServerMetrics> MakeMetrics(const FreeformServer& server,
+                                           const MemoryBudget& budget) {
+  return std::make_unique<ServerMetrics>(
+      FreeformMethodNames(),
+      ServerMetrics::Readings{
+          .calls_in_flight = [&server] { return server.calls_in_flight(); },
+          .tasks_queued = [&server] { return server.tasks_queued(); },
+          .memory_reserved_bytes = [&budget] { return budget.in_use(); },
+          .memory_capacity_bytes = budget.capacity()});
+}
+
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
@@ -64,8 +78,12 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
       std::make_unique<MemoryBudget>(options.limits.memory_budget_bytes);
   server->trimmer_ = std::make_unique<MemoryTrimmer>(
       server->budget_.get(), kTrimAfterReleasedBytes, std::chrono::seconds(1));
-  server->frame_ = std::make_unique<RpcFrame>(
-      server->pool_.get(), server->budget_.get(), options.limits);
+  if (!options.metrics_listen_address.empty()) {
+    server->metrics_ = MakeMetrics(*server, *server->budget_);
+  }
+  server->frame_ =
+      std::make_unique<RpcFrame>(server->pool_.get(), server->budget_.get(),
+                                 options.limits, server->metrics_.get());
   server->curve_service_ =
       std::make_unique<CurveServiceImpl>(server->frame_.get());
   server->surface_service_ =
@@ -95,6 +113,13 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
     return absl::UnavailableError(
         absl::StrCat("cannot listen on ", options.listen_address));
   }
+  if (server->metrics_ != nullptr) {
+    absl::StatusOr<std::unique_ptr<MetricsEndpoint>> endpoint =
+        MetricsEndpoint::Start(options.metrics_listen_address,
+                               *server->metrics_);
+    if (!endpoint.ok()) return endpoint.status();
+    server->metrics_endpoint_ = *std::move(endpoint);
+  }
   if (grpc::HealthCheckServiceInterface* health =
           server->server_->GetHealthCheckService();
       health != nullptr) {
@@ -107,6 +132,10 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
 }
 
 FreeformServer::~FreeformServer() { Shutdown(std::chrono::milliseconds(0)); }
+
+int FreeformServer::metrics_port() const {
+  return metrics_endpoint_ == nullptr ? 0 : metrics_endpoint_->port();
+}
 
 std::shared_ptr<grpc::Channel> FreeformServer::InProcessChannel() {
   grpc::ChannelArguments arguments;

@@ -3,8 +3,10 @@
 // Start() builds the thread pool, registers CurveService, SurfaceService,
 // the standard grpc.health.v1.Health service and server reflection, and
 // listens on the given address (port 0 picks a free port; port() tells
-// which). Shutdown() marks health NOT_SERVING, lets in-flight RPCs finish
-// within the grace period, then stops. Thread-safe after Start().
+// which). With a metrics address it also serves Prometheus metrics there
+// (metrics.h; metrics_port() tells the port). Shutdown() marks health
+// NOT_SERVING, lets in-flight RPCs finish within the grace period, then
+// stops. Thread-safe after Start().
 #ifndef FREEFORM_SERVER_SERVER_H_
 #define FREEFORM_SERVER_SERVER_H_
 
@@ -26,6 +28,8 @@
 namespace freeform::server {
 
 class CurveServiceImpl;
+class MetricsEndpoint;
+class ServerMetrics;
 class SurfaceServiceImpl;
 
 struct TlsOptions {
@@ -42,6 +46,9 @@ struct ServerOptions {
   int threads = 0;
   ServiceLimits limits;
   TlsOptions tls;
+  // HOST:PORT of the Prometheus metrics (http://HOST:PORT/metrics; port 0
+  // picks a free port); empty serves none.
+  std::string metrics_listen_address;
 };
 
 class FreeformServer {
@@ -52,12 +59,16 @@ class FreeformServer {
 
   // port returns the bound port.
   int port() const { return port_; }
+  // metrics_port returns the bound port of the metrics, 0 without them.
+  int metrics_port() const;
   // budget returns the server's memory budget (admission.h).
   const MemoryBudget& budget() const { return *budget_; }
   // calls_in_flight counts the freeform calls started and not yet done.
   int64_t calls_in_flight() const { return frame_->calls_in_flight(); }
   // calls_started counts every freeform call ever started.
   int64_t calls_started() const { return frame_->calls_started(); }
+  // tasks_queued counts the calls' tasks waiting in the pool's queue.
+  int64_t tasks_queued() const { return frame_->tasks_queued(); }
   // BeginDrain turns health NOT_SERVING and answers every call that starts
   // from now on with UNAVAILABLE at once, while the calls in flight run on;
   // Shutdown afterwards then finds nothing to cancel.
@@ -74,10 +85,15 @@ class FreeformServer {
  private:
   FreeformServer() = default;
 
+  // Members are destroyed bottom up, each before what it uses: the gRPC
+  // server (its calls report to the metrics) before the metrics, the
+  // metrics endpoint (it reads the frame when scraped) before the frame.
   std::unique_ptr<ThreadPool> pool_;
   std::unique_ptr<MemoryBudget> budget_;
   std::unique_ptr<MemoryTrimmer> trimmer_;
+  std::unique_ptr<ServerMetrics> metrics_;
   std::unique_ptr<RpcFrame> frame_;
+  std::unique_ptr<MetricsEndpoint> metrics_endpoint_;
   std::unique_ptr<CurveServiceImpl> curve_service_;
   std::unique_ptr<SurfaceServiceImpl> surface_service_;
   std::unique_ptr<grpc::Server> server_;

@@ -44,6 +44,8 @@ TEST(FreeformdFlags, HelpAndVersionExitZero) {
   EXPECT_THAT(help.output, HasSubstr("--listen  Address to listen on"));
   EXPECT_THAT(help.output, HasSubstr("(default: 0.0.0.0:50051)"));
   EXPECT_THAT(help.output, HasSubstr("--max_simplify_moves"));
+  EXPECT_THAT(help.output,
+              HasSubstr("--metrics_listen  Address of the Prometheus metrics"));
   EXPECT_THAT(help.output, ::testing::Not(HasSubstr("No flags matched")));
   const CommandResult version =
       RunCommand(absl::StrCat(FREEFORMD_PATH, " --version"));

@@ -1,8 +1,9 @@
 // ServerProcess: a freeformd child process listening on 127.0.0.1 with a
 // kernel-chosen port, for the integration and reliability tests. The
-// constructor starts it and reads the port it prints; the destructor kills
-// it if it still runs. Its log (stderr) can go to a file, and its resident
-// memory is read from /proc.
+// constructor starts it and reads the port it prints (and, with a
+// --metrics_listen flag, the metrics port it prints next); the destructor
+// kills it if it still runs. Its log (stderr) can go to a file, and its
+// resident memory is read from /proc.
 #ifndef FREEFORM_TESTS_INTEGRATION_SERVER_PROCESS_H_
 #define FREEFORM_TESTS_INTEGRATION_SERVER_PROCESS_H_
 
@@ -59,13 +60,11 @@ class ServerProcess {
     }
     close(out[1]);
     stdout_ = fdopen(out[0], "r");
-    std::array<char, 256> line{};
-    if (fgets(line.data(), line.size(), stdout_) != nullptr) {
-      const std::string text(line.data());
-      const size_t colon = text.rfind(':');
-      if (text.find("listening on") != std::string::npos &&
-          colon != std::string::npos) {
-        port_ = std::stoi(text.substr(colon + 1));
+    port_ = ReadPort("freeformd listening on ");
+    for (const std::string& flag : extra_flags) {
+      if (flag.rfind("--metrics_listen=", 0) == 0 &&
+          flag != "--metrics_listen=") {
+        metrics_port_ = ReadPort("freeformd metrics on ");
       }
     }
   }
@@ -80,6 +79,8 @@ class ServerProcess {
   ServerProcess& operator=(const ServerProcess&) = delete;
 
   int port() const { return port_; }
+  // metrics_port returns the port of the metrics, 0 without them.
+  int metrics_port() const { return metrics_port_; }
   pid_t pid() const { return pid_; }
   std::string address() const { return absl::StrCat("127.0.0.1:", port_); }
 
@@ -121,9 +122,21 @@ class ServerProcess {
   }
 
  private:
+  // ReadPort reads the next line of the server's stdout and returns the
+  // port at its end when it starts with `prefix` (HOST:PORT follows), or 0.
+  int ReadPort(const std::string& prefix) {
+    std::array<char, 256> line{};
+    if (fgets(line.data(), line.size(), stdout_) == nullptr) return 0;
+    const std::string text(line.data());
+    const size_t colon = text.rfind(':');
+    if (text.rfind(prefix, 0) != 0 || colon == std::string::npos) return 0;
+    return std::stoi(text.substr(colon + 1));
+  }
+
   pid_t pid_ = -1;
   FILE* stdout_ = nullptr;
   int port_ = 0;
+  int metrics_port_ = 0;
   bool exited_ = false;
 };
 

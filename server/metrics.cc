@@ -1,0 +1,278 @@
+#include "metrics.h"
+
+#include <google/protobuf/descriptor.h>
+#include <prometheus/client_metric.h>
+#include <prometheus/collectable.h>
+#include <prometheus/counter.h>
+#include <prometheus/exposer.h>
+#include <prometheus/family.h>
+#include <prometheus/histogram.h>
+#include <prometheus/metric_family.h>
+#include <prometheus/registry.h>
+#include <prometheus/text_serializer.h>
+
+#include <array>
+#include <atomic>
+#include <exception>
+#include <utility>
+
+#include "absl/strings/str_cat.h"
+#include "freeform/v1/curve_service.grpc.pb.h"
+#include "freeform/v1/surface_service.grpc.pb.h"
+
+namespace freeform::server {
+namespace {
+
+using prometheus::Counter;
+using prometheus::Family;
+using prometheus::Histogram;
+
+constexpr char kMethodLabel[] = "method";
+constexpr char kUnknownMethod[] = "unknown";
+
+// The gRPC codes: OK (0) to UNAUTHENTICATED (16).
+constexpr int kCodes = 17;
+
+// KnownCode maps a code outside gRPC's to UNKNOWN, as gRPC sends it.
+absl::StatusCode KnownCode(absl::StatusCode code) {
+  const int value = static_cast<int>(code);
+  return value >= 0 && value < kCodes ? code : absl::StatusCode::kUnknown;
+}
+
+constexpr std::array<Refusal, 3> kRefusals = {
+    Refusal::kMemoryBudget, Refusal::kQueueFull, Refusal::kDraining};
+
+const char* RefusalName(Refusal reason) {
+  switch (reason) {
+    case Refusal::kMemoryBudget:
+      return "memory_budget";
+    case Refusal::kQueueFull:
+      return "queue_full";
+    case Refusal::kDraining:
+      return "draining";
+  }
+  return "unknown";
+}
+
+prometheus::MetricFamily GaugeFamily(std::string name, std::string help,
+                                     double value) {
+  prometheus::ClientMetric metric;
+  metric.gauge.value = value;
+  return {.name = std::move(name),
+          .help = std::move(help),
+          .type = prometheus::MetricType::Gauge,
+          .metric = {std::move(metric)}};
+}
+
+}  // namespace
+
+std::vector<std::string> FreeformMethodNames() {
+  std::vector<std::string> names;
+  for (const char* service_name : {v1::CurveService::service_full_name(),
+                                   v1::SurfaceService::service_full_name()}) {
+    const google::protobuf::ServiceDescriptor* service =
+        google::protobuf::DescriptorPool::generated_pool()->FindServiceByName(
+            service_name);
+    if (service == nullptr) continue;
+    for (int i = 0; i < service->method_count(); ++i) {
+      names.push_back(
+          absl::StrCat(service->name(), ".", service->method(i)->name()));
+    }
+  }
+  return names;
+}
+
+std::vector<double> CallDurationBuckets() {
+  return {50e-6, 100e-6, 250e-6, 500e-6, 1e-3, 2.5e-3, 5e-3,
+          10e-3, 25e-3,  50e-3,  100e-3, 0.25, 0.5,    1,
+          2.5,   5,      10,     30,     60};
+}
+
+struct ServerMetrics::Families {
+  explicit Families(prometheus::Registry& registry)
+      : calls(prometheus::BuildCounter()
+                  .Name("freeform_calls_total")
+                  .Help("freeform.v1 calls by method and final gRPC code")
+                  .Register(registry)),
+        duration(prometheus::BuildHistogram()
+                     .Name("freeform_call_duration_seconds")
+                     .Help("Time from a call's start until its answer (the "
+                           "last streamed message and the status) was sent")
+                     .Register(registry)),
+        request_bytes(prometheus::BuildCounter()
+                          .Name("freeform_request_bytes_total")
+                          .Help("Serialized bytes of the calls' requests")
+                          .Register(registry)),
+        response_bytes(prometheus::BuildCounter()
+                           .Name("freeform_response_bytes_total")
+                           .Help("Serialized bytes of the calls' answers, "
+                                 "every streamed message included")
+                           .Register(registry)),
+        refusals(prometheus::BuildCounter()
+                     .Name("freeform_admission_refusals_total")
+                     .Help("Calls refused before their work ran, by reason")
+                     .Register(registry)) {
+    for (Refusal reason : kRefusals) {
+      refusal_counters[static_cast<size_t>(reason)] =
+          &refusals.Add({{"reason", RefusalName(reason)}});
+    }
+  }
+
+  Family<Counter>& calls;
+  Family<Histogram>& duration;
+  Family<Counter>& request_bytes;
+  Family<Counter>& response_bytes;
+  Family<Counter>& refusals;
+  std::array<Counter*, kRefusals.size()> refusal_counters{};
+};
+
+// One method's series. The counter of each code is made on the first call
+// that ends with it (a series of zeros for every code would be noise),
+// then kept.
+class ServerMetrics::MethodMetrics final : public MethodObserver {
+ public:
+  MethodMetrics(std::string name, Families& families)
+      : name_(std::move(name)),
+        calls_family_(families.calls),
+        duration_(families.duration.Add({{kMethodLabel, name_}},
+                                        CallDurationBuckets())),
+        request_bytes_(families.request_bytes.Add({{kMethodLabel, name_}})),
+        response_bytes_(families.response_bytes.Add({{kMethodLabel, name_}})) {
+    Calls(absl::StatusCode::kOk);  // rate() needs the series before a call
+  }
+
+  const std::string& name() const { return name_; }
+
+  void CallDone(absl::StatusCode code,
+                std::chrono::steady_clock::duration elapsed,
+                size_t request_bytes, size_t response_bytes) override {
+    Calls(code).Increment();
+    duration_.Observe(std::chrono::duration<double>(elapsed).count());
+    request_bytes_.Increment(static_cast<double>(request_bytes));
+    response_bytes_.Increment(static_cast<double>(response_bytes));
+  }
+
+ private:
+  Counter& Calls(absl::StatusCode code) {
+    code = KnownCode(code);
+    std::atomic<Counter*>& slot = calls_[static_cast<size_t>(code)];
+    Counter* counter = slot.load(std::memory_order_acquire);
+    if (counter == nullptr) {
+      // Family::Add returns the series already made for the same labels,
+      // so calls racing here all get one counter.
+      counter = &calls_family_.Add(
+          {{kMethodLabel, name_}, {"code", absl::StatusCodeToString(code)}});
+      slot.store(counter, std::memory_order_release);
+    }
+    return *counter;
+  }
+
+  const std::string name_;
+  Family<Counter>& calls_family_;
+  std::array<std::atomic<Counter*>, kCodes> calls_{};
+  Histogram& duration_;
+  Counter& request_bytes_;
+  Counter& response_bytes_;
+};
+
+// The gauges read from the server at each scrape.
+class ServerMetrics::ReadingsCollector final : public prometheus::Collectable {
+ public:
+  explicit ReadingsCollector(Readings readings)
+      : readings_(std::move(readings)) {}
+
+  std::vector<prometheus::MetricFamily> Collect() const override {
+    return {
+        GaugeFamily("freeform_calls_in_flight",
+                    "freeform.v1 calls started and not yet done",
+                    static_cast<double>(readings_.calls_in_flight())),
+        GaugeFamily("freeform_pool_queued_tasks",
+                    "Tasks of calls (planning, heavy work, stream chunks) "
+                    "waiting in the thread pool's queue",
+                    static_cast<double>(readings_.tasks_queued())),
+        GaugeFamily("freeform_memory_reserved_bytes",
+                    "Bytes the calls in flight hold of the memory budget",
+                    static_cast<double>(readings_.memory_reserved_bytes())),
+        GaugeFamily("freeform_memory_capacity_bytes",
+                    "Bytes the calls may reserve together (3/4 of "
+                    "--memory_budget)",
+                    static_cast<double>(readings_.memory_capacity_bytes)),
+    };
+  }
+
+ private:
+  const Readings readings_;
+};
+
+ServerMetrics::ServerMetrics(const std::vector<std::string>& methods,
+                             Readings readings)
+    : registry_(std::make_shared<prometheus::Registry>()),
+      families_(std::make_unique<Families>(*registry_)),
+      readings_(std::make_shared<ReadingsCollector>(std::move(readings))) {
+  for (const std::string& method : methods) {
+    if (by_name_.contains(method)) continue;
+    methods_.push_back(std::make_unique<MethodMetrics>(method, *families_));
+    by_name_.emplace(methods_.back()->name(), methods_.back().get());
+  }
+  methods_.push_back(
+      std::make_unique<MethodMetrics>(kUnknownMethod, *families_));
+  unknown_ = methods_.back().get();
+}
+
+ServerMetrics::~ServerMetrics() = default;
+
+MethodObserver& ServerMetrics::ForMethod(absl::string_view method) {
+  const auto found = by_name_.find(method);
+  return found == by_name_.end() ? *unknown_ : *found->second;
+}
+
+void ServerMetrics::Refused(Refusal reason) {
+  families_->refusal_counters[static_cast<size_t>(reason)]->Increment();
+}
+
+std::vector<std::weak_ptr<prometheus::Collectable>>
+ServerMetrics::collectables() const {
+  return {registry_, readings_};
+}
+
+std::string ServerMetrics::Exposition() const {
+  std::vector<prometheus::MetricFamily> families = registry_->Collect();
+  for (prometheus::MetricFamily& family : readings_->Collect()) {
+    families.push_back(std::move(family));
+  }
+  return prometheus::TextSerializer().Serialize(families);
+}
+
+MetricsEndpoint::MetricsEndpoint(std::unique_ptr<prometheus::Exposer> exposer,
+                                 int port)
+    : exposer_(std::move(exposer)), port_(port) {}
+
+MetricsEndpoint::~MetricsEndpoint() = default;
+
+absl::StatusOr<std::unique_ptr<MetricsEndpoint>> MetricsEndpoint::Start(
+    const std::string& address, const ServerMetrics& metrics) {
+  std::unique_ptr<prometheus::Exposer> exposer;
+  try {
+    // civetweb throws when it cannot bind the address.
+    exposer = std::make_unique<prometheus::Exposer>(address);
+  } catch (const std::exception& error) {
+    return absl::UnavailableError(
+        absl::StrCat("cannot serve metrics on --metrics_listen=", address,
+                     " (HOST:PORT with a numeric host, port 0 for a free "
+                     "port): ",
+                     error.what()));
+  }
+  const std::vector<int> ports = exposer->GetListeningPorts();
+  if (ports.empty() || ports.front() <= 0) {
+    return absl::UnavailableError(absl::StrCat(
+        "cannot serve metrics on --metrics_listen=", address, ": no port"));
+  }
+  for (const std::weak_ptr<prometheus::Collectable>& collectable :
+       metrics.collectables()) {
+    exposer->RegisterCollectable(collectable);
+  }
+  return std::unique_ptr<MetricsEndpoint>(
+      new MetricsEndpoint(std::move(exposer), ports.front()));
+}
+
+}  // namespace freeform::server

@@ -1,0 +1,82 @@
+// Scraping freeformd's Prometheus metrics in tests: an HTTP/1.0 GET over a
+// plain loopback socket (no HTTP library) and the value of one series in
+// the text format.
+#ifndef FREEFORM_TESTS_METRICS_SCRAPE_H_
+#define FREEFORM_TESTS_METRICS_SCRAPE_H_
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <array>
+#include <optional>
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "absl/strings/string_view.h"
+
+namespace freeform {
+
+// HttpGet returns the body of http://127.0.0.1:PORT/PATH when the answer
+// is 200 OK.
+inline absl::StatusOr<std::string> HttpGet(int port, absl::string_view path) {
+  const int socket_fd = socket(AF_INET, SOCK_STREAM, 0);
+  if (socket_fd < 0) return absl::InternalError("socket() failed");
+  const timeval timeout = {.tv_sec = 10, .tv_usec = 0};
+  setsockopt(socket_fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string answer;
+  if (connect(socket_fd, reinterpret_cast<const sockaddr*>(&address),
+              sizeof(address)) == 0) {
+    const std::string request =
+        absl::StrCat("GET ", path, " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n");
+    if (send(socket_fd, request.data(), request.size(), MSG_NOSIGNAL) ==
+        static_cast<ssize_t>(request.size())) {
+      std::array<char, 4096> buffer;
+      ssize_t received = 0;
+      while ((received = recv(socket_fd, buffer.data(), buffer.size(), 0)) >
+             0) {
+        answer.append(buffer.data(), static_cast<size_t>(received));
+      }
+    }
+  }
+  close(socket_fd);
+  const size_t body = answer.find("\r\n\r\n");
+  if (body == std::string::npos) {
+    return absl::UnavailableError(absl::StrCat(
+        "no HTTP answer from 127.0.0.1:", port, path, ": ", answer));
+  }
+  const absl::string_view status_line =
+      absl::string_view(answer).substr(0, answer.find("\r\n"));
+  if (!absl::StrContains(status_line, " 200 ")) {
+    return absl::UnavailableError(absl::StrCat("GET ", path, ": ", answer));
+  }
+  return answer.substr(body + 4);
+}
+
+// MetricValue returns the value of `series` (a name with its labels, as
+// written: `freeform_calls_total{code="OK",method="CurveService.Evaluate"}`)
+// in a text exposition, or nullopt when it has no such line.
+inline std::optional<double> MetricValue(absl::string_view exposition,
+                                         absl::string_view series) {
+  for (absl::string_view line : absl::StrSplit(exposition, '\n')) {
+    if (!absl::ConsumePrefix(&line, series) || !absl::ConsumePrefix(&line, " "))
+      continue;
+    double value = 0;
+    if (absl::SimpleAtod(line, &value)) return value;
+  }
+  return std::nullopt;
+}
+
+}  // namespace freeform
+
+#endif  // FREEFORM_TESTS_METRICS_SCRAPE_H_
