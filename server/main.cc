@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -30,6 +31,7 @@
 #include "absl/strings/string_view.h"
 #include "absl/synchronization/mutex.h"
 #include "absl/time/time.h"
+#include "log_format.h"
 #include "memory_trimmer.h"
 #include "server.h"
 #include "spdlog/sinks/stdout_sinks.h"
@@ -76,17 +78,23 @@ ABSL_FLAG(uint64_t, memory_budget, 768ull << 20,
 
 namespace {
 
-void ConfigureLogging() {
-  auto logger = spdlog::stderr_logger_mt("freeformd");
-  if (absl::GetFlag(FLAGS_log_format) == "json") {
-    logger->set_pattern(
-        R"({"time":"%Y-%m-%dT%H:%M:%S.%fZ","level":"%l","message":"%v"})",
-        spdlog::pattern_time_type::utc);
-  } else {
-    logger->set_pattern("%Y-%m-%dT%H:%M:%S.%f %^%l%$ %v");
+// ConfigureLogging sets up the log on stderr and returns the logger of the
+// lines announced on stdout, both in --log_format; exits 2 on a bad format.
+std::shared_ptr<spdlog::logger> ConfigureLogging() {
+  const absl::StatusOr<freeform::server::LogFormat> format =
+      freeform::server::ParseLogFormat(absl::GetFlag(FLAGS_log_format));
+  if (!format.ok()) {
+    std::cerr << "freeformd: " << format.status().message() << "\n";
+    std::exit(2);
   }
+  auto logger = spdlog::stderr_logger_mt("freeformd");
+  logger->set_formatter(freeform::server::LogFormatter(*format));
   logger->set_level(spdlog::level::from_str(absl::GetFlag(FLAGS_log_level)));
   spdlog::set_default_logger(logger);
+  auto announcer = spdlog::stdout_logger_mt("freeformd-stdout");
+  announcer->set_formatter(freeform::server::AnnouncementFormatter(*format));
+  announcer->flush_on(spdlog::level::info);
+  return announcer;
 }
 
 freeform::server::ServerOptions OptionsFromFlags() {
@@ -261,7 +269,7 @@ int main(int argc, char** argv) {
   // Abseil's mutex deadlock detection is a debugging aid that costs every
   // lock (gRPC's included) a graph update; the server runs without it.
   absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
-  ConfigureLogging();
+  const std::shared_ptr<spdlog::logger> announcer = ConfigureLogging();
   if (!allocator_configured) {
     spdlog::info("malloc left as the environment set it");
   }
@@ -279,12 +287,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   const std::string host = HostOf(absl::GetFlag(FLAGS_listen));
-  std::cout << "freeformd listening on " << host << ":" << (*server)->port()
-            << std::endl;
+  announcer->info("freeformd listening on {}:{}", host, (*server)->port());
   if ((*server)->metrics_port() != 0) {
-    std::cout << "freeformd metrics on "
-              << HostOf(absl::GetFlag(FLAGS_metrics_listen)) << ":"
-              << (*server)->metrics_port() << std::endl;
+    announcer->info("freeformd metrics on {}:{}",
+                    HostOf(absl::GetFlag(FLAGS_metrics_listen)),
+                    (*server)->metrics_port());
   }
   spdlog::info("serving on {}:{} with {} math threads", host, (*server)->port(),
                (*server)->pool_size());

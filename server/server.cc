@@ -153,7 +153,8 @@ void FreeformServer::BeginDrain() {
 }
 
 void FreeformServer::Shutdown(std::chrono::milliseconds grace) {
-  if (shut_down_.exchange(true)) return;
+  // A server whose Start failed to listen has no gRPC server to stop.
+  if (shut_down_.exchange(true) || server_ == nullptr) return;
   if (grpc::HealthCheckServiceInterface* health =
           server_->GetHealthCheckService();
       health != nullptr) {
@@ -162,6 +163,8 @@ void FreeformServer::Shutdown(std::chrono::milliseconds grace) {
   server_->Shutdown(std::chrono::system_clock::now() + grace);
 }
 
-void FreeformServer::Wait() { server_->Wait(); }
+void FreeformServer::Wait() {
+  if (server_ != nullptr) server_->Wait();
+}
 
 }  // namespace freeform::server

@@ -17,6 +17,7 @@
 #include "cli_test_util.h"
 #include "freeform/client.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
+#include "nlohmann/json.hpp"
 #include "server_process.h"
 
 namespace freeform {
@@ -264,6 +265,52 @@ TEST_F(FreeformdTest, SigtermDrainsAndExitsZero) {
 
 TEST_F(FreeformdTest, SigintExitsZero) {
   EXPECT_EQ(server_.StopWith(SIGINT, std::chrono::seconds(10)), 0);
+}
+
+// With --log_format=json every line freeformd writes is one JSON object:
+// the announcement on stdout and the whole log on stderr, including access
+// lines whose messages hold quotes (a field violation's text).
+TEST(FreeformdLogFormat, JsonLogLinesAllParse) {
+  const std::string log_path = absl::StrCat(
+      testing::TempDir(), "/freeformd_json_log_", getpid(), ".log");
+  std::remove(log_path.c_str());
+  {
+    ServerProcess server({"--log_format=json", "--log_level=debug"}, log_path);
+    ASSERT_GT(server.port(), 0);
+    ASSERT_EQ(server.announced().size(), 1u);
+    const nlohmann::json announcement =
+        nlohmann::json::parse(server.announced()[0]);
+    EXPECT_EQ(announcement.at("level"), "info");
+    EXPECT_EQ(announcement.at("message"),
+              absl::StrCat("freeformd listening on 127.0.0.1:", server.port()));
+    auto client = Client::Create(
+        {.target = absl::StrCat("127.0.0.1:", server.port())});
+    ASSERT_TRUE(client.ok()) << client.status();
+    // Three coordinates in dimension 2: refused with a quoted reason.
+    absl::StatusOr<CurveSamples> refused =
+        (*client)->EvaluateBezier(2, {0, 0, 1}, {0.5}, 0);
+    EXPECT_FALSE(refused.ok());
+    EXPECT_EQ(server.StopWith(SIGTERM, std::chrono::seconds(10)), 0);
+  }
+  std::ifstream log(log_path);
+  std::string line;
+  int lines = 0;
+  while (std::getline(log, line)) {
+    ++lines;
+    const nlohmann::json entry = nlohmann::json::parse(line, nullptr, false);
+    ASSERT_FALSE(entry.is_discarded()) << "not JSON: " << line;
+    EXPECT_TRUE(entry.contains("time") && entry.contains("level") &&
+                entry.contains("message"))
+        << line;
+  }
+  EXPECT_GE(lines, 3);  // serving, the refused call, stopped
+  std::remove(log_path.c_str());
+}
+
+TEST(FreeformdLogFormat, UnknownFormatIsRefused) {
+  ServerProcess server({"--log_format=xml"});
+  EXPECT_EQ(server.port(), 0);
+  EXPECT_EQ(server.WaitForExit(std::chrono::seconds(10)), 2);
 }
 
 // Certificates made by openssl for one test run: a CA, a server certificate

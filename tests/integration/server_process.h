@@ -16,6 +16,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <optional>
 #include <string>
@@ -84,6 +85,8 @@ class ServerProcess {
   pid_t pid() const { return pid_; }
   std::string address() const { return absl::StrCat("127.0.0.1:", port_); }
 
+  // announced returns the lines read from the server's stdout so far.
+  const std::vector<std::string>& announced() const { return announced_; }
   // Signal sends `signal` to the process.
   void Signal(int signal) { kill(pid_, signal); }
 
@@ -122,19 +125,26 @@ class ServerProcess {
   }
 
  private:
-  // ReadPort reads the next line of the server's stdout and returns the
-  // port at its end when it starts with `prefix` (HOST:PORT follows), or 0.
+  // ReadPort reads the next line of the server's stdout (announced()) and
+  // returns the port of the HOST:PORT that follows `prefix` in it (the line
+  // itself with --log_format=text, its message with json), or 0.
   int ReadPort(const std::string& prefix) {
     std::array<char, 256> line{};
     if (fgets(line.data(), line.size(), stdout_) == nullptr) return 0;
-    const std::string text(line.data());
-    const size_t colon = text.rfind(':');
-    if (text.rfind(prefix, 0) != 0 || colon == std::string::npos) return 0;
-    return std::stoi(text.substr(colon + 1));
+    announced_.emplace_back(line.data());
+    const std::string& text = announced_.back();
+    const size_t start = text.find(prefix);
+    if (start == std::string::npos) return 0;
+    std::string address = text.substr(start + prefix.size());
+    address = address.substr(0, address.find_first_of("\" \n"));
+    const size_t colon = address.rfind(':');
+    if (colon == std::string::npos) return 0;
+    return std::atoi(address.c_str() + colon + 1);
   }
 
   pid_t pid_ = -1;
   FILE* stdout_ = nullptr;
+  std::vector<std::string> announced_;
   int port_ = 0;
   int metrics_port_ = 0;
   bool exited_ = false;
