@@ -17,8 +17,8 @@ class JsonEscapedMessage : public spdlog::custom_flag_formatter {
  public:
   void format(const spdlog::details::log_msg& message, const std::tm& /*time*/,
               spdlog::memory_buf_t& out) override {
-    for (const char c : absl::string_view(message.payload.data(),
-                                          message.payload.size())) {
+    for (const char c :
+         absl::string_view(message.payload.data(), message.payload.size())) {
       switch (c) {
         case '"':
           Append(out, "\\\"");
@@ -59,8 +59,8 @@ class JsonEscapedMessage : public spdlog::custom_flag_formatter {
 };
 
 std::unique_ptr<spdlog::formatter> JsonFormatter() {
-  auto formatter =
-      std::make_unique<spdlog::pattern_formatter>(spdlog::pattern_time_type::utc);
+  auto formatter = std::make_unique<spdlog::pattern_formatter>(
+      spdlog::pattern_time_type::utc);
   formatter->add_flag<JsonEscapedMessage>('*').set_pattern(kJsonPattern);
   return formatter;
 }

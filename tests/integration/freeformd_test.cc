@@ -283,8 +283,8 @@ TEST(FreeformdLogFormat, JsonLogLinesAllParse) {
     EXPECT_EQ(announcement.at("level"), "info");
     EXPECT_EQ(announcement.at("message"),
               absl::StrCat("freeformd listening on 127.0.0.1:", server.port()));
-    auto client = Client::Create(
-        {.target = absl::StrCat("127.0.0.1:", server.port())});
+    auto client =
+        Client::Create({.target = absl::StrCat("127.0.0.1:", server.port())});
     ASSERT_TRUE(client.ok()) << client.status();
     // Three coordinates in dimension 2: refused with a quoted reason.
     absl::StatusOr<CurveSamples> refused =

@@ -99,8 +99,8 @@ TEST_F(ReadmeTest, OtherLanguageCommandsRunAsWritten) {
     if (absl::StrContains(command, "freeform_example")) {
       // Each example prints the worked cubic's row at t = 1/2: the point
       // (2, 1.5) and the derivative (4.5, 0) (Python writes 2 as 2.0).
-      EXPECT_THAT(result.output, ::testing::ContainsRegex(
-                                     R"(1,2(\.0)?,1\.5,4\.5,0(\.0)?)"))
+      EXPECT_THAT(result.output,
+                  ::testing::ContainsRegex(R"(1,2(\.0)?,1\.5,4\.5,0(\.0)?)"))
           << command;
     }
   }

@@ -10,7 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "input.h"
 #include "output.h"
-#include "progress.h"
+#include "row_stream.h"
 #include "rows.h"
 #include "subcommand.h"
 
@@ -51,20 +51,8 @@ absl::Status WriteCurveChunk(const v1::EvaluateCurveResponse& chunk,
 
 int RunCurveStream(const CommonFlags& flags, Client& client,
                    const v1::EvaluateCurveRequest& request, RowFormat format) {
-  RowWriter writer(format, stdout);
-  Progress progress(!flags.no_progress, ParameterCount(request), "points");
-  uint64_t done = 0;
-  const absl::Status status = client.EvaluateCurveStream(
-      request, [&](const v1::EvaluateCurveResponse& chunk) {
-        if (absl::Status written = WriteCurveChunk(chunk, writer);
-            !written.ok()) {
-          return written;
-        }
-        progress.Update(done += chunk.count());
-        return absl::OkStatus();
-      });
-  if (!status.ok()) return ReportError(status);
-  return FinishRows(writer);
+  return StreamRows(flags, client, &Client::EvaluateCurveStream, request,
+                    ParameterCount(request), format, &WriteCurveChunk);
 }
 
 }  // namespace

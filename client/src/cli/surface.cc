@@ -10,7 +10,7 @@
 #include "input.h"
 #include "obj_mesh.h"
 #include "output.h"
-#include "progress.h"
+#include "row_stream.h"
 #include "rows.h"
 #include "subcommand.h"
 
@@ -78,20 +78,8 @@ absl::Status WriteSurfaceChunk(const v1::EvaluateSurfaceResponse& chunk,
 int RunSurfaceStream(const CommonFlags& flags, Client& client,
                      const v1::EvaluateSurfaceRequest& request,
                      RowFormat format) {
-  RowWriter writer(format, stdout);
-  Progress progress(!flags.no_progress, PointCount(request), "points");
-  uint64_t done = 0;
-  const absl::Status status = client.EvaluateSurfaceStream(
-      request, [&](const v1::EvaluateSurfaceResponse& chunk) {
-        if (absl::Status written = WriteSurfaceChunk(chunk, writer);
-            !written.ok()) {
-          return written;
-        }
-        progress.Update(done += chunk.count());
-        return absl::OkStatus();
-      });
-  if (!status.ok()) return ReportError(status);
-  return FinishRows(writer);
+  return StreamRows(flags, client, &Client::EvaluateSurfaceStream, request,
+                    PointCount(request), format, &WriteSurfaceChunk);
 }
 
 // --obj: the grid as a triangle mesh with normals.
