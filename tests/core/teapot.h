@@ -34,9 +34,9 @@ struct Patches {
 
 // ReadTeapot reads the 32 bicubic patches of examples/teapot.json with a
 // minimal number scanner: the numbers between "patches" and "vertices".
+// FREEFORM_SOURCE_DIR is the repository (a definition of the test target).
 inline Patches ReadTeapot() {
-  std::string path = __FILE__;
-  path = path.substr(0, path.rfind("/tests/core/")) + "/examples/teapot.json";
+  const std::string path = FREEFORM_SOURCE_DIR "/examples/teapot.json";
   std::ifstream file(path);
   EXPECT_TRUE(file.good()) << path;
   std::stringstream buffer;
