@@ -198,13 +198,8 @@ class RpcFrame {
   int64_t calls_started() const {
     return calls_started_.load(std::memory_order_acquire);
   }
-  // tasks_queued counts the calls' tasks waiting in the pool's queue
-  // (those Schedule queued and no pool thread has started yet).
-  int64_t tasks_queued() const {
-    return tasks_queued_.load(std::memory_order_relaxed);
-  }
-  // Schedule runs `task` on the pool, counted in tasks_queued until it
-  // starts; false (`task` dropped) when the pool's queue is full.
+  // Schedule runs `task` on the pool; false (`task` dropped) when the
+  // pool's queue is full.
   template <typename Task>
   bool Schedule(Task task);
   // BeginDrain makes every call that starts from now on fail at once with
@@ -238,7 +233,6 @@ class RpcFrame {
   CallObserver* const observer_;
   std::atomic<int64_t> calls_in_flight_{0};
   std::atomic<int64_t> calls_started_{0};
-  std::atomic<int64_t> tasks_queued_{0};
   std::atomic<bool> draining_{false};
 };
 
@@ -285,15 +279,7 @@ grpc::Status AnswerStatus(const absl::Status& status);
 
 template <typename Task>
 bool RpcFrame::Schedule(Task task) {
-  tasks_queued_.fetch_add(1, std::memory_order_relaxed);
-  if (pool_->TrySchedule([this, task = std::move(task)]() mutable {
-        tasks_queued_.fetch_sub(1, std::memory_order_relaxed);
-        std::move(task)();
-      })) {
-    return true;
-  }
-  tasks_queued_.fetch_sub(1, std::memory_order_relaxed);
-  return false;
+  return pool_->TrySchedule(std::move(task));
 }
 
 template <typename Task>

@@ -67,8 +67,9 @@ class FreeformServer {
   int64_t calls_in_flight() const { return frame_->calls_in_flight(); }
   // calls_started counts every freeform call ever started.
   int64_t calls_started() const { return frame_->calls_started(); }
-  // tasks_queued counts the calls' tasks waiting in the pool's queue.
-  int64_t tasks_queued() const { return frame_->tasks_queued(); }
+  // tasks_queued counts the tasks waiting in the pool's queue: the calls'
+  // (planning, heavy work, stream chunks) and the helpers of large batches.
+  int64_t tasks_queued() const { return static_cast<int64_t>(pool_->queued()); }
   // BeginDrain turns health NOT_SERVING and answers every call that starts
   // from now on with UNAVAILABLE at once, while the calls in flight run on;
   // Shutdown afterwards then finds nothing to cancel.

@@ -35,6 +35,11 @@ bool ThreadPool::TrySchedule(absl::AnyInvocable<void() &&> task) {
   return true;
 }
 
+size_t ThreadPool::queued() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return queue_.size();
+}
+
 void ThreadPool::WorkerLoop() {
   while (true) {
     absl::AnyInvocable<void() &&> task;

@@ -116,6 +116,26 @@ TEST(ThreadPoolTest, FullQueueRefusesAndParallelForStillFinishes) {
   release.store(true);
 }
 
+TEST(ThreadPoolTest, QueuedCountsTheTasksWaitingForAWorker) {
+  ThreadPool pool(1);
+  EXPECT_EQ(pool.queued(), 0u);
+  std::atomic<bool> started{false}, release{false};
+  ASSERT_TRUE(pool.TrySchedule([&] {
+    started.store(true);
+    while (!release.load()) std::this_thread::yield();
+  }));
+  while (!started.load()) std::this_thread::yield();
+  // The one worker is busy: what comes next waits in the queue.
+  std::atomic<int> ran{0};
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(pool.TrySchedule([&] { ran.fetch_add(1); }));
+  }
+  EXPECT_EQ(pool.queued(), 3u);
+  release.store(true);
+  while (ran.load() < 3) std::this_thread::yield();
+  EXPECT_EQ(pool.queued(), 0u);
+}
+
 TEST(ThreadPoolTest, DestructorRunsQueuedTasks) {
   std::atomic<int> ran{0};
   {

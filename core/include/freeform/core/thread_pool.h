@@ -54,10 +54,13 @@ class ThreadPool {
   // full or the pool is shutting down.
   bool TrySchedule(absl::AnyInvocable<void() &&> task);
 
+  // queued returns the number of tasks waiting for a worker now.
+  size_t queued() const;
+
  private:
   void WorkerLoop();
 
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<absl::AnyInvocable<void() &&>> queue_;
   const size_t max_queued_;
