@@ -59,13 +59,8 @@ int RunCurveStream(const CommonFlags& flags, Client& client,
 
 void AddEvalFlags(CLI::App& command, EvalOptions& options) {
   AddFileFlag(command, options.file);
-  command.add_flag(
-      "--stream", options.stream,
-      "Use EvaluateStream and write the points as they arrive, in constant "
-      "memory (any number of points); --format json then writes one document "
-      "{\"dimension\": D, \"points\": [{\"index\": I, \"point\": [...], "
-      "...}, ...], \"count\": N}");
-  AddFormatFlag(command, options.format, {"json", "csv", "jsonl"});
+  AddStreamFlags(command, options.stream, options.format,
+                 "any number of points");
 }
 
 int RunEval(const CommonFlags& flags, const EvalOptions& options) {

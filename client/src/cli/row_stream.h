@@ -1,12 +1,14 @@
 // StreamRows: a streaming evaluation's answer written as rows chunk by chunk
 // as the chunks arrive, in constant memory, with a progress bar (`eval
-// --stream`, `surface --stream`).
+// --stream`, `surface --stream`), and the flags that ask for it.
 #ifndef FREEFORM_CLIENT_CLI_ROW_STREAM_H_
 #define FREEFORM_CLIENT_CLI_ROW_STREAM_H_
 
 #include <cstdint>
 #include <cstdio>
+#include <string>
 
+#include "CLI/CLI.hpp"
 #include "absl/functional/function_ref.h"
 #include "absl/status/status.h"
 #include "common.h"
@@ -14,8 +16,24 @@
 #include "output.h"
 #include "progress.h"
 #include "rows.h"
+#include "subcommand.h"
 
 namespace freeform::cli {
+
+// AddStreamFlags adds --stream (the Stream RPC, written as it arrives;
+// `use` says for what) and --format (json, csv or jsonl).
+inline void AddStreamFlags(CLI::App& command, bool& stream, std::string& format,
+                           const std::string& use) {
+  command.add_flag(
+      "--stream", stream,
+      "Use EvaluateStream and write the points as they arrive, in constant "
+      "memory (" +
+          use +
+          "); --format json then writes one document "
+          "{\"dimension\": D, \"points\": [{\"index\": I, \"point\": "
+          "[...], ...}, ...], \"count\": N}");
+  AddFormatFlag(command, format, {"json", "csv", "jsonl"});
+}
 
 // StreamRows runs `stream` (a Client method such as EvaluateCurveStream)
 // on `request`, writes each chunk with `write_chunk` in `format` to stdout,

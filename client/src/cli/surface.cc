@@ -100,13 +100,7 @@ int RunObj(Client& client, const v1::EvaluateSurfaceRequest& request,
 
 void AddSurfaceFlags(CLI::App& command, SurfaceOptions& options) {
   AddFileFlag(command, options.file);
-  command.add_flag(
-      "--stream", options.stream,
-      "Use EvaluateStream and write the points as they arrive, in constant "
-      "memory (large grids); --format json then writes one document "
-      "{\"dimension\": D, \"points\": [{\"index\": I, \"point\": [...], "
-      "...}, ...], \"count\": N}");
-  AddFormatFlag(command, options.format, {"json", "csv", "jsonl"});
+  AddStreamFlags(command, options.stream, options.format, "large grids");
   command.add_option("--obj", options.obj,
                      "Write the grid as an OBJ triangle mesh to this file "
                      "('-' for stdout)");
