@@ -30,9 +30,11 @@ constexpr char kEvaluateCount[] =
     R"(freeform_call_duration_seconds_count{method="CurveService.Evaluate"})";
 
 // ScrapeWhenCounted scrapes the metrics until the latency histogram of
-// CurveService.Evaluate counts `calls` and no call is in flight: a call is
-// counted when the server is done with it, just after the client has its
-// answer. Returns the last scrape.
+// CurveService.Evaluate and its OK and INVALID_ARGUMENT counters together
+// count `calls`, and no call is in flight: a call is counted when the server
+// is done with it, just after the client has its answer, and a scrape may
+// fall between one call's histogram and its counter. Returns the last
+// scrape.
 std::string ScrapeWhenCounted(int port, double calls) {
   std::string text;
   const auto give_up =
@@ -42,7 +44,9 @@ std::string ScrapeWhenCounted(int port, double calls) {
     EXPECT_TRUE(scraped.ok()) << scraped.status();
     if (!scraped.ok()) return "";
     text = *std::move(scraped);
-    if (MetricValue(text, kEvaluateCount) == calls &&
+    const double coded = MetricValue(text, kEvaluateOk).value_or(0) +
+                         MetricValue(text, kEvaluateInvalid).value_or(0);
+    if (MetricValue(text, kEvaluateCount) == calls && coded == calls &&
         MetricValue(text, "freeform_calls_in_flight") == 0.0) {
       break;
     }
