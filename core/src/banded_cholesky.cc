@@ -26,7 +26,7 @@ BandedCholesky::BandedCholesky(size_t n, size_t bandwidth)
     : n_(n),
       bandwidth_(bandwidth),
       width_(bandwidth + 1),
-      band_(n * (bandwidth + 1), 0.0) {}
+      band_(n * (bandwidth + 1)) {}
 
 absl::Status BandedCholesky::Factor(const CancellationToken* cancel) {
   CancellationPoll poll(cancel);

@@ -12,17 +12,18 @@
 #define FREEFORM_CORE_SRC_BANDED_CHOLESKY_H_
 
 #include <cstddef>
-#include <vector>
 
 #include "absl/status/status.h"
 #include "freeform/core/cancellation.h"
+#include "zeroed_doubles.h"
 
 namespace freeform::internal {
 
 class BandedCholesky {
  public:
-  // An n x n zero matrix with `bandwidth` sub-diagonals. The caller checks
-  // that n (bandwidth + 1) doubles fit in memory.
+  // An n x n zero matrix with `bandwidth` sub-diagonals, its pages faulted
+  // in as it is filled (zeroed_doubles.h). The caller checks that
+  // n (bandwidth + 1) doubles fit in memory.
   BandedCholesky(size_t n, size_t bandwidth);
 
   size_t size() const { return n_; }
@@ -52,7 +53,7 @@ class BandedCholesky {
 
  private:
   size_t n_, bandwidth_, width_;
-  std::vector<double> band_;
+  ZeroedDoubles band_;
   size_t failed_row_ = 0;
 };
 

@@ -10,6 +10,7 @@
 
 #include "absl/status/status.h"
 #include "freeform/core/cancellation.h"
+#include "zeroed_doubles.h"
 
 namespace freeform::internal {
 
@@ -26,14 +27,15 @@ absl::Status SingularSystemError();
 // normal equations; docs/references.md, 'Global B-spline interpolation').
 class BandedLu {
  public:
-  // An n x n zero matrix; `cancel` (may be null) is polled while factoring
-  // and solving.
+  // An n x n zero matrix, its pages faulted in as it is filled
+  // (zeroed_doubles.h); `cancel` (may be null) is polled while factoring and
+  // solving.
   BandedLu(int n, int kl, int ku, const CancellationToken* cancel)
       : n_(n),
         kl_(kl),
         ku_(ku),
         width_(kl + ku + 1),
-        band_(static_cast<size_t>(n) * static_cast<size_t>(width_), 0.0),
+        band_(static_cast<size_t>(n) * static_cast<size_t>(width_)),
         cancel_(cancel) {}
 
   int size() const { return n_; }
@@ -54,7 +56,7 @@ class BandedLu {
 
  private:
   int n_, kl_, ku_, width_;
-  std::vector<double> band_;
+  ZeroedDoubles band_;
   const CancellationToken* cancel_;
 };
 
