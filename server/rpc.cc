@@ -311,6 +311,7 @@ grpc::ServerUnaryReactor* RpcFrame::Unary(
     const google::protobuf::Message* request,
     google::protobuf::Message* response, UnaryPlanner planner,
     Planning planning) {
+  HandOffToGrpc(this);  // to the server's teardown (~FreeformServer)
   auto* call = new UnaryCall(this, method, context, request, response,
                              std::move(planner), planning);
   HandOffToGrpc(call);  // to OnCancel

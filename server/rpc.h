@@ -489,6 +489,7 @@ grpc::ServerWriteReactor<Response>* RpcFrame::Stream(
     absl::string_view method, grpc::CallbackServerContext* context,
     const google::protobuf::Message* request, StreamPlanner<Response> planner,
     Planning planning) {
+  HandOffToGrpc(this);  // to the server's teardown (~FreeformServer)
   auto* call = new StreamCall<Response>(this, method, context, request,
                                         std::move(planner), planning);
   HandOffToGrpc(call);  // to OnCancel

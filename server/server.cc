@@ -131,7 +131,14 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   return server;
 }
 
-FreeformServer::~FreeformServer() { Shutdown(std::chrono::milliseconds(0)); }
+FreeformServer::~FreeformServer() {
+  Shutdown(std::chrono::milliseconds(0));
+  // gRPC's Shutdown returns after the last handler has returned. Each one
+  // handed the frame over on entering it (RpcFrame::Unary, Stream), after
+  // gRPC's generated code read the service's vtable to call it, so the
+  // services can now be destroyed (grpc_handoff.h).
+  if (frame_ != nullptr) TakeBackFromGrpc(frame_.get());
+}
 
 int FreeformServer::metrics_port() const {
   return metrics_endpoint_ == nullptr ? 0 : metrics_endpoint_->port();
