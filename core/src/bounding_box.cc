@@ -115,8 +115,23 @@ absl::StatusOr<std::vector<std::pair<TriangularPatchData, int>>> Halves(
   return result;
 }
 
+// CornerWeightsPositive tells whether the corners, which lie on the
+// geometry, have positive weights. A corner of weight zero (given, or
+// rounded to zero by the halvings) is a point at infinity or undefined, so
+// no halving can bound the piece.
+template <typename Net>
+bool CornerWeightsPositive(const Net& net) {
+  if (net.weights.empty()) return true;
+  for (const size_t k : Corners(net)) {
+    if (!(net.weights[k] > 0.0)) return false;
+  }
+  return true;
+}
+
 // Extreme returns an upper bound of the signed coordinate j over the pieces
-// within `tolerance` of a value the geometry attains (see bounding_box.h).
+// within `tolerance` of a value the geometry attains (see bounding_box.h),
+// or a non-finite value when the geometry has none: a corner at infinity,
+// or a bound that is NaN.
 template <typename Net>
 absl::StatusOr<double> Extreme(const std::vector<Net>& nets, int j, double sign,
                                double tolerance, CancellationPoll& poll) {
@@ -131,6 +146,10 @@ absl::StatusOr<double> Extreme(const std::vector<Net>& nets, int j, double sign,
     std::pop_heap(heap.begin(), heap.end(), LowerBound<Net>);
     Piece<Net> top = std::move(heap.back());
     heap.pop_back();
+    if (std::isnan(top.bound) ||
+        (top.bound == kInfinity && !CornerWeightsPositive(top.net))) {
+      return top.bound;
+    }
     if (top.bound - best <= tolerance || top.depth >= kMaxBoxDepth ||
         halvings >= kMaxBoxHalvings) {
       return top.bound;

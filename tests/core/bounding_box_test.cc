@@ -286,6 +286,74 @@ TEST(SurfaceBoundingBox, RidgeExtremeEndsWithinTheHalvingBudget) {
   }
 }
 
+// A rational patch whose halvings round corner weights to zero (weights of
+// 1e-317 next to zeros, coordinates up to 7e252; found by the BoundingBox
+// fuzzer) has a corner at infinity: the search reports a side that is not
+// finite at once instead of halving 16,384 pieces for each of the six sides,
+// each one unbounded. The token's poll counts the work: one poll per 2^16
+// units, about 600 halvings of this 3 x 3 net.
+TEST(SurfaceBoundingBox, CornerAtInfinityEndsTheSearchAtOnce) {
+  const std::vector<double> net = {0,
+                                   8.28904605845809e-317,
+                                   0,
+                                   2,
+                                   0,
+                                   0,
+                                   4,
+                                   0,
+                                   4.34584737989688e-311,
+                                   0,
+                                   2,
+                                   0,
+                                   2,
+                                   2,
+                                   1.2015398835938887e-306,
+                                   4,
+                                   2,
+                                   2,
+                                   0,
+                                   4,
+                                   0,
+                                   1.5778922151280042e+214,
+                                   1.4490884972206536e+166,
+                                   5.5560354281809549e+180,
+                                   4,
+                                   7.2048658145058678e+252,
+                                   4.0000000000116946};
+  const std::vector<double> weights = {5.31017013119972e-315,
+                                       0,
+                                       5.30498947741318e-315,
+                                       0,
+                                       5.32577027372978e-315,
+                                       2.07226151461452e-317,
+                                       2.07226151461452e-317,
+                                       1.3481685079097897e-225,
+                                       1e-06};
+  absl::StatusOr<Surface> surface =
+      BezierSurface::Create({.control_net = {.dimension = 3,
+                                             .count_u = 3,
+                                             .count_v = 3,
+                                             .coordinates = net},
+                             .weights = weights});
+  ASSERT_TRUE(surface.ok()) << surface.status();
+  int polls = 0;
+  CancellationToken token;
+  token.SetPoll([&polls] {
+    ++polls;
+    return false;
+  });
+  absl::StatusOr<BoundingBox> box =
+      SurfaceBoundingBox(*surface, kTolerance, &token);
+  ASSERT_TRUE(box.ok()) << box.status();
+  bool finite = true;
+  for (int j = 0; j < 3; ++j) {
+    finite =
+        finite && std::isfinite(box->lower[j]) && std::isfinite(box->upper[j]);
+  }
+  EXPECT_FALSE(finite);
+  EXPECT_LE(polls, 6);
+}
+
 // A rational cubic triangular patch with random positive weights, and the
 // flat triangle, whose box is its vertices' box.
 TEST(SurfaceBoundingBox, TriangularPatches) {
