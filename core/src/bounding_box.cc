@@ -115,6 +115,17 @@ absl::StatusOr<std::vector<std::pair<TriangularPatchData, int>>> Halves(
   return result;
 }
 
+// HalvingWork is what halving `net` costs: its control values times its
+// points along a split (de Casteljau's work per value).
+size_t HalvingWork(const SurfaceData& net) {
+  return net.coordinates.size() *
+         static_cast<size_t>(std::max(net.count_u, net.count_v));
+}
+
+size_t HalvingWork(const TriangularPatchData& patch) {
+  return patch.coordinates.size() * static_cast<size_t>(patch.degree + 1);
+}
+
 // CornerWeightsPositive tells whether the corners, which lie on the
 // geometry, have positive weights. A corner of weight zero (given, or
 // rounded to zero by the halvings) is a point at infinity or undefined, so
@@ -142,6 +153,7 @@ absl::StatusOr<double> Extreme(const std::vector<Net>& nets, int j, double sign,
     heap.push_back({net, HullBound(net, j, sign), 0, 0});
   }
   std::make_heap(heap.begin(), heap.end(), LowerBound<Net>);
+  size_t work = 0;
   for (int halvings = 0;; ++halvings) {
     std::pop_heap(heap.begin(), heap.end(), LowerBound<Net>);
     Piece<Net> top = std::move(heap.back());
@@ -150,10 +162,16 @@ absl::StatusOr<double> Extreme(const std::vector<Net>& nets, int j, double sign,
         (top.bound == kInfinity && !CornerWeightsPositive(top.net))) {
       return top.bound;
     }
+    // A piece unbounded by a zero weight inside is halved whatever the
+    // work so far (a halving or two in each direction bounds it); only the
+    // count of halvings limits that.
+    const bool bounded = top.bound < kInfinity;
     if (top.bound - best <= tolerance || top.depth >= kMaxBoxDepth ||
-        halvings >= kMaxBoxHalvings) {
+        halvings >= kMaxBoxHalvings ||
+        (bounded && work >= kMaxBoxHalvingWork)) {
       return top.bound;
     }
+    if (bounded) work += HalvingWork(top.net);
     auto halves = Halves(top.net, top.next);
     if (!halves.ok()) return halves.status();
     for (auto& [half, next] : *halves) {

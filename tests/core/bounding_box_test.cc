@@ -354,6 +354,46 @@ TEST(SurfaceBoundingBox, CornerAtInfinityEndsTheSearchAtOnce) {
   EXPECT_LE(polls, 6);
 }
 
+// The search for one side stops once its halvings have cost
+// kMaxBoxHalvingWork: on a degree-40 patch in 8-D (41 x 41 random control
+// points) the box still holds every sample of the surface, and the work,
+// counted by the token's polls (one per 2^16 units, a halving reporting 4
+// units per control value), stays within what the budget allows: for each
+// of the 16 sides, budget / halving cost + 1 halvings.
+TEST(SurfaceBoundingBox, HighDegreeSearchStopsAtTheWorkBudget) {
+  constexpr int kCount = 41, kDimension = 8;
+  std::mt19937_64 rng(41);
+  const std::vector<double> net =
+      RandomValues(rng, kCount * kCount * kDimension);
+  const Surface surface =
+      *BezierSurface::Create({.control_net = {.dimension = kDimension,
+                                              .count_u = kCount,
+                                              .count_v = kCount,
+                                              .coordinates = net}});
+  int polls = 0;
+  CancellationToken token;
+  token.SetPoll([&polls] {
+    ++polls;
+    return false;
+  });
+  absl::StatusOr<BoundingBox> box =
+      SurfaceBoundingBox(surface, kTolerance, &token);
+  ASSERT_TRUE(box.ok()) << box.status();
+  const std::vector<double> uv = EvenlySpaced(0.0, 1.0, 201);
+  const std::vector<double> points =
+      SurfacePoints(surface, SurfaceSamples::Grid(uv, uv));
+  for (size_t r = 0; r < points.size() / kDimension; ++r) {
+    for (int j = 0; j < kDimension; ++j) {
+      ASSERT_LE(points[r * kDimension + j], box->upper[j]) << r;
+      ASSERT_GE(points[r * kDimension + j], box->lower[j]) << r;
+    }
+  }
+  const size_t values = size_t{kCount} * kCount * kDimension;
+  const size_t halvings_per_side = kMaxBoxHalvingWork / (values * kCount) + 1;
+  const size_t units = 2 * kDimension * halvings_per_side * 4 * values;
+  EXPECT_LE(static_cast<size_t>(polls), units / (size_t{1} << 16) + 1);
+}
+
 // A rational cubic triangular patch with random positive weights, and the
 // flat triangle, whose box is its vertices' box.
 TEST(SurfaceBoundingBox, TriangularPatches) {

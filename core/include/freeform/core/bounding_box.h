@@ -29,13 +29,18 @@
 // size.
 //
 // Work bound: the search for one side halves at most kMaxBoxHalvings
-// pieces. An isolated extreme needs about log4(size / tolerance) halvings,
-// but an extreme attained along a curve (a ridge of the surface that the
-// halvings cross) needs about sqrt(size / tolerance) pieces along it: 4
-// million for a tolerance at the margin. Past the budget the side is the
-// best upper bound reached, still a bound of the geometry; on such a ridge
-// it is within about 4 size / kMaxBoxHalvings^2 of it (1.5e-8 of the size;
-// tests/core/bounding_box_test.cc, RidgeExtremeEndsWithinTheHalvingBudget).
+// pieces, and stops once the halvings have cost kMaxBoxHalvingWork (a
+// halving costs the piece's control values times its points along the
+// split): 16,384 halvings of a bicubic 3-D piece, a few hundred of a
+// degree-20 piece in 64-D, one of a degree-64 one. A request's search thus
+// costs at most 2 x dimension sides of that, whatever its degree. An isolated
+// extreme needs about log4(size / tolerance) halvings, but an extreme attained
+// along a curve (a ridge of the surface that the halvings cross) needs about
+// sqrt(size / tolerance) pieces along it: 4 million for a tolerance at the
+// margin. Past the budget the side is the best upper bound reached, still a
+// bound of the geometry; on such a ridge it is within about 4 size /
+// kMaxBoxHalvings^2 of it (1.5e-8 of the size; tests/core/bounding_box_test.cc,
+// RidgeExtremeEndsWithinTheHalvingBudget).
 //
 // Thread-safe; allocates per call.
 #ifndef FREEFORM_CORE_BOUNDING_BOX_H_
@@ -57,6 +62,10 @@ inline constexpr int kMaxBoxDepth = 120;
 // The most halvings in the search for one side of a box (see the file
 // comment).
 inline constexpr int kMaxBoxHalvings = 1 << 14;
+
+// The most work of the halvings in the search for one side: kMaxBoxHalvings
+// halvings of a bicubic piece in 3-D (48 values, 4 points along the split).
+inline constexpr size_t kMaxBoxHalvingWork = size_t{kMaxBoxHalvings} * 48 * 4;
 
 // An axis-aligned box: lower[j] <= x_j <= upper[j] for every point x.
 struct BoundingBox {
