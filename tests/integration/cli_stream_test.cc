@@ -22,6 +22,7 @@
 #include "absl/strings/str_split.h"
 #include "cli_test_util.h"
 #include "nlohmann/json.hpp"
+#include "sanitizers.h"
 
 namespace freeform {
 namespace {
@@ -194,7 +195,10 @@ TEST_F(CliStreamTest, CsvOfAMillionPointsInConstantMemory) {
   std::cerr << "freeform eval --stream --format csv, " << kCount
             << " points: ru_maxrss " << run.max_rss_kib
             << " KiB (this test process: " << own_kib << " KiB)\n";
-  EXPECT_LT(run.max_rss_kib, 100 * 1024);
+  // Under AddressSanitizer the freed chunk buffers wait in its quarantine
+  // (165 MiB measured); collecting the answer instead would take several
+  // times more in either build.
+  EXPECT_LT(run.max_rss_kib, (kAddressSanitizer ? 2 : 1) * 100 * 1024);
 }
 
 // JSON lines: one object per point, {"index", "point", "d1"}.

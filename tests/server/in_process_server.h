@@ -22,6 +22,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
 #include "grpc_handoff.h"
+#include "sanitizers.h"
 #include "server.h"
 
 namespace freeform::server {
@@ -31,19 +32,6 @@ namespace freeform::server {
 inline constexpr bool kThreadSanitizer = true;
 #else
 inline constexpr bool kThreadSanitizer = false;
-#endif
-
-// True in an AddressSanitizer build.
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kAddressSanitizer = true;
-#else
-inline constexpr bool kAddressSanitizer = false;
-#endif
-#else
-inline constexpr bool kAddressSanitizer = false;
 #endif
 
 // TimeScale is the factor by which the tests stretch the allowances of
