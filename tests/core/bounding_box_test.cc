@@ -286,6 +286,22 @@ TEST(SurfaceBoundingBox, RidgeExtremeEndsWithinTheHalvingBudget) {
   }
 }
 
+// A token that never stops and counts how often it is asked: the work of a
+// search, in polls (one per 2^16 units of CancellationPoll).
+struct PollCounter {
+  PollCounter() {
+    token.SetPoll([this] {
+      ++polls;
+      return false;
+    });
+  }
+  PollCounter(const PollCounter&) = delete;
+  PollCounter& operator=(const PollCounter&) = delete;
+
+  int polls = 0;
+  CancellationToken token;
+};
+
 // A rational patch whose halvings round corner weights to zero (weights of
 // 1e-317 next to zeros, coordinates up to 7e252; found by the BoundingBox
 // fuzzer) has a corner at infinity: the search reports a side that is not
@@ -336,14 +352,9 @@ TEST(SurfaceBoundingBox, CornerAtInfinityEndsTheSearchAtOnce) {
                                              .coordinates = net},
                              .weights = weights});
   ASSERT_TRUE(surface.ok()) << surface.status();
-  int polls = 0;
-  CancellationToken token;
-  token.SetPoll([&polls] {
-    ++polls;
-    return false;
-  });
+  PollCounter counter;
   absl::StatusOr<BoundingBox> box =
-      SurfaceBoundingBox(*surface, kTolerance, &token);
+      SurfaceBoundingBox(*surface, kTolerance, &counter.token);
   ASSERT_TRUE(box.ok()) << box.status();
   bool finite = true;
   for (int j = 0; j < 3; ++j) {
@@ -351,7 +362,7 @@ TEST(SurfaceBoundingBox, CornerAtInfinityEndsTheSearchAtOnce) {
         finite && std::isfinite(box->lower[j]) && std::isfinite(box->upper[j]);
   }
   EXPECT_FALSE(finite);
-  EXPECT_LE(polls, 6);
+  EXPECT_LE(counter.polls, 6);
 }
 
 // The search for one side stops once its halvings have cost
@@ -370,14 +381,9 @@ TEST(SurfaceBoundingBox, HighDegreeSearchStopsAtTheWorkBudget) {
                                               .count_u = kCount,
                                               .count_v = kCount,
                                               .coordinates = net}});
-  int polls = 0;
-  CancellationToken token;
-  token.SetPoll([&polls] {
-    ++polls;
-    return false;
-  });
+  PollCounter counter;
   absl::StatusOr<BoundingBox> box =
-      SurfaceBoundingBox(surface, kTolerance, &token);
+      SurfaceBoundingBox(surface, kTolerance, &counter.token);
   ASSERT_TRUE(box.ok()) << box.status();
   const std::vector<double> uv = EvenlySpaced(0.0, 1.0, 201);
   const std::vector<double> points =
@@ -391,7 +397,7 @@ TEST(SurfaceBoundingBox, HighDegreeSearchStopsAtTheWorkBudget) {
   const size_t values = size_t{kCount} * kCount * kDimension;
   const size_t halvings_per_side = kMaxBoxHalvingWork / (values * kCount) + 1;
   const size_t units = 2 * kDimension * halvings_per_side * 4 * values;
-  EXPECT_LE(static_cast<size_t>(polls), units / (size_t{1} << 16) + 1);
+  EXPECT_LE(static_cast<size_t>(counter.polls), units / (size_t{1} << 16) + 1);
 }
 
 // A rational cubic triangular patch with random positive weights, and the
