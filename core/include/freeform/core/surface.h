@@ -2,7 +2,9 @@
 // evaluated again and again (the surface counterpart of curve.h).
 //
 // Tensor-product Bezier and B-spline/NURBS surfaces and triangular Bezier
-// patches are made by Create functions that validate them once. The bicubic
+// patches are made by Create functions that validate them once. Like the
+// curves (curve.h), a surface made by Create holds a view of the caller's
+// arrays (the request's), not a copy: they must outlive it. The bicubic
 // interpolating patch and the bicubic Hermite (Ferguson) patch become the
 // BezierSurface of the same surface, whose net the object owns. `Surface` is
 // the std::variant over the kinds; code that handles every kind uses
