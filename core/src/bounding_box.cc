@@ -115,8 +115,9 @@ absl::StatusOr<std::vector<std::pair<TriangularPatchData, int>>> Halves(
   return result;
 }
 
-// HalvingWork is what halving `net` costs: its control values times its
-// points along a split (de Casteljau's work per value).
+// HalvingWork bounds what halving `net` costs: its control values times the
+// points of its longest side (de Casteljau's work per value is the points
+// along the split).
 size_t HalvingWork(const SurfaceData& net) {
   return net.coordinates.size() *
          static_cast<size_t>(std::max(net.count_u, net.count_v));

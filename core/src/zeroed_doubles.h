@@ -22,12 +22,10 @@ class ZeroedDoubles {
   // Throws std::bad_alloc when the memory is not there, as std::vector
   // would; the server reserves a request's memory before it starts.
   explicit ZeroedDoubles(size_t size)
-      : data_(static_cast<double*>(std::calloc(size, sizeof(double)))),
-        size_(size) {
+      : data_(static_cast<double*>(std::calloc(size, sizeof(double)))) {
     if (data_ == nullptr && size > 0) throw std::bad_alloc();
   }
 
-  size_t size() const { return size_; }
   double* data() { return data_.get(); }
   const double* data() const { return data_.get(); }
   double& operator[](size_t i) { return data_.get()[i]; }
@@ -38,7 +36,6 @@ class ZeroedDoubles {
     void operator()(double* data) const { std::free(data); }
   };
   std::unique_ptr<double[], Free> data_;
-  size_t size_;
 };
 
 }  // namespace freeform::internal

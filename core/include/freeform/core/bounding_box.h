@@ -30,8 +30,8 @@
 //
 // Work bound: the search for one side halves at most kMaxBoxHalvings
 // pieces, and stops once the halvings have cost kMaxBoxHalvingWork (a
-// halving costs the piece's control values times its points along the
-// split): 16,384 halvings of a bicubic 3-D piece, a few hundred of a
+// halving is counted as the piece's control values times the points of its
+// longest side): 16,384 halvings of a bicubic 3-D piece, a few hundred of a
 // degree-20 piece in 64-D, one of a degree-64 one. A request's search thus
 // costs at most 2 x dimension sides of that, whatever its degree. An isolated
 // extreme needs about log4(size / tolerance) halvings, but an extreme attained
