@@ -15,14 +15,14 @@
 
 #include "absl/status/status.h"
 #include "freeform/core/cancellation.h"
-#include "zeroed_doubles.h"
+#include "zeroed_array.h"
 
 namespace freeform::internal {
 
 class BandedCholesky {
  public:
   // An n x n zero matrix with `bandwidth` sub-diagonals, its pages faulted
-  // in as it is filled (zeroed_doubles.h). The caller checks that
+  // in as it is filled (zeroed_array.h). The caller checks that
   // n (bandwidth + 1) doubles fit in memory.
   BandedCholesky(size_t n, size_t bandwidth);
 

@@ -10,7 +10,7 @@
 
 #include "absl/status/status.h"
 #include "freeform/core/cancellation.h"
-#include "zeroed_doubles.h"
+#include "zeroed_array.h"
 
 namespace freeform::internal {
 
@@ -28,7 +28,7 @@ absl::Status SingularSystemError();
 class BandedLu {
  public:
   // An n x n zero matrix, its pages faulted in as it is filled
-  // (zeroed_doubles.h); `cancel` (may be null) is polled while factoring and
+  // (zeroed_array.h); `cancel` (may be null) is polled while factoring and
   // solving.
   BandedLu(int n, int kl, int ku, const CancellationToken* cancel)
       : n_(n),

@@ -18,11 +18,11 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <memory>
 #include <type_traits>
 #include <vector>
 
 #include "bspline_spans.h"
+#include "zeroed_array.h"
 
 namespace freeform::internal {
 
@@ -37,8 +37,7 @@ class CollocationLu {
         p_(DegreeOf<kDegree>(p)),
         dimension_(kDimension > 0 ? kDimension : dimension),
         rhs_(rhs),
-        upper_(new double[static_cast<size_t>(count) *
-                          (static_cast<size_t>(p_) + 1)]) {
+        upper_(static_cast<size_t>(count) * (static_cast<size_t>(p_) + 1)) {
     if constexpr (kDegree == kAnyDegree) {
       window_.resize(2 * static_cast<size_t>(p_) + 1);
     }
@@ -102,8 +101,8 @@ class CollocationLu {
     return rhs_ + static_cast<size_t>(row) * static_cast<size_t>(Dimension());
   }
   double* Upper(int row) {
-    return upper_.get() + static_cast<size_t>(row) *
-                              (static_cast<size_t>(DegreeOf<kDegree>(p_)) + 1);
+    return upper_.data() + static_cast<size_t>(row) *
+                               (static_cast<size_t>(DegreeOf<kDegree>(p_)) + 1);
   }
   int Dimension() const {
     if constexpr (kDimension > 0) {
@@ -129,8 +128,8 @@ class CollocationLu {
   const int dimension_;
   double* const rhs_;
   int row_ = 0;
-  // U(r, r..r + p) at r * (p + 1), written by AddRow (not initialized).
-  std::unique_ptr<double[]> upper_;
+  // U(r, r..r + p) at r * (p + 1), written by AddRow.
+  ZeroedDoubles upper_;
   std::conditional_t<kDegree == kAnyDegree, std::vector<double>,
                      std::array<double, 2 * std::max(kDegree, 0) + 1>>
       window_{};

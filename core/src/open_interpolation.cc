@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
-#include <memory>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -16,6 +15,7 @@
 #include "freeform/core/bspline.h"
 #include "freeform/core/status.h"
 #include "simd/range_simd.h"
+#include "zeroed_array.h"
 
 namespace freeform::internal {
 namespace {
@@ -147,11 +147,9 @@ class OpenSolver {
         work_(w_ * w_ * static_cast<size_t>(system.dimension)),
         lu_(count_, p_, system.dimension, system.rhs),
         rows_(system),
-        poll_(cancel) {
-    const size_t data_rows = measure ? system.t.size() : 1;
-    first_.reset(new int[data_rows]);
-    basis_.reset(new double[data_rows * w_]);
-  }
+        poll_(cancel),
+        first_(measure ? system.t.size() : 1),
+        basis_((measure ? system.t.size() : 1) * w_) {}
 
   absl::Status Eliminate() {
     const absl::Span<const double> t = system_.t;
@@ -163,7 +161,7 @@ class OpenSolver {
         return SingularSystemError();
       }
       const size_t kept = measure_ ? k : 0;
-      double* values = basis_.get() + kept * w_;
+      double* values = basis_.data() + kept * w_;
       first_[kept] = rows_.ValueRow(t[k], hint, values);
       if (!lu_.AddRow(first_[kept], values)) return SingularSystemError();
       if (k == 0 && system_.start.order > 0 &&
@@ -216,7 +214,7 @@ class OpenSolver {
     const int p = DegreeOf<kDegree>(p_);
     const int d = kDimension > 0 ? kDimension : system_.dimension;
     const size_t row = static_cast<size_t>(k);
-    const double* basis = basis_.get() + row * w_;
+    const double* basis = basis_.data() + row * w_;
     const double* control =
         system_.rhs + static_cast<size_t>(first_[row]) * static_cast<size_t>(d);
     const double* point = points_.point(row);
@@ -242,10 +240,9 @@ class OpenSolver {
   OpenRowSource<kDegree> rows_;
   CancellationPoll poll_;
   // The value rows' first columns and coefficients: all of them when
-  // measuring, else only the current one (written before read, so not
-  // initialized).
-  std::unique_ptr<int[]> first_;
-  std::unique_ptr<double[]> basis_;
+  // measuring, else only the current one.
+  ZeroedArray<int> first_;
+  ZeroedDoubles basis_;
 };
 
 // SolveOpenOf solves the system in place (system.rhs) and, with `measured`
