@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <utility>
 #include <variant>
 #include <vector>
 
+#include "bezier_halving.h"
 #include "freeform/core/elevation.h"
 #include "freeform/core/geometry_data.h"
+#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/triangular.h"
@@ -21,167 +24,280 @@ namespace {
 constexpr double kMargin = 0x1p-44;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-// A Bezier piece (a SurfaceData net, a curve being a net of one column, or
-// a TriangularPatchData) waiting in the branch and bound, with its upper
-// bound and the state of its splitting rule: the direction of the next
-// halving of a tensor net, the newest vertex of a triangular patch.
-template <typename Net>
-struct Piece {
-  Net net;
-  double bound = 0.0;
-  int depth = 0;
-  int next = 0;
+// The shape of a tensor piece, count_u x count_v points (a curve is a net
+// of one column), and of a triangular one.
+struct NetShape {
+  int count_u = 0;
+  int count_v = 0;
+};
+struct TriangleShape {
+  int degree = 0;
 };
 
-template <typename Net>
-bool LowerBound(const Piece<Net>& a, const Piece<Net>& b) {
-  return a.bound < b.bound;
+NetShape ShapeOf(const SurfaceData& net) { return {net.count_u, net.count_v}; }
+TriangleShape ShapeOf(const TriangularPatchData& patch) {
+  return {patch.degree};
 }
 
-// Coordinate j of control point k, times `sign`.
-template <typename Net>
-double Signed(const Net& net, size_t k, int j, double sign) {
-  return sign * net.coordinates[k * static_cast<size_t>(net.dimension) +
-                                static_cast<size_t>(j)];
+size_t PointCount(NetShape shape) {
+  return static_cast<size_t>(shape.count_u) *
+         static_cast<size_t>(shape.count_v);
 }
-
-// HullBound returns the largest signed coordinate j of the control points,
-// which bounds the piece when every weight is positive, else infinity.
-template <typename Net>
-double HullBound(const Net& net, int j, double sign) {
-  double bound = -kInfinity;
-  const size_t count = net.coordinates.size() / net.dimension;
-  for (size_t k = 0; k < count; ++k) {
-    if (!net.weights.empty() && !(net.weights[k] > 0.0)) return kInfinity;
-    bound = std::max(bound, Signed(net, k, j, sign));
-  }
-  return bound;
+size_t PointCount(TriangleShape shape) {
+  return TriangularPointCount(shape.degree);
 }
 
 // Corners returns the control points that lie on the geometry: the four
 // corners of a net, the three of a triangular patch.
-std::array<size_t, 4> Corners(const SurfaceData& net) {
-  const size_t row = static_cast<size_t>(net.count_v);
-  const size_t last_row = static_cast<size_t>(net.count_u - 1) * row;
+std::array<size_t, 4> Corners(NetShape shape) {
+  const size_t row = static_cast<size_t>(shape.count_v);
+  const size_t last_row = static_cast<size_t>(shape.count_u - 1) * row;
   return {0, row - 1, last_row, last_row + row - 1};
 }
-
-std::array<size_t, 3> Corners(const TriangularPatchData& patch) {
-  return {TriangularIndex(patch.degree, patch.degree, 0),
-          TriangularIndex(patch.degree, 0, patch.degree),
-          TriangularIndex(patch.degree, 0, 0)};
+std::array<size_t, 3> Corners(TriangleShape shape) {
+  return {TriangularIndex(shape.degree, shape.degree, 0),
+          TriangularIndex(shape.degree, 0, shape.degree),
+          TriangularIndex(shape.degree, 0, 0)};
 }
 
-// Attained returns the largest signed coordinate j of the corners.
+// HalvingWork bounds what halving a piece costs: its control values times
+// the points of its longest side (de Casteljau's work per value is the
+// points along the split).
+size_t HalvingWork(NetShape shape, int dimension) {
+  return PointCount(shape) * static_cast<size_t>(dimension) *
+         static_cast<size_t>(std::max(shape.count_u, shape.count_v));
+}
+size_t HalvingWork(TriangleShape shape, int dimension) {
+  return PointCount(shape) * static_cast<size_t>(dimension) *
+         static_cast<size_t>(shape.degree + 1);
+}
+
+// Halve splits the piece `values` by its splitting rule `next` into `first`
+// and `second`, and returns their rules. A net is halved in the direction
+// `next` (u when 0), then the other; a net of one column or row always
+// along its length. A triangle is bisected at the midpoint of the edge
+// opposite its newest vertex `next`; in each half the midpoint is the
+// newest vertex.
+std::array<int, 2> Halve(NetShape shape, int next, const double* values,
+                         int width, double* first, double* second,
+                         std::vector<double>&) {
+  const bool in_u = shape.count_v == 1 || (shape.count_u > 1 && next == 0);
+  internal::HalveNet(values, shape.count_u, shape.count_v, width, in_u, first,
+                     second);
+  const int after = in_u ? 1 : 0;
+  return {after, after};
+}
+std::array<int, 2> Halve(TriangleShape shape, int next, const double* values,
+                         int width, double* first, double* second,
+                         std::vector<double>& scratch) {
+  internal::BisectTriangle(values, shape.degree, width, next, first, second,
+                           scratch);
+  return next == 0   ? std::array{1, 2}
+         : next == 1 ? std::array{0, 2}
+                     : std::array{0, 1};
+}
+
+// The geometry's pieces for the search, lifted: point k of a piece is
+// `width` values, its coordinates (times its weight when rational) and then
+// its weight when rational. Every piece takes a block of `block` values;
+// the first `initial` blocks are the geometry's pieces, the ones after them
+// the halves made by one side's search, reused by the next side.
+template <typename Shape>
+struct LiftedPieces {
+  int dimension = 0;
+  int width = 0;
+  bool rational = false;
+  size_t block = 0;
+  size_t initial = 0;
+  std::vector<Shape> shapes;  // of the initial pieces
+  std::vector<double> values;
+};
+
 template <typename Net>
-double Attained(const Net& net, int j, double sign) {
+auto Lift(const std::vector<Net>& nets) {
+  using Shape = decltype(ShapeOf(nets.front()));
+  LiftedPieces<Shape> pieces;
+  pieces.dimension = nets.front().dimension;
+  for (const Net& net : nets) {
+    pieces.rational = pieces.rational || !net.weights.empty();
+  }
+  pieces.width = pieces.dimension + (pieces.rational ? 1 : 0);
+  const size_t width = static_cast<size_t>(pieces.width);
+  for (const Net& net : nets) {
+    pieces.block = std::max(pieces.block, PointCount(ShapeOf(net)) * width);
+  }
+  pieces.initial = nets.size();
+  pieces.values.resize(pieces.initial * pieces.block);
+  for (size_t n = 0; n < nets.size(); ++n) {
+    const Net& net = nets[n];
+    pieces.shapes.push_back(ShapeOf(net));
+    const PointsView points{net.dimension, net.coordinates};
+    // HomogeneousPoints keeps the point of a zero weight as a direction.
+    const std::vector<double> lifted =
+        !pieces.rational ? net.coordinates
+        : net.weights.empty()
+            ? HomogeneousPoints(points, std::vector<double>(points.size(), 1.0))
+            : HomogeneousPoints(points, net.weights);
+    std::copy(
+        lifted.begin(), lifted.end(),
+        pieces.values.begin() + static_cast<std::ptrdiff_t>(n * pieces.block));
+  }
+  return pieces;
+}
+
+// Coordinate j of point k of a lifted piece times `sign`, and whether its
+// weight is positive (a point of weight zero is at infinity or undefined).
+struct SignedCoordinate {
+  double value = 0.0;
+  bool finite_weight = true;
+};
+
+template <typename Shape>
+SignedCoordinate Coordinate(const LiftedPieces<Shape>& pieces,
+                            const double* values, size_t k, int j,
+                            double sign) {
+  const double* point = values + k * static_cast<size_t>(pieces.width);
+  if (!pieces.rational) return {sign * point[j], true};
+  const double weight = point[pieces.dimension];
+  if (!(weight > 0.0)) return {0.0, false};
+  return {sign * (point[j] / weight), true};
+}
+
+// HullBound returns the largest signed coordinate j of the control points,
+// which bounds the piece when every weight is positive, else infinity.
+template <typename Shape>
+double HullBound(const LiftedPieces<Shape>& pieces, Shape shape,
+                 const double* values, int j, double sign) {
+  double bound = -kInfinity;
+  const size_t count = PointCount(shape);
+  for (size_t k = 0; k < count; ++k) {
+    const SignedCoordinate x = Coordinate(pieces, values, k, j, sign);
+    if (!x.finite_weight) return kInfinity;
+    bound = std::max(bound, x.value);
+  }
+  return bound;
+}
+
+// Attained returns the largest signed coordinate j of the corners (those of
+// positive weight), values of the geometry.
+template <typename Shape>
+double Attained(const LiftedPieces<Shape>& pieces, Shape shape,
+                const double* values, int j, double sign) {
   double best = -kInfinity;
-  for (const size_t k : Corners(net)) {
-    best = std::max(best, Signed(net, k, j, sign));
+  for (const size_t k : Corners(shape)) {
+    const SignedCoordinate x = Coordinate(pieces, values, k, j, sign);
+    if (x.finite_weight) best = std::max(best, x.value);
   }
   return best;
-}
-
-// Halves splits a net in the direction `next` (u when 0) and returns the
-// halves with the direction after; a net of one column or row is always
-// split along its length.
-absl::StatusOr<std::vector<std::pair<SurfaceData, int>>> Halves(
-    const SurfaceData& net, int next) {
-  const bool in_u = net.count_v == 1 || (net.count_u > 1 && next == 0);
-  absl::StatusOr<std::vector<SurfaceData>> halves =
-      SplitBezierSurface(net.bezier_view(), in_u, 0.5);
-  if (!halves.ok()) return halves.status();
-  std::vector<std::pair<SurfaceData, int>> result;
-  for (SurfaceData& half : *halves) {
-    result.emplace_back(std::move(half), in_u ? 1 : 0);
-  }
-  return result;
-}
-
-// Halves bisects the edge opposite the newest vertex `next`; in each half
-// the midpoint is the newest vertex.
-absl::StatusOr<std::vector<std::pair<TriangularPatchData, int>>> Halves(
-    const TriangularPatchData& patch, int next) {
-  absl::StatusOr<std::vector<TriangularPatchData>> halves =
-      BisectTriangularPatch(patch.view(), next);
-  if (!halves.ok()) return halves.status();
-  const std::array<int, 2> newest = next == 0   ? std::array{1, 2}
-                                    : next == 1 ? std::array{0, 2}
-                                                : std::array{0, 1};
-  std::vector<std::pair<TriangularPatchData, int>> result;
-  for (size_t h = 0; h < 2; ++h) {
-    result.emplace_back(std::move((*halves)[h]), newest[h]);
-  }
-  return result;
-}
-
-// HalvingWork bounds what halving `net` costs: its control values times the
-// points of its longest side (de Casteljau's work per value is the points
-// along the split).
-size_t HalvingWork(const SurfaceData& net) {
-  return net.coordinates.size() *
-         static_cast<size_t>(std::max(net.count_u, net.count_v));
-}
-
-size_t HalvingWork(const TriangularPatchData& patch) {
-  return patch.coordinates.size() * static_cast<size_t>(patch.degree + 1);
 }
 
 // CornerWeightsPositive tells whether the corners, which lie on the
 // geometry, have positive weights. A corner of weight zero (given, or
 // rounded to zero by the halvings) is a point at infinity or undefined, so
 // no halving can bound the piece.
-template <typename Net>
-bool CornerWeightsPositive(const Net& net) {
-  if (net.weights.empty()) return true;
-  for (const size_t k : Corners(net)) {
-    if (!(net.weights[k] > 0.0)) return false;
+template <typename Shape>
+bool CornerWeightsPositive(const LiftedPieces<Shape>& pieces, Shape shape,
+                           const double* values) {
+  for (const size_t k : Corners(shape)) {
+    if (!Coordinate(pieces, values, k, 0, 1.0).finite_weight) return false;
   }
   return true;
 }
 
+// A piece waiting in the branch and bound: its upper bound, its block, its
+// shape and the state of its splitting rule (Halve).
+template <typename Shape>
+struct Piece {
+  double bound = 0.0;
+  size_t block = 0;
+  Shape shape;
+  int depth = 0;
+  int next = 0;
+};
+
+template <typename Shape>
+bool LowerBound(const Piece<Shape>& a, const Piece<Shape>& b) {
+  return a.bound < b.bound;
+}
+
+// A piece unbounded by a zero weight inside is halved whatever the work of
+// the bounded ones (a halving or two in each direction bounds it), up to
+// this multiple of their budget.
+constexpr size_t kUnboundedWorkFactor = 4;
+
 // Extreme returns an upper bound of the signed coordinate j over the pieces
 // within `tolerance` of a value the geometry attains (see bounding_box.h),
 // or a non-finite value when the geometry has none: a corner at infinity,
-// or a bound that is NaN.
-template <typename Net>
-absl::StatusOr<double> Extreme(const std::vector<Net>& nets, int j, double sign,
-                               double tolerance, CancellationPoll& poll) {
-  std::vector<Piece<Net>> heap;
+// or a bound that is NaN. The halves live in `pieces.values` after the
+// initial blocks; `scratch` is the halvings' scratch.
+template <typename Shape>
+absl::StatusOr<double> Extreme(LiftedPieces<Shape>& pieces, int j, double sign,
+                               double tolerance, CancellationPoll& poll,
+                               std::vector<double>& scratch) {
+  pieces.values.resize(pieces.initial * pieces.block);
+  std::vector<size_t> free_blocks;
+  auto allocate = [&]() {
+    if (!free_blocks.empty()) {
+      const size_t block = free_blocks.back();
+      free_blocks.pop_back();
+      return block;
+    }
+    const size_t block = pieces.values.size() / pieces.block;
+    pieces.values.resize(pieces.values.size() + pieces.block);
+    return block;
+  };
+  auto values_of = [&](size_t block) {
+    return pieces.values.data() + block * pieces.block;
+  };
+  std::vector<Piece<Shape>> heap;
   double best = -kInfinity;
-  for (const Net& net : nets) {
-    best = std::max(best, Attained(net, j, sign));
-    heap.push_back({net, HullBound(net, j, sign), 0, 0});
+  for (size_t n = 0; n < pieces.initial; ++n) {
+    const Shape shape = pieces.shapes[n];
+    best = std::max(best, Attained(pieces, shape, values_of(n), j, sign));
+    heap.push_back({.bound = HullBound(pieces, shape, values_of(n), j, sign),
+                    .block = n,
+                    .shape = shape});
   }
-  std::make_heap(heap.begin(), heap.end(), LowerBound<Net>);
-  size_t work = 0;
+  std::make_heap(heap.begin(), heap.end(), LowerBound<Shape>);
+  size_t bounded_work = 0;
+  size_t unbounded_work = 0;
   for (int halvings = 0;; ++halvings) {
-    std::pop_heap(heap.begin(), heap.end(), LowerBound<Net>);
-    Piece<Net> top = std::move(heap.back());
+    std::pop_heap(heap.begin(), heap.end(), LowerBound<Shape>);
+    const Piece<Shape> top = heap.back();
     heap.pop_back();
     if (std::isnan(top.bound) ||
-        (top.bound == kInfinity && !CornerWeightsPositive(top.net))) {
+        (top.bound == kInfinity &&
+         !CornerWeightsPositive(pieces, top.shape, values_of(top.block)))) {
       return top.bound;
     }
-    // A piece unbounded by a zero weight inside is halved whatever the
-    // work so far (a halving or two in each direction bounds it); only the
-    // count of halvings limits that.
     const bool bounded = top.bound < kInfinity;
+    size_t& work = bounded ? bounded_work : unbounded_work;
+    const size_t budget = bounded ? kMaxBoxHalvingWork
+                                  : kUnboundedWorkFactor * kMaxBoxHalvingWork;
     if (top.bound - best <= tolerance || top.depth >= kMaxBoxDepth ||
-        halvings >= kMaxBoxHalvings ||
-        (bounded && work >= kMaxBoxHalvingWork)) {
+        halvings >= kMaxBoxHalvings || work >= budget) {
       return top.bound;
     }
-    if (bounded) work += HalvingWork(top.net);
-    auto halves = Halves(top.net, top.next);
-    if (!halves.ok()) return halves.status();
-    for (auto& [half, next] : *halves) {
-      best = std::max(best, Attained(half, j, sign));
-      const double bound = HullBound(half, j, sign);
-      heap.push_back({std::move(half), bound, top.depth + 1, next});
-      std::push_heap(heap.begin(), heap.end(), LowerBound<Net>);
+    work += HalvingWork(top.shape, pieces.dimension);
+    const size_t first = allocate();
+    const size_t second = allocate();
+    const std::array<int, 2> next =
+        Halve(top.shape, top.next, values_of(top.block), pieces.width,
+              values_of(first), values_of(second), scratch);
+    if (top.block >= pieces.initial) free_blocks.push_back(top.block);
+    const std::array<size_t, 2> halves{first, second};
+    for (size_t h = 0; h < 2; ++h) {
+      const double* values = values_of(halves[h]);
+      best = std::max(best, Attained(pieces, top.shape, values, j, sign));
+      heap.push_back({.bound = HullBound(pieces, top.shape, values, j, sign),
+                      .block = halves[h],
+                      .shape = top.shape,
+                      .depth = top.depth + 1,
+                      .next = next[h]});
+      std::push_heap(heap.begin(), heap.end(), LowerBound<Shape>);
     }
-    if (absl::Status status = poll.Done(4 * top.net.coordinates.size());
+    if (absl::Status status = poll.Done(4 * PointCount(top.shape) *
+                                        static_cast<size_t>(pieces.dimension));
         !status.ok()) {
       return status;
     }
@@ -203,13 +319,20 @@ absl::StatusOr<BoundingBox> BoxOf(const std::vector<Net>& nets,
   BoundingBox box{.lower = std::vector<double>(dimension),
                   .upper = std::vector<double>(dimension)};
   CancellationPoll poll(cancel);
+  auto pieces = Lift(nets);
+  std::vector<double> scratch;
+  // A side that is not finite makes the box unbounded: the sides not yet
+  // searched are left infinite, which still contains the geometry.
+  std::fill(box.lower.begin(), box.lower.end(), -kInfinity);
+  std::fill(box.upper.begin(), box.upper.end(), kInfinity);
   for (int j = 0; j < dimension; ++j) {
-    absl::StatusOr<double> upper = Extreme(nets, j, 1.0, reachable, poll);
-    if (!upper.ok()) return upper.status();
-    absl::StatusOr<double> lower = Extreme(nets, j, -1.0, reachable, poll);
-    if (!lower.ok()) return lower.status();
-    box.upper[j] = *upper + margin;
-    box.lower[j] = -*lower - margin;
+    for (const double sign : {1.0, -1.0}) {
+      absl::StatusOr<double> extreme =
+          Extreme(pieces, j, sign, reachable, poll, scratch);
+      if (!extreme.ok()) return extreme.status();
+      (sign > 0 ? box.upper[j] : box.lower[j]) = sign * (*extreme + margin);
+      if (!std::isfinite(*extreme)) return box;
+    }
   }
   return box;
 }

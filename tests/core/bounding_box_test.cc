@@ -400,6 +400,63 @@ TEST(SurfaceBoundingBox, HighDegreeSearchStopsAtTheWorkBudget) {
   EXPECT_LE(static_cast<size_t>(counter.polls), units / (size_t{1} << 16) + 1);
 }
 
+// A rational quadratic triangular patch with weights from 1.3e-321 to 2
+// (found by the BoundingBox fuzzer: 1.2 s under ASan). The control point of
+// weight 1.3e-321 keeps its hull far from the surface, so the search for
+// that side halves until its budget; the answer must still hold every
+// sample, and the whole search must stay within the budget of its six
+// sides: 16,384 halvings each, a halving reporting 4 units per control
+// value (18), one poll per 2^16 units.
+TEST(SurfaceBoundingBox, NearZeroWeightSearchHoldsTheSurfaceWithinBudget) {
+  const std::vector<double> points = {0,
+                                      0,
+                                      3.0517578125e-05,
+                                      1.0000000000000557,
+                                      0,
+                                      1,
+                                      0,
+                                      1,
+                                      1,
+                                      3.0517578125e-05,
+                                      2.05568342200354e-314,
+                                      0,
+                                      1.0000000036670613,
+                                      1,
+                                      0,
+                                      0,
+                                      -131072,
+                                      1.06099789548264e-313};
+  const std::vector<double> weights = {1,
+                                       1.4693679385278594e-39,
+                                       2.0000000000291007,
+                                       4.57763671875e-05,
+                                       1.26480805335359e-321,
+                                       1};
+  const Surface patch = *TriangularPatch::Create(
+      {.degree = 2, .control_points = {3, points}, .weights = weights});
+  PollCounter counter;
+  absl::StatusOr<BoundingBox> box =
+      SurfaceBoundingBox(patch, 1e-6, &counter.token);
+  ASSERT_TRUE(box.ok()) << box.status();
+  std::vector<double> uv;
+  constexpr int kSteps = 400;
+  for (int i = 0; i <= kSteps; ++i) {
+    for (int j = 0; i + j <= kSteps; ++j) {
+      uv.insert(uv.end(), {double{i} / kSteps, double{j} / kSteps});
+    }
+  }
+  const std::vector<double> samples =
+      SurfacePoints(patch, SurfaceSamples::Pairs(uv));
+  for (size_t r = 0; r < samples.size() / 3; ++r) {
+    for (int j = 0; j < 3; ++j) {
+      ASSERT_LE(samples[r * 3 + j], box->upper[j]) << r;
+      ASSERT_GE(samples[r * 3 + j], box->lower[j]) << r;
+    }
+  }
+  const size_t units = 6 * size_t{kMaxBoxHalvings} * 4 * 18;
+  EXPECT_LE(static_cast<size_t>(counter.polls), units / (size_t{1} << 16) + 6);
+}
+
 // A rational cubic triangular patch with random positive weights, and the
 // flat triangle, whose box is its vertices' box.
 TEST(SurfaceBoundingBox, TriangularPatches) {

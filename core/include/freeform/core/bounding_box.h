@@ -11,9 +11,10 @@
 // corners (patches) lie on the geometry, so they are lower bounds. The piece of
 // largest upper bound is halved by de Casteljau until its upper bound is within
 // `tolerance` of the best value found on the geometry: a tensor patch
-// alternately in u and v (SplitBezierSurface; a curve is a patch of one
+// alternately in u and v (as SplitBezierSurface; a curve is a patch of one
 // column), a triangular patch at the midpoint of the edge opposite its newest
-// vertex (BisectTriangularPatch). Halving a piece divides the gap between its
+// vertex (as BisectTriangularPatch). The pieces stay in homogeneous form in
+// one flat array for the whole search, so a halving allocates nothing. Halving a piece divides the gap between its
 // hull and the geometry by about four (two halvings for a triangle), so a
 // smooth extreme needs about log4(size / tolerance) halvings.
 //
@@ -40,7 +41,11 @@
 // margin. Past the budget the side is the best upper bound reached, still a
 // bound of the geometry; on such a ridge it is within about 4 size /
 // kMaxBoxHalvings^2 of it (1.5e-8 of the size; tests/core/bounding_box_test.cc,
-// RidgeExtremeEndsWithinTheHalvingBudget).
+// RidgeExtremeEndsWithinTheHalvingBudget). Pieces without a bound (a zero
+// weight inside) are halved beyond that budget, up to four times it, since a
+// halving or two usually bounds them; a side still unbounded then, or one
+// with a corner at infinity, is infinite, and so are the sides not yet
+// searched: the box is unbounded.
 //
 // Thread-safe; allocates per call.
 #ifndef FREEFORM_CORE_BOUNDING_BOX_H_
