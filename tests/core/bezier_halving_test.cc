@@ -31,8 +31,9 @@ std::vector<double> Lifted(const std::vector<double>& coordinates,
   std::vector<double> lifted;
   for (size_t k = 0; k < weights.size(); ++k) {
     for (int c = 0; c < d; ++c) {
-      lifted.push_back(weights[k] * coordinates[k * static_cast<size_t>(d) +
-                                                static_cast<size_t>(c)]);
+      lifted.push_back(
+          weights[k] *
+          coordinates[k * static_cast<size_t>(d) + static_cast<size_t>(c)]);
     }
     lifted.push_back(weights[k]);
   }
@@ -58,12 +59,37 @@ void ExpectSamePoints(const std::vector<double>& halved,
   }
 }
 
+// Expects the lifted halves `first` and `second` to be the library's
+// halves `expected` (SurfaceData or TriangularPatchData, two of them).
+template <typename Piece>
+void ExpectHalves(const std::vector<double>& first,
+                  const std::vector<double>& second,
+                  const absl::StatusOr<std::vector<Piece>>& expected, int d,
+                  const std::string& what) {
+  ASSERT_TRUE(expected.ok()) << expected.status();
+  ASSERT_EQ(expected->size(), 2u);
+  ExpectSamePoints(first, (*expected)[0].coordinates, (*expected)[0].weights, d,
+                   what + " first");
+  ExpectSamePoints(second, (*expected)[1].coordinates, (*expected)[1].weights,
+                   d, what + " second");
+}
+
 std::vector<double> Uniform(std::mt19937_64& random, size_t count, double lo,
                             double hi) {
   std::uniform_real_distribution<double> value(lo, hi);
   std::vector<double> values(count);
   for (double& v : values) v = value(random);
   return values;
+}
+
+// RandomRational fills `coordinates` (in [-1, 1]) and `weights` (in
+// [0.25, 4]) of `points` points in d dimensions and returns them lifted.
+std::vector<double> RandomRational(std::mt19937_64& random, size_t points,
+                                   int d, std::vector<double>& coordinates,
+                                   std::vector<double>& weights) {
+  coordinates = Uniform(random, points * static_cast<size_t>(d), -1.0, 1.0);
+  weights = Uniform(random, points, 0.25, 4.0);
+  return Lifted(coordinates, weights, d);
 }
 
 TEST(BezierHalving, HalveNetMatchesSplitBezierSurfaceAtOneHalf) {
@@ -77,25 +103,17 @@ TEST(BezierHalving, HalveNetMatchesSplitBezierSurfaceAtOneHalf) {
         net.dimension = d;
         net.count_u = count_u;
         net.count_v = count_v;
-        net.coordinates =
-            Uniform(random, points * static_cast<size_t>(d), -1.0, 1.0);
-        net.weights = Uniform(random, points, 0.25, 4.0);
         const std::vector<double> lifted =
-            Lifted(net.coordinates, net.weights, d);
+            RandomRational(random, points, d, net.coordinates, net.weights);
         for (const bool in_u : {true, false}) {
-          const std::string what =
-              absl::StrCat(count_u, "x", count_v, " in ", d, "-D, in ",
-                           in_u ? "u" : "v");
+          const std::string what = absl::StrCat(count_u, "x", count_v, " in ",
+                                                d, "-D, in ", in_u ? "u" : "v");
           std::vector<double> first(lifted.size()), second(lifted.size());
-          HalveNet(lifted.data(), count_u, count_v, d + 1, in_u,
-                   first.data(), second.data());
-          absl::StatusOr<std::vector<SurfaceData>> expected =
-              SplitBezierSurface(net.bezier_view(), in_u, 0.5);
-          ASSERT_TRUE(expected.ok()) << expected.status();
-          ExpectSamePoints(first, (*expected)[0].coordinates,
-                           (*expected)[0].weights, d, what + " first");
-          ExpectSamePoints(second, (*expected)[1].coordinates,
-                           (*expected)[1].weights, d, what + " second");
+          HalveNet(lifted.data(), count_u, count_v, d + 1, in_u, first.data(),
+                   second.data());
+          ExpectHalves(first, second,
+                       SplitBezierSurface(net.bezier_view(), in_u, 0.5), d,
+                       what);
         }
       }
     }
@@ -111,24 +129,16 @@ TEST(BezierHalving, BisectTriangleMatchesBisectTriangularPatch) {
       TriangularPatchData patch;
       patch.degree = n;
       patch.dimension = d;
-      patch.coordinates =
-          Uniform(random, points * static_cast<size_t>(d), -1.0, 1.0);
-      patch.weights = Uniform(random, points, 0.25, 4.0);
       const std::vector<double> lifted =
-          Lifted(patch.coordinates, patch.weights, d);
+          RandomRational(random, points, d, patch.coordinates, patch.weights);
       for (int edge = 0; edge < 3; ++edge) {
         const std::string what =
             absl::StrCat("degree ", n, " in ", d, "-D, edge ", edge);
         std::vector<double> first(lifted.size()), second(lifted.size());
         BisectTriangle(lifted.data(), n, d + 1, edge, first.data(),
                        second.data(), scratch);
-        absl::StatusOr<std::vector<TriangularPatchData>> expected =
-            BisectTriangularPatch(patch.view(), edge);
-        ASSERT_TRUE(expected.ok()) << expected.status();
-        ExpectSamePoints(first, (*expected)[0].coordinates,
-                         (*expected)[0].weights, d, what + " first");
-        ExpectSamePoints(second, (*expected)[1].coordinates,
-                         (*expected)[1].weights, d, what + " second");
+        ExpectHalves(first, second, BisectTriangularPatch(patch.view(), edge),
+                     d, what);
       }
     }
   }
