@@ -14,9 +14,10 @@
 // alternately in u and v (as SplitBezierSurface; a curve is a patch of one
 // column), a triangular patch at the midpoint of the edge opposite its newest
 // vertex (as BisectTriangularPatch). The pieces stay in homogeneous form in
-// one flat array for the whole search, so a halving allocates nothing. Halving a piece divides the gap between its
-// hull and the geometry by about four (two halvings for a triangle), so a
-// smooth extreme needs about log4(size / tolerance) halvings.
+// one flat array for the whole search, so a halving allocates nothing. Halving
+// a piece divides the gap between its hull and the geometry by about four (two
+// halvings for a triangle), so a smooth extreme needs about log4(size /
+// tolerance) halvings.
 //
 // Accuracy contract: the box contains every point of the geometry (as far
 // as double arithmetic can tell: it is widened by the margin 2^-44 of the
