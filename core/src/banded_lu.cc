@@ -42,8 +42,10 @@ absl::Status BandedLu::Factor() {
     }
     const int last_row = std::min(n_ - 1, k + kl_);
     const int last_column = std::min(n_ - 1, k + ku_);
+    // One division per pivot; the multipliers are products with it.
+    const double inverse = 1.0 / pivot;
     for (int i = k + 1; i <= last_row; ++i) {
-      const double factor = at(i, k) / pivot;
+      const double factor = at(i, k) * inverse;
       at(i, k) = factor;
       if (factor == 0.0) continue;
       for (int j = k + 1; j <= last_column; ++j) at(i, j) -= factor * at(k, j);
@@ -77,8 +79,8 @@ absl::Status BandedLu::Solve(double* rhs, int columns) {
       const double* source = rhs + static_cast<size_t>(j) * d;
       for (size_t c = 0; c < d; ++c) row[c] -= factor * source[c];
     }
-    const double pivot = at(i, i);
-    for (size_t c = 0; c < d; ++c) row[c] /= pivot;
+    const double inverse = 1.0 / at(i, i);
+    for (size_t c = 0; c < d; ++c) row[c] *= inverse;
   }
   return absl::OkStatus();
 }

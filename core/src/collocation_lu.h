@@ -66,7 +66,7 @@ class CollocationLu {
     double* b = Rhs(r);
     for (int k = std::max(first, 0); k < r; ++k) {
       const double* u = Upper(k);
-      const double factor = window[k - r + p] / u[0];
+      const double factor = window[k - r + p] * u[0];
       if (factor == 0.0) continue;
       Subtract(factor, Rhs(k), b);
       const int last = std::min(count_ - 1, k + p);
@@ -75,7 +75,9 @@ class CollocationLu {
       }
     }
     if (!(std::abs(window[p]) > 1e-14 * scale)) return false;
-    std::copy(window + p, window + 2 * p + 1, Upper(r));
+    double* u = Upper(r);
+    std::copy(window + p, window + 2 * p + 1, u);
+    u[0] = 1.0 / window[p];
     return true;
   }
 
@@ -92,7 +94,7 @@ class CollocationLu {
       double* b = Rhs(i);
       const int last = std::min(count_ - 1, i + p);
       for (int j = i + 1; j <= last; ++j) Subtract(u[j - i], Rhs(j), b);
-      Divide(u[0], b);
+      Scale(u[0], b);
     }
   }
 
@@ -117,10 +119,11 @@ class CollocationLu {
 #pragma GCC unroll 4
     for (int c = 0; c < d; ++c) b[c] -= factor * x[c];
   }
-  void Divide(double pivot, double* b) const {
+  // b *= inverse_pivot.
+  void Scale(double inverse_pivot, double* b) const {
     const int d = Dimension();
 #pragma GCC unroll 4
-    for (int c = 0; c < d; ++c) b[c] /= pivot;
+    for (int c = 0; c < d; ++c) b[c] *= inverse_pivot;
   }
 
   const int count_;
@@ -128,7 +131,9 @@ class CollocationLu {
   const int dimension_;
   double* const rhs_;
   int row_ = 0;
-  // U(r, r..r + p) at r * (p + 1), written by AddRow.
+  // U(r, r..r + p) at r * (p + 1), written by AddRow, with the reciprocal
+  // of the pivot U(r, r) in place of the pivot (BandedLu divides once per
+  // pivot too).
   ZeroedDoubles upper_;
   std::conditional_t<kDegree == kAnyDegree, std::vector<double>,
                      std::array<double, 2 * std::max(kDegree, 0) + 1>>
