@@ -34,6 +34,11 @@ void RunBezier(
       .control_points = {.dimension = 3, .coordinates = control},
       .weights = {}};
   const freeform::ExecutionContext context{.pool = pool};
+  // One untimed call first: the 320 MB of parameters and output were last
+  // touched by their setup, and on a virtual machine whose kernel reclaims
+  // idle pages (DAMON) the first calls would time re-faulting them.
+  benchmark::DoNotOptimize(freeform::EvaluateBezierCurve(
+      curve, parameters, output, context, algorithm));
   for (auto _ : state) {
     benchmark::DoNotOptimize(freeform::EvaluateBezierCurve(
         curve, parameters, output, context, algorithm));
