@@ -1,6 +1,8 @@
-// Halving of Bezier pieces stored flat, for the branch and bound of tight
-// bounding boxes (bounding_box.cc): de Casteljau at the middle of a tensor
-// net's u or v, and the bisection of a triangular patch through a vertex.
+// Halving of Bezier pieces stored flat, for the subdivision searches (the
+// tight bounding boxes of bounding_box.cc, and through bezier_net.h's Halve
+// the closest points, intersections and sections): de Casteljau at the
+// middle of a tensor net's u or v, and the bisection of a triangular patch
+// through a vertex.
 // Each works on `width` values a point (coordinates, or homogeneous
 // coordinates w x, w of a rational piece) and writes into caller-owned
 // arrays of the parent's size, so a search allocates nothing per halving.

@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "bezier_halving.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
@@ -232,30 +233,8 @@ void Halve(const Net& net, bool in_u, Net& low, Net& high) {
     half->count_v = net.count_v;
     half->values.resize(net.values.size());
   }
-  const int lines = in_u ? net.count_v : net.count_u;
-  const int n = (in_u ? net.count_u : net.count_v) - 1;
-  const int stride = net.stride();
-  // de Casteljau in place on each line of `high`: after pass r its points
-  // 0..n-r are the r-th level, point 0 being low's point r, and point k
-  // keeps the level n - k once the pass n - k is done (high's point k).
-  for (int line = 0; line < lines; ++line) {
-    auto at = [&](Net& target, int k) {
-      return in_u ? target.at(k, line) : target.at(line, k);
-    };
-    for (int k = 0; k <= n; ++k) {
-      std::copy_n(in_u ? net.at(k, line) : net.at(line, k), stride,
-                  at(high, k));
-    }
-    std::copy_n(at(high, 0), stride, at(low, 0));
-    for (int r = 1; r <= n; ++r) {
-      for (int k = 0; k <= n - r; ++k) {
-        double* a = at(high, k);
-        const double* b = at(high, k + 1);
-        for (int x = 0; x < stride; ++x) a[x] = 0.5 * (a[x] + b[x]);
-      }
-      std::copy_n(at(high, 0), stride, at(low, r));
-    }
-  }
+  HalveNet(net.values.data(), net.count_u, net.count_v, net.stride(), in_u,
+           low.values.data(), high.values.data());
 }
 
 bool Point(const Net& net, int i, int j, double* point) {

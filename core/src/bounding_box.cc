@@ -131,16 +131,18 @@ auto Lift(const std::vector<Net>& nets) {
   for (size_t n = 0; n < nets.size(); ++n) {
     const Net& net = nets[n];
     pieces.shapes.push_back(ShapeOf(net));
-    const PointsView points{net.dimension, net.coordinates};
+    const auto block =
+        pieces.values.begin() + static_cast<std::ptrdiff_t>(n * pieces.block);
+    if (!pieces.rational) {
+      std::copy(net.coordinates.begin(), net.coordinates.end(), block);
+      continue;
+    }
     // HomogeneousPoints keeps the point of a zero weight as a direction.
-    const std::vector<double> lifted =
-        !pieces.rational ? net.coordinates
-        : net.weights.empty()
-            ? HomogeneousPoints(points, std::vector<double>(points.size(), 1.0))
-            : HomogeneousPoints(points, net.weights);
-    std::copy(
-        lifted.begin(), lifted.end(),
-        pieces.values.begin() + static_cast<std::ptrdiff_t>(n * pieces.block));
+    const PointsView points{net.dimension, net.coordinates};
+    const std::vector<double> lifted = HomogeneousPoints(
+        points, net.weights.empty() ? std::vector<double>(points.size(), 1.0)
+                                    : net.weights);
+    std::copy(lifted.begin(), lifted.end(), block);
   }
   return pieces;
 }
@@ -316,15 +318,13 @@ absl::StatusOr<BoundingBox> BoxOf(const std::vector<Net>& nets,
   }
   const double margin = kMargin * scale;
   const double reachable = std::max(tolerance, margin);
-  BoundingBox box{.lower = std::vector<double>(dimension),
-                  .upper = std::vector<double>(dimension)};
+  // A side that is not finite makes the box unbounded: the sides not yet
+  // searched are left infinite, which still contains the geometry.
+  BoundingBox box{.lower = std::vector<double>(dimension, -kInfinity),
+                  .upper = std::vector<double>(dimension, kInfinity)};
   CancellationPoll poll(cancel);
   auto pieces = Lift(nets);
   std::vector<double> scratch;
-  // A side that is not finite makes the box unbounded: the sides not yet
-  // searched are left infinite, which still contains the geometry.
-  std::fill(box.lower.begin(), box.lower.end(), -kInfinity);
-  std::fill(box.upper.begin(), box.upper.end(), kInfinity);
   for (int j = 0; j < dimension; ++j) {
     for (const double sign : {1.0, -1.0}) {
       absl::StatusOr<double> extreme =
