@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <utility>
 
 namespace freeform {
@@ -54,36 +57,121 @@ void ThreadPool::WorkerLoop() {
   }
 }
 
+size_t DefaultMaxHelpers() {
+  static const size_t helpers =
+      std::max<size_t>(std::thread::hardware_concurrency(), 1) - 1;
+  return helpers;
+}
+
 namespace {
+
+// One thread's share of a batch's chunks, [front, back), packed in one word
+// so that its owner (taking from the front) and a thief (taking from the
+// back) claim with one compare-and-swap each. Alone on its cache line.
+class alignas(64) ChunkShare {
+ public:
+  void Assign(uint32_t front, uint32_t back) {
+    bounds_.store(Pack(front, back), std::memory_order_relaxed);
+  }
+
+  // Chunks not yet claimed.
+  uint32_t Left() const {
+    const uint64_t bounds = bounds_.load(std::memory_order_relaxed);
+    return Back(bounds) - Front(bounds);
+  }
+
+  // TakeFront and TakeBack claim the first or last chunk left; nullopt when
+  // none is.
+  std::optional<uint32_t> TakeFront() { return Take(/*from_back=*/false); }
+  std::optional<uint32_t> TakeBack() { return Take(/*from_back=*/true); }
+
+ private:
+  static uint64_t Pack(uint32_t front, uint32_t back) {
+    return uint64_t{front} << 32 | back;
+  }
+  static uint32_t Front(uint64_t bounds) {
+    return static_cast<uint32_t>(bounds >> 32);
+  }
+  static uint32_t Back(uint64_t bounds) {
+    return static_cast<uint32_t>(bounds);
+  }
+
+  std::optional<uint32_t> Take(bool from_back) {
+    uint64_t bounds = bounds_.load(std::memory_order_relaxed);
+    while (true) {
+      const uint32_t front = Front(bounds);
+      const uint32_t back = Back(bounds);
+      if (front >= back) return std::nullopt;
+      const uint64_t taken =
+          from_back ? Pack(front, back - 1) : Pack(front + 1, back);
+      if (bounds_.compare_exchange_weak(bounds, taken,
+                                        std::memory_order_relaxed)) {
+        return from_back ? back - 1 : front;
+      }
+    }
+  }
+
+  std::atomic<uint64_t> bounds_{0};
+};
 
 // Shared by the caller and its helpers. Helpers that start after every chunk
 // was claimed touch only this state (kept alive by shared_ptr), never the
 // caller's body, which may be gone by then.
 struct ParallelForState {
-  ParallelForState(size_t item_count, size_t chunk_size,
+  ParallelForState(size_t item_count, size_t chunk_size, size_t threads,
                    const CancellationToken* cancellation,
                    absl::FunctionRef<void(size_t, size_t)> chunk_body)
       : count(item_count),
         grain(chunk_size),
-        chunks((item_count + chunk_size - 1) / chunk_size),
+        chunks(static_cast<uint32_t>((item_count - 1) / chunk_size + 1)),
+        share_count(threads),
+        shares(std::make_unique<ChunkShare[]>(threads)),
         token(cancellation),
-        body(chunk_body) {}
+        body(chunk_body) {
+    // Share s is [s * chunks / threads, (s + 1) * chunks / threads).
+    for (size_t s = 0; s < threads; ++s) {
+      shares[s].Assign(static_cast<uint32_t>(s * chunks / threads),
+                       static_cast<uint32_t>((s + 1) * chunks / threads));
+    }
+  }
 
-  // Claims and runs chunks until none is left.
-  void Work() {
+  // Runs the chunks of share `own`, then those left in the other shares,
+  // until none is left.
+  void Work(size_t own) {
+    while (const std::optional<uint32_t> chunk = Claim(own)) Run(*chunk);
+  }
+
+  // The next chunk of share `own`, else the last one of the share with the
+  // most left.
+  std::optional<uint32_t> Claim(size_t own) {
+    if (std::optional<uint32_t> chunk = shares[own].TakeFront()) return chunk;
     while (true) {
-      const size_t chunk = next.fetch_add(1, std::memory_order_relaxed);
-      if (chunk >= chunks) return;
-      if (token != nullptr && token->IsCancelled()) {
-        skipped.store(true, std::memory_order_relaxed);
-      } else {
-        const size_t begin = chunk * grain;
-        body(begin, std::min(count, begin + grain));
+      size_t victim = own;
+      uint32_t most_left = 0;
+      for (size_t s = 0; s < share_count; ++s) {
+        const uint32_t left = shares[s].Left();
+        if (left > most_left) {
+          most_left = left;
+          victim = s;
+        }
       }
-      if (done.fetch_add(1, std::memory_order_acq_rel) + 1 == chunks) {
-        std::lock_guard<std::mutex> lock(mutex);
-        finished.notify_all();
+      if (most_left == 0) return std::nullopt;
+      if (std::optional<uint32_t> chunk = shares[victim].TakeBack()) {
+        return chunk;
       }
+    }
+  }
+
+  void Run(uint32_t chunk) {
+    if (token != nullptr && token->IsCancelled()) {
+      skipped.store(true, std::memory_order_relaxed);
+    } else {
+      const size_t begin = chunk * grain;
+      body(begin, std::min(count, begin + grain));
+    }
+    if (done.fetch_add(1, std::memory_order_acq_rel) + 1 == chunks) {
+      std::lock_guard<std::mutex> lock(mutex);
+      finished.notify_all();
     }
   }
 
@@ -96,32 +184,49 @@ struct ParallelForState {
 
   const size_t count;
   const size_t grain;
-  const size_t chunks;
+  const uint32_t chunks;
+  const size_t share_count;
+  const std::unique_ptr<ChunkShare[]> shares;
   const CancellationToken* const token;
   const absl::FunctionRef<void(size_t, size_t)> body;
-  std::atomic<size_t> next{0};
-  std::atomic<size_t> done{0};
+  // The next helper's share; the caller's is 0.
+  std::atomic<size_t> next_share{1};
+  std::atomic<uint32_t> done{0};
   std::atomic<bool> skipped{false};
   std::mutex mutex;
   std::condition_variable finished;
 };
+
+// The chunk size: `grain`, raised where needed so that a batch has fewer than
+// 2^32 chunks (ChunkShare counts them in 32 bits).
+size_t ChunkSize(size_t count, size_t grain) {
+  constexpr size_t kMaxChunks = std::numeric_limits<uint32_t>::max();
+  return std::max({grain, size_t{1}, (count - 1) / kMaxChunks + 1});
+}
 
 }  // namespace
 
 absl::Status ParallelFor(size_t count, const ExecutionContext& context,
                          absl::FunctionRef<void(size_t, size_t)> body) {
   if (count == 0) return absl::OkStatus();
-  const size_t grain = std::max<size_t>(context.grain, 1);
-  auto state = std::make_shared<ParallelForState>(count, grain,
+  const size_t grain = ChunkSize(count, context.grain);
+  const size_t chunks = (count - 1) / grain + 1;
+  const size_t helpers =
+      context.pool == nullptr
+          ? 0
+          : std::min({static_cast<size_t>(context.pool->size()),
+                      context.max_helpers, chunks - 1});
+  auto state = std::make_shared<ParallelForState>(count, grain, helpers + 1,
                                                   context.cancellation, body);
-  if (context.pool != nullptr && state->chunks > 1) {
-    const size_t helpers = std::min<size_t>(
-        static_cast<size_t>(context.pool->size()), state->chunks - 1);
-    for (size_t i = 0; i < helpers; ++i) {
-      if (!context.pool->TrySchedule([state] { state->Work(); })) break;
+  for (size_t i = 0; i < helpers; ++i) {
+    if (!context.pool->TrySchedule([state] {
+          state->Work(
+              state->next_share.fetch_add(1, std::memory_order_relaxed));
+        })) {
+      break;
     }
   }
-  state->Work();
+  state->Work(0);
   state->WaitUntilDone();
   if (state->skipped.load(std::memory_order_relaxed)) {
     return context.cancellation->status();

@@ -594,9 +594,11 @@ TEST(BezierBatchTest, MillionParametersUseEveryThreadAndMatchSerial) {
     return false;
   });
   const auto serial = Evaluate(View(points, 3), params, 2);
-  const auto parallel = Evaluate(
-      View(points, 3), params, 2,
-      ExecutionContext{.pool = &pool, .cancellation = &token, .grain = 4096});
+  const auto parallel = Evaluate(View(points, 3), params, 2,
+                                 ExecutionContext{.pool = &pool,
+                                                  .cancellation = &token,
+                                                  .grain = 4096,
+                                                  .max_helpers = kWorkers});
   EXPECT_EQ(serial, parallel);
   EXPECT_EQ(threads.size(), kWorkers + 1);
 }

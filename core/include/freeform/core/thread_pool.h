@@ -2,11 +2,16 @@
 //
 // ThreadPool is a fixed set of worker threads with a bounded task queue.
 // ParallelFor splits [0, count) into chunks of `grain` items that the calling
-// thread and up to size() pool workers claim one at a time, so a batch uses
-// every thread when the pool is idle and degrades gracefully (the caller does
-// more of the chunks itself) when it is busy or its queue is full. Each chunk
-// checks the cancellation token first; a cancelled batch skips the chunks
-// not yet started and returns CANCELLED or DEADLINE_EXCEEDED.
+// thread and up to ExecutionContext::max_helpers pool workers (by default
+// one per core the caller leaves free) run, so a batch uses every core when
+// the pool is idle and degrades gracefully (the caller does more of the
+// chunks itself) when it is busy or its queue is full. Each thread starts on
+// a contiguous share of the chunks and, once its share is done, takes chunks
+// from the end of the largest share left: a thread writes one stretch of the
+// output, and a batch run again on the same threads finds most of its output
+// in the caches it left it in. Each chunk checks the cancellation token
+// first; a cancelled batch skips the chunks not yet started and returns
+// CANCELLED or DEADLINE_EXCEEDED.
 //
 // Results do not depend on the number of threads: chunks write disjoint
 // outputs, so a batch gives the same numbers serially and in parallel.
@@ -68,6 +73,11 @@ class ThreadPool {
   std::vector<std::thread> workers_;
 };
 
+// DefaultMaxHelpers returns the cores a ParallelFor caller leaves free (the
+// machine's hardware threads less one): CPU-bound chunks gain nothing from
+// more threads than cores, and lose each time two share one.
+size_t DefaultMaxHelpers();
+
 // Where and how a batch runs. The defaults run everything on the calling
 // thread without cancellation.
 struct ExecutionContext {
@@ -78,6 +88,8 @@ struct ExecutionContext {
   // Items per chunk (at least 1). A batch of at most `grain` items runs
   // inline.
   size_t grain = 4096;
+  // Most pool workers that join the caller on one batch.
+  size_t max_helpers = DefaultMaxHelpers();
 };
 
 // ParallelFor calls body(begin, end) over disjoint chunks covering
