@@ -94,7 +94,7 @@ peer() {
   fi
 }
 
-bench core_bench 'BM_W4_CubicBezierPositions$'
+bench core_bench 'BM_W4_CubicBezierPositions'
 bench bspline_bench 'BM_W[127]_'
 bench surface_bench 'BM_W[37]_BicubicSurfaceGrid'
 bench construction_bench 'BM_W5_GlobalCubicInterpolation/100000$|BM_W6_'

@@ -19,7 +19,7 @@ import re
 import sys
 
 # The project's benchmark of each workload: name pattern -> (workload,
-# implementation). W7 is W1 and W3 on every pool thread.
+# implementation). W7 is W1, W3 and W4 on every pool thread.
 FREEFORM = [
     (r"BM_W1_CubicBSplinePositions$", "W1", "EvaluateBSplineCurve"),
     (r"BM_W2_CubicBSplineFirstDerivative$", "W2", "EvaluateBSplineCurve"),
@@ -29,6 +29,7 @@ FREEFORM = [
     (r"BM_W6_ElevateW1ByOne$", "W6", "ElevateBSplineCurve"),
     (r"BM_W7_CubicBSplinePositionsAllThreads(/real_time)?$", "W7", "W1_all_threads"),
     (r"BM_W7_BicubicSurfaceGridAllThreads(/real_time)?$", "W7", "W3_all_threads"),
+    (r"BM_W4_CubicBezierPositionsAllThreads(/real_time)?$", "W7", "W4_all_threads"),
 ]
 
 # Rows of the table: (row, workload, freeform implementation, what, target).
@@ -47,6 +48,8 @@ ROWS = [
      "W1 on every thread / W1 on one thread", 1.8),
     ("W7 (W3)", "W7", "W3_all_threads",
      "W3 on every thread / W3 on one thread", 1.8),
+    ("W7 (W4)", "W7", "W4_all_threads",
+     "W4 on every thread / W4 on one thread", 1.8),
 ]
 
 PEERS = [("occt", "OpenCASCADE"), ("eigen", "Eigen"), ("scipy", "scipy")]
