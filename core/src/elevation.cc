@@ -197,7 +197,8 @@ class BlossomElevator {
         ph_(spline.degree + by),
         dim_(kDim > 0 ? kDim : spline.points.dim),
         knots_(spline.knots),
-        points_(spline.points) {
+        points_(spline.points),
+        inverse_(InverseDifferences(knots_, p_)) {
     // Level c starts at dim * sum_{c' < c} (p + 1 - c').
     if constexpr (kDegree == kAnyDegree || kDim == 0) {
       levels_.resize(static_cast<size_t>(p_ + 1) * (p_ + 2) / 2 * dim_);
@@ -250,6 +251,26 @@ class BlossomElevator {
   size_t Weight(int k, int c) const {
     return static_cast<size_t>(k) * (p() + 1) + c;
   }
+  // InverseDifferences returns 1 / (U_{i+p+1-c} - U_i) at i * (p + 1) + c
+  // for c = 1..p (0 where the difference is 0 or runs past the knots): the
+  // denominators of the de Boor steps, divided once per knot instead of
+  // once per step.
+  static std::vector<double> InverseDifferences(
+      const std::vector<double>& knots, int p) {
+    const size_t stride = static_cast<size_t>(p) + 1;
+    std::vector<double> inverse(knots.size() * stride, 0.0);
+    for (size_t i = 0; i < knots.size(); ++i) {
+      for (int c = 1; c <= p; ++c) {
+        const size_t j = i + stride - static_cast<size_t>(c);
+        if (j < knots.size() && knots[j] > knots[i]) {
+          inverse[i * stride + static_cast<size_t>(c)] =
+              1.0 / (knots[j] - knots[i]);
+        }
+      }
+    }
+    return inverse;
+  }
+
   double* Level(int c) {
     return levels_.data() +
            static_cast<size_t>(c * (2 * p() + 3 - c) / 2) * dim();
@@ -304,7 +325,8 @@ class BlossomElevator {
     for (int idx = 0; idx <= p - c; ++idx) {
       const int i = s - p + c + idx;
       const double alpha =
-          (x - knots_[i]) / (knots_[i + p + 1 - c] - knots_[i]);
+          (x - knots_[i]) *
+          inverse_[static_cast<size_t>(i) * (p + 1) + static_cast<size_t>(c)];
       const double* left = from + static_cast<size_t>(idx) * d;
       const double* right = left + d;
       double* target = to + static_cast<size_t>(idx) * d;
@@ -328,6 +350,7 @@ class BlossomElevator {
   const int dim_;
   const std::vector<double>& knots_;
   const PointArray& points_;
+  const std::vector<double> inverse_;  // InverseDifferences
   // Level c (p + 1 - c points) at Level(c).
   std::conditional_t<kDegree == kAnyDegree || kDim == 0, std::vector<double>,
                      std::array<double, (std::max(kDegree, 0) + 1) *

@@ -442,7 +442,8 @@ TEST(SurfaceBoundingBox, NearZeroWeightSearchHoldsTheSurfaceWithinBudget) {
   constexpr int kSteps = 400;
   for (int i = 0; i <= kSteps; ++i) {
     for (int j = 0; i + j <= kSteps; ++j) {
-      uv.insert(uv.end(), {double{i} / kSteps, double{j} / kSteps});
+      uv.insert(uv.end(), {static_cast<double>(i) / kSteps,
+                           static_cast<double>(j) / kSteps});
     }
   }
   const std::vector<double> samples =
