@@ -225,11 +225,13 @@ class BlossomElevator {
     CancellationPoll poll(cancel);
     const size_t work_per_point =
         static_cast<size_t>(ph_) * (p() + 1) * (p() + 1) * dim_;
+    int span = p();
     for (int i = 0; i < count; ++i) {
       if (absl::Status status = poll.Done(work_per_point); !status.ok()) {
         return status;
       }
-      const int s = SpanFor(uh, i);
+      span = SpanFor(uh, i, span);
+      const int s = span;
       Blossom(s, &uh[i + 1], result.points.at(i));
     }
     return result;
@@ -277,8 +279,9 @@ class BlossomElevator {
   }
 
   // SpanFor returns the original span of the non-empty new span nearest the
-  // middle of Q_i's support [Uh_i, Uh_{i+ph+1}].
-  int SpanFor(const std::vector<double>& uh, int i) const {
+  // middle of Q_i's support [Uh_i, Uh_{i+ph+1}], searched from `hint` (the
+  // previous point's span: the spans of consecutive points are close).
+  int SpanFor(const std::vector<double>& uh, int i, int hint) const {
     int best = -1;
     for (int j = i; j <= i + ph_; ++j) {
       if (uh[j] < uh[j + 1] &&
@@ -287,10 +290,13 @@ class BlossomElevator {
         best = j;
       }
     }
-    return static_cast<int>(
-               std::upper_bound(knots_.begin(), knots_.end(), uh[best]) -
-               knots_.begin()) -
-           1;
+    // The last s with U_s <= u: u lies in [U_p, U_{n+1}) (a non-empty span
+    // of the clamped knots), so neither walk leaves the knots.
+    const double u = uh[best];
+    int span = hint;
+    while (knots_[span + 1] <= u) ++span;
+    while (knots_[span] > u) --span;
+    return span;
   }
 
   // Blossom writes F(args[0..ph-1]) of the elevated piece on span s.
