@@ -10,6 +10,7 @@
 
 #include "absl/types/span.h"
 #include "bspline_spans.h"
+#include "freeform/core/bspline.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/status.h"
 #include "homogeneous.h"
@@ -231,8 +232,7 @@ class BlossomElevator {
         return status;
       }
       span = SpanFor(uh, i, span);
-      const int s = span;
-      Blossom(s, &uh[i + 1], result.points.at(i));
+      Blossom(span, &uh[i + 1], result.points.at(i));
     }
     return result;
   }
@@ -290,13 +290,8 @@ class BlossomElevator {
         best = j;
       }
     }
-    // The last s with U_s <= u: u lies in [U_p, U_{n+1}) (a non-empty span
-    // of the clamped knots), so neither walk leaves the knots.
-    const double u = uh[best];
-    int span = hint;
-    while (knots_[span + 1] <= u) ++span;
-    while (knots_[span] > u) --span;
-    return span;
+    return FindSpanFrom(hint, static_cast<int>(points_.count()) - 1, p(),
+                        uh[best], knots_);
   }
 
   // Blossom writes F(args[0..ph-1]) of the elevated piece on span s.

@@ -114,16 +114,30 @@ class alignas(64) ChunkShare {
   std::atomic<uint64_t> bounds_{0};
 };
 
+// How a batch of `count` items is cut: chunks of `grain` items (the
+// context's grain, raised where needed so that a batch has fewer than 2^32
+// chunks, which ChunkShare counts in 32 bits), `chunks` of them.
+struct Chunking {
+  Chunking(size_t count, size_t requested_grain)
+      : grain(
+            std::max({requested_grain, size_t{1},
+                      (count - 1) / std::numeric_limits<uint32_t>::max() + 1})),
+        chunks(static_cast<uint32_t>((count - 1) / grain + 1)) {}
+
+  const size_t grain;
+  const uint32_t chunks;
+};
+
 // Shared by the caller and its helpers. Helpers that start after every chunk
 // was claimed touch only this state (kept alive by shared_ptr), never the
 // caller's body, which may be gone by then.
 struct ParallelForState {
-  ParallelForState(size_t item_count, size_t chunk_size, size_t threads,
+  ParallelForState(size_t item_count, const Chunking& chunking, size_t threads,
                    const CancellationToken* cancellation,
                    absl::FunctionRef<void(size_t, size_t)> chunk_body)
       : count(item_count),
-        grain(chunk_size),
-        chunks(static_cast<uint32_t>((item_count - 1) / chunk_size + 1)),
+        grain(chunking.grain),
+        chunks(chunking.chunks),
         share_count(threads),
         shares(std::make_unique<ChunkShare[]>(threads)),
         token(cancellation),
@@ -197,26 +211,18 @@ struct ParallelForState {
   std::condition_variable finished;
 };
 
-// The chunk size: `grain`, raised where needed so that a batch has fewer than
-// 2^32 chunks (ChunkShare counts them in 32 bits).
-size_t ChunkSize(size_t count, size_t grain) {
-  constexpr size_t kMaxChunks = std::numeric_limits<uint32_t>::max();
-  return std::max({grain, size_t{1}, (count - 1) / kMaxChunks + 1});
-}
-
 }  // namespace
 
 absl::Status ParallelFor(size_t count, const ExecutionContext& context,
                          absl::FunctionRef<void(size_t, size_t)> body) {
   if (count == 0) return absl::OkStatus();
-  const size_t grain = ChunkSize(count, context.grain);
-  const size_t chunks = (count - 1) / grain + 1;
+  const Chunking chunking(count, context.grain);
   const size_t helpers =
       context.pool == nullptr
           ? 0
           : std::min({static_cast<size_t>(context.pool->size()),
-                      context.max_helpers, chunks - 1});
-  auto state = std::make_shared<ParallelForState>(count, grain, helpers + 1,
+                      context.max_helpers, size_t{chunking.chunks} - 1});
+  auto state = std::make_shared<ParallelForState>(count, chunking, helpers + 1,
                                                   context.cancellation, body);
   for (size_t i = 0; i < helpers; ++i) {
     if (!context.pool->TrySchedule([state] {
