@@ -4,6 +4,7 @@
 // blending function against its definition and partition of unity.
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <utility>
 
@@ -67,14 +68,15 @@ void CheckSamples(absl::Span<const v1::EvaluateCurveResponse> messages,
 }
 
 // EvaluateAndCheck sends `request` to CurveService.Evaluate and checks its
-// unary answer against `reference` at every one of `parameters`.
+// unary answer against `reference` at every one of `parameters`, with the
+// tolerances multiplied by `scale`.
 CallResult EvaluateAndCheck(Client& client,
                             const v1::EvaluateCurveRequest& request,
                             const Values& parameters, int dimension, int orders,
-                            const CurveReference& reference) {
+                            const CurveReference& reference, double scale = 1) {
   auto answer =
       client.Unary(client.curves(), &v1::CurveService::Stub::Evaluate, request);
-  Checker check(request);
+  Checker check(request, scale);
   if (answer.ok()) {
     CheckSamples(absl::MakeConstSpan(&*answer, 1), parameters, dimension,
                  orders, reference, check);
@@ -116,7 +118,30 @@ struct Line {
   v1::Curve curve;
   double start = 0;
   double end = 1;
+  Values lagrange_nodes;  // Empty unless the line is in Lagrange form.
 };
+
+// The factor by which kTight must grow to cover rounding in a Lagrange sum
+// sum_i P_i L_i^(k)(t) with |P_i| <= `magnitude`. Its computed value is off
+// by up to about (n + 1) eps sum_i |P_i| |L_i^(k)(t)| (Higham, 'Accuracy and
+// Stability of Numerical Algorithms', 3.1), and with clustered nodes the
+// derivatives of the L_i reach 10^7 while the sum is 0 for k >= 2.
+double LagrangeRoundingScale(Coordinates nodes, double magnitude,
+                             const Values& parameters, int orders) {
+  if (nodes.empty()) return 1;
+  const double unit = static_cast<double>(nodes.size() + 1) *
+                      std::numeric_limits<double>::epsilon();
+  double worst = 0;
+  for (const double t : parameters) {
+    const BasisDerivatives basis = LagrangeBasis(nodes, t, orders);
+    for (const Values& order : basis) {
+      double sum = 0;
+      for (const double value : order) sum += std::abs(value);
+      worst = std::max(worst, 8 * unit * magnitude * sum);
+    }
+  }
+  return std::max(1.0, worst / kTight);
+}
 
 Line LineAs(Rng& rng, int kind, Coordinates a, Coordinates d) {
   const int dimension = static_cast<int>(a.size());
@@ -162,6 +187,7 @@ Line LineAs(Rng& rng, int kind, Coordinates a, Coordinates d) {
       lagrange->mutable_nodes()->Add(nodes.begin(), nodes.end());
       line.start = nodes.front();
       line.end = nodes.back();
+      line.lagrange_nodes = nodes;
       return line;
     }
     case 4: {  // Hermite: points on the line, every tangent d.
@@ -215,8 +241,12 @@ CallResult EvaluateLine(Client& client, Rng& rng) {
     }
     return expected;
   };
+  // The points are a + t_i d with |t_i| < 1.
+  const double magnitude = Scale(a) + Scale(d);
   return EvaluateAndCheck(client, request, parameters, dimension, orders,
-                          reference);
+                          reference,
+                          LagrangeRoundingScale(line.lagrange_nodes, magnitude,
+                                                parameters, orders));
 }
 
 // docs/references.md, 'Worked example: the cubic Bezier curve (0,0), (1,2),
