@@ -112,32 +112,37 @@ v1::Parameters RandomParameters(Rng& rng, double start, double end,
   return parameters;
 }
 
+// The blending functions 0..orders of a curve at one parameter.
+using BasisReference = std::function<BasisDerivatives(double t, int orders)>;
+
 // The line L(t) = a + t d in one of the curve representations, on a
 // domain that depends on the representation.
 struct Line {
   v1::Curve curve;
   double start = 0;
   double end = 1;
-  Values lagrange_nodes;  // Empty unless the line is in Lagrange form.
+  // The blending functions and max |P_i| when they can be large (Bezier,
+  // B-spline, Lagrange); empty for Hermite and power form, whose
+  // derivatives stay small on the domains drawn here.
+  BasisReference basis;
+  double magnitude = 0;
 };
 
-// The factor by which kTight must grow to cover rounding in a Lagrange sum
-// sum_i P_i L_i^(k)(t) with |P_i| <= `magnitude`. Its computed value is off
-// by up to about (n + 1) eps sum_i |P_i| |L_i^(k)(t)| (Higham, 'Accuracy and
-// Stability of Numerical Algorithms', 3.1), and with clustered nodes the
-// derivatives of the L_i reach 10^7 while the sum is 0 for k >= 2.
-double LagrangeRoundingScale(Coordinates nodes, double magnitude,
-                             const Values& parameters, int orders) {
-  if (nodes.empty()) return 1;
-  const double unit = static_cast<double>(nodes.size() + 1) *
-                      std::numeric_limits<double>::epsilon();
+// The factor by which kTight must grow to cover rounding in a sum
+// sum_i P_i B_i^(k)(t). Its computed value is off by up to about
+// (n + 1) eps sum_i |P_i| |B_i^(k)(t)| (Higham, 'Accuracy and Stability of
+// Numerical Algorithms', 3.1). With clustered Lagrange nodes or short knot
+// spans the B_i^(k) reach 10^7 while the sum is 0 for k >= 2.
+double RoundingScale(const Line& line, const Values& parameters, int orders) {
+  if (!line.basis) return 1;
   double worst = 0;
   for (const double t : parameters) {
-    const BasisDerivatives basis = LagrangeBasis(nodes, t, orders);
-    for (const Values& order : basis) {
+    for (const Values& order : line.basis(t, orders)) {
       double sum = 0;
       for (const double value : order) sum += std::abs(value);
-      worst = std::max(worst, 8 * unit * magnitude * sum);
+      const double unit = static_cast<double>(order.size() + 1) *
+                          std::numeric_limits<double>::epsilon();
+      worst = std::max(worst, 8 * unit * line.magnitude * sum);
     }
   }
   return std::max(1.0, worst / kTight);
@@ -161,6 +166,10 @@ Line LineAs(Rng& rng, int kind, Coordinates a, Coordinates d) {
                          .points = on_line(Linspace(0, 1, n + 1))};
       if (kind == 1) bezier.weights.assign(n + 1, Uniform(rng, 0.2, 5));
       line.curve = bezier.ToCurve();
+      line.basis = [n](double t, int orders) {
+        return BernsteinBasis(static_cast<int>(n), t, orders);
+      };
+      line.magnitude = Scale(bezier.points);
       return line;
     }
     case 2: {  // B-spline at the Greville abscissae (linear precision).
@@ -177,17 +186,25 @@ Line LineAs(Rng& rng, int kind, Coordinates a, Coordinates d) {
       line.curve = bspline.ToCurve();
       line.start = bspline.start();
       line.end = bspline.end();
+      line.basis = [p, knots = bspline.knots](double u, int orders) {
+        return BSplineBasis(p, knots, u, orders);
+      };
+      line.magnitude = Scale(bspline.points);
       return line;
     }
     case 3: {  // Lagrange through L(t_i) at random nodes.
       const Values nodes = SpreadValues(
           rng, static_cast<size_t>(UniformInt(rng, 2, 8)), -1, 1, 0.05);
+      const Values points = on_line(nodes);
       v1::LagrangeCurve* lagrange = line.curve.mutable_lagrange();
-      SetPoints(dimension, on_line(nodes), lagrange->mutable_points());
+      SetPoints(dimension, points, lagrange->mutable_points());
       lagrange->mutable_nodes()->Add(nodes.begin(), nodes.end());
       line.start = nodes.front();
       line.end = nodes.back();
-      line.lagrange_nodes = nodes;
+      line.basis = [nodes](double t, int orders) {
+        return LagrangeBasis(nodes, t, orders);
+      };
+      line.magnitude = Scale(points);
       return line;
     }
     case 4: {  // Hermite: points on the line, every tangent d.
@@ -241,12 +258,8 @@ CallResult EvaluateLine(Client& client, Rng& rng) {
     }
     return expected;
   };
-  // The points are a + t_i d with |t_i| < 1.
-  const double magnitude = Scale(a) + Scale(d);
   return EvaluateAndCheck(client, request, parameters, dimension, orders,
-                          reference,
-                          LagrangeRoundingScale(line.lagrange_nodes, magnitude,
-                                                parameters, orders));
+                          reference, RoundingScale(line, parameters, orders));
 }
 
 // docs/references.md, 'Worked example: the cubic Bezier curve (0,0), (1,2),
