@@ -185,7 +185,9 @@ std::vector<double> ElevatedKnots(const std::vector<double>& knots, int by) {
 // Boor points over the c-subsets of the first k arguments; every term is a
 // knot-insertion-like combination, so nothing is extrapolated beyond what
 // evaluation does, unlike the knot removal of The NURBS Book's A5.9, which
-// loses up to 6 digits at degree 11 (measured on uniform knots).
+// loses up to 6 digits at degree 11 (measured on uniform knots). For an
+// elevation by 1 the average has only p + 1 terms, each f without one
+// argument, and is taken directly (BlossomLeavingOneOut).
 // kDegree, kDim and kBy are the degree p, the point size and the
 // elevation compiled in (the steps then unroll and the levels stay on the
 // stack), or kAnyDegree and 0 for values known only at run time; the
@@ -203,6 +205,9 @@ class BlossomElevator {
     // Level c starts at dim * sum_{c' < c} (p + 1 - c').
     if constexpr (kDegree == kAnyDegree || kDim == 0) {
       levels_.resize(static_cast<size_t>(p_ + 1) * (p_ + 2) / 2 * dim_);
+    }
+    if constexpr (kDegree == kAnyDegree) {
+      scratch_.resize(2 * static_cast<size_t>(p_ + 1));
     }
     // The weights of A_k[c] for k = 1..ph, c = 1..min(k, p), unless the
     // unrolled steps have them as constants.
@@ -296,6 +301,69 @@ class BlossomElevator {
 
   // Blossom writes F(args[0..ph-1]) of the elevated piece on span s.
   void Blossom(int s, const double* args, double* out) {
+    if (ph() == p() + 1) {
+      BlossomLeavingOneOut(s, args, out);
+    } else {
+      BlossomAveraging(s, args, out);
+    }
+  }
+
+  // BlossomLeavingOneOut is Blossom for ph = p + 1, where F is the mean of
+  // the p + 1 values f(args without args[l]). It computes the weight of
+  // each of the span's p + 1 control points in that mean, then the one
+  // weighted sum; the points are touched once, so the cost hardly grows
+  // with the point size. f without args[l] takes args[0..l-1] at de Boor
+  // levels 1..l and args[l+1..p] at levels l+1..p: its weights are
+  // S_1(args[0])^T .. S_l(args[l-1])^T T_l, where S_c(x) is the step of
+  // level c at x and T_l = S_{l+1}(args[l+1])^T .. S_p(args[p])^T [1] is
+  // shared. The sum over l then nests like Horner's rule:
+  // H_p = [1], H_{c-1} = T_{c-1} + S_c(args[c-1])^T H_c, and H_0 holds the
+  // weights. That is p(p+1) combinations of scalars (12 for a cubic) and
+  // one weighted sum, where the averaging makes 20 combinations of points.
+  void BlossomLeavingOneOut(int s, const double* args, double* out) {
+    const int p = this->p();
+    const int d = dim();
+    double* shared = scratch_.data();            // T_c
+    double* nested = scratch_.data() + (p + 1);  // H_c
+    shared[0] = 1;
+    nested[0] = 1;
+#pragma GCC unroll 8
+    for (int c = p; c >= 1; --c) {
+      StepTransposed(s, c, args[c], shared);
+      StepTransposed(s, c, args[c - 1], nested);
+#pragma GCC unroll 8
+      for (int idx = 0; idx <= p + 1 - c; ++idx) nested[idx] += shared[idx];
+    }
+    const double* points = points_.at(s - p);
+    const double mean = 1.0 / (p + 1);
+#pragma GCC unroll 4
+    for (int e = 0; e < d; ++e) {
+      double sum = 0;
+#pragma GCC unroll 8
+      for (int j = 0; j <= p; ++j) sum += nested[j] * points[j * d + e];
+      out[e] = sum * mean;
+    }
+  }
+
+  // StepTransposed turns the weights of the p + 1 - c points of level c
+  // into those of the p + 2 - c points of level c - 1 that give the same
+  // sum after the de Boor step of level c at x on span s, in place.
+  void StepTransposed(int s, int c, double x, double* weights) const {
+    const int last = p() - c;
+    double carried = Alpha(s, c, last, x) * weights[last];
+    weights[last + 1] = carried;
+#pragma GCC unroll 8
+    for (int idx = last; idx >= 0; --idx) {
+      const double alpha = Alpha(s, c, idx, x);
+      const double own = (1.0 - alpha) * weights[idx];
+      carried = idx > 0 ? Alpha(s, c, idx - 1, x) * weights[idx - 1] : 0.0;
+      weights[idx] = own + carried;
+    }
+  }
+
+  // BlossomAveraging is Blossom for any elevation: the levels A_k[c] of the
+  // class comment, one argument at a time.
+  void BlossomAveraging(int s, const double* args, double* out) {
     const int p = this->p();
     std::copy_n(points_.at(s - p), (p + 1) * dim(), Level(0));
 #pragma GCC unroll 8
@@ -308,36 +376,55 @@ class BlossomElevator {
     std::copy_n(Level(p), dim(), out);
   }
 
-  // Step sets level c to keep * level c + add * (the de Boor step of level
-  // c - 1 at x on span s; The NURBS Book eq. 5.15 with x for the knot), the
-  // weights of argument k; for c = k, where keep is 0 and add 1, to the
-  // step itself.
-  void Step(int s, int c, double x, int k) {
+  // Alpha is the weight of the right point in the de Boor step of level c
+  // at x on span s for the point i = s - p + c + idx (The NURBS Book eq.
+  // 5.15 with x for the knot).
+  double Alpha(int s, int c, int idx, double x) const {
     const int p = this->p();
+    const int i = s - p + c + idx;
+    return (x - knots_[i]) *
+           inverse_[static_cast<size_t>(i) * (p + 1) + static_cast<size_t>(c)];
+  }
+
+  // DeBoorStep writes level c (p + 1 - c points) at x on span s from level
+  // c - 1 at `from` to `to`, which may be `from`: point idx reads only
+  // points idx and idx + 1.
+  void DeBoorStep(int s, int c, double x, const double* from, double* to) {
     const int d = dim();
-    const double keep = kUnrolled
-                            ? (c < k ? static_cast<double>(k - c) / k : 0.0)
-                            : keep_[Weight(k, c)];
+#pragma GCC unroll 8
+    for (int idx = 0; idx <= p() - c; ++idx) {
+      const double alpha = Alpha(s, c, idx, x);
+      const double* left = from + static_cast<size_t>(idx) * d;
+      const double* right = left + d;
+      double* target = to + static_cast<size_t>(idx) * d;
+#pragma GCC unroll 4
+      for (int e = 0; e < d; ++e) {
+        target[e] = (1.0 - alpha) * left[e] + alpha * right[e];
+      }
+    }
+  }
+
+  // Step sets level c to keep * level c + add * (the de Boor step of level
+  // c - 1 at x on span s), the weights of argument k; for c = k, where
+  // keep is 0 and add 1, to the step itself.
+  void Step(int s, int c, double x, int k) {
+    if (c == k) {
+      DeBoorStep(s, c, x, Level(c - 1), Level(c));
+      return;
+    }
+    const int d = dim();
+    const double keep =
+        kUnrolled ? static_cast<double>(k - c) / k : keep_[Weight(k, c)];
     const double add =
         kUnrolled ? static_cast<double>(c) / k : add_[Weight(k, c)];
     const double* from = Level(c - 1);
     double* to = Level(c);
 #pragma GCC unroll 8
-    for (int idx = 0; idx <= p - c; ++idx) {
-      const int i = s - p + c + idx;
-      const double alpha =
-          (x - knots_[i]) *
-          inverse_[static_cast<size_t>(i) * (p + 1) + static_cast<size_t>(c)];
+    for (int idx = 0; idx <= p() - c; ++idx) {
+      const double alpha = Alpha(s, c, idx, x);
       const double* left = from + static_cast<size_t>(idx) * d;
       const double* right = left + d;
       double* target = to + static_cast<size_t>(idx) * d;
-      if (c == k) {
-#pragma GCC unroll 4
-        for (int e = 0; e < d; ++e) {
-          target[e] = (1.0 - alpha) * left[e] + alpha * right[e];
-        }
-        continue;
-      }
 #pragma GCC unroll 4
       for (int e = 0; e < d; ++e) {
         const double value = (1.0 - alpha) * left[e] + alpha * right[e];
@@ -352,12 +439,19 @@ class BlossomElevator {
   const std::vector<double>& knots_;
   const PointArray& points_;
   const std::vector<double> inverse_;  // InverseDifferences
+  // Room for `points` points, on the stack when the degree and the point
+  // size are compiled in.
+  template <int kPoints>
+  using Buffer = std::conditional_t<
+      kDegree == kAnyDegree || kDim == 0, std::vector<double>,
+      std::array<double, std::max(kPoints, 1) * std::max(kDim, 1)>>;
+  static constexpr int kFixedDegree = std::max(kDegree, 0);
   // Level c (p + 1 - c points) at Level(c).
-  std::conditional_t<kDegree == kAnyDegree || kDim == 0, std::vector<double>,
-                     std::array<double, (std::max(kDegree, 0) + 1) *
-                                            (std::max(kDegree, 0) + 2) / 2 *
-                                            std::max(kDim, 1)>>
-      levels_{};
+  Buffer<(kFixedDegree + 1) * (kFixedDegree + 2) / 2> levels_{};
+  // BlossomLeavingOneOut's two rows of p + 1 weights.
+  std::conditional_t<kDegree == kAnyDegree, std::vector<double>,
+                     std::array<double, 2 * (kFixedDegree + 1)>>
+      scratch_{};
   std::vector<double> keep_;  // at Weight(k, c); empty when kUnrolled
   std::vector<double> add_;
 };
