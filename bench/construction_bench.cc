@@ -59,6 +59,24 @@ void BM_W6_ElevateW1ByOne(benchmark::State& state) {
 }
 BENCHMARK(BM_W6_ElevateW1ByOne)->Unit(benchmark::kMicrosecond);
 
+// The W6 curve raised by 2 and 3, where each control point averages over
+// subsets of its arguments instead of leaving one out.
+void BM_ElevateW1By(benchmark::State& state) {
+  const std::vector<double> control = freeform::bench::RandomPoints(1, 100, 3);
+  const std::vector<double> knots =
+      freeform::bench::ClampedUniformKnots(100, 3);
+  const freeform::BSplineCurveView curve{.degree = 3,
+                                         .control_points = {3, control},
+                                         .knots = knots,
+                                         .weights = {}};
+  const auto by = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    auto elevated = freeform::ElevateBSplineCurve(curve, by);
+    benchmark::DoNotOptimize(elevated);
+  }
+}
+BENCHMARK(BM_ElevateW1By)->Arg(2)->Arg(3)->Unit(benchmark::kMicrosecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

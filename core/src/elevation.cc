@@ -176,20 +176,21 @@ std::vector<double> ElevatedKnots(const std::vector<double>& knots, int by) {
 
 // BlossomElevator computes the control points of a clamped spline raised
 // from degree p to ph = p + by by blossoming (Ramshaw, "Blossoms are polar
-// forms", CAGD 6 (1989)): on every knot span the elevated piece has the
+// forms", CAGD 6 (1989); docs/references.md, 'Degree elevation of B-spline
+// curves by blossoming'): on every knot span the elevated piece has the
 // blossom F(x_1..x_ph) = average over the p-subsets S of f(x_S), f the
 // piece's blossom, and the control point Q_i is F at the new knots
-// Uh_{i+1}..Uh_{i+ph} on any non-empty span of its support. The average over
-// subsets is built one argument at a time, A_k[c] = (k-c)/k A_{k-1}[c] +
-// c/k step(A_{k-1}[c-1], x_k), where A_k[c] is the average of the level-c de
-// Boor points over the c-subsets of the first k arguments; every term is a
-// knot-insertion-like combination, so nothing is extrapolated beyond what
-// evaluation does, unlike the knot removal of The NURBS Book's A5.9, which
-// loses up to 6 digits at degree 11 (measured on uniform knots). For an
-// elevation by 1 the average has only p + 1 terms, each f without one
-// argument, and is taken directly (BlossomLeavingOneOut).
+// Uh_{i+1}..Uh_{i+ph} on any non-empty span of its support. F is linear in
+// the span's p + 1 control points, so each Q_i is one weighted sum of them:
+// the weights come from running the de Boor steps of F backwards on
+// scalars (each step transposed), from the weight 1 on the last level down
+// to the control points. The points are touched once, so the cost hardly
+// grows with the point size. Every step is a knot-insertion-like
+// combination, so nothing is extrapolated beyond what evaluation does,
+// unlike the knot removal of The NURBS Book's A5.9, which loses up to 6
+// digits at degree 11 (measured on uniform knots).
 // kDegree, kDim and kBy are the degree p, the point size and the
-// elevation compiled in (the steps then unroll and the levels stay on the
+// elevation compiled in (the steps then unroll and the weights stay on the
 // stack), or kAnyDegree and 0 for values known only at run time; the
 // arithmetic is the same.
 template <int kDegree, int kDim, int kBy = 0>
@@ -202,24 +203,10 @@ class BlossomElevator {
         knots_(spline.knots),
         points_(spline.points),
         inverse_(InverseDifferences(knots_, p_)) {
-    // Level c starts at dim * sum_{c' < c} (p + 1 - c').
-    if constexpr (kDegree == kAnyDegree || kDim == 0) {
-      levels_.resize(static_cast<size_t>(p_ + 1) * (p_ + 2) / 2 * dim_);
-    }
     if constexpr (kDegree == kAnyDegree) {
-      scratch_.resize(2 * static_cast<size_t>(p_ + 1));
-    }
-    // The weights of A_k[c] for k = 1..ph, c = 1..min(k, p), unless the
-    // unrolled steps have them as constants.
-    if constexpr (!kUnrolled) {
-      keep_.resize(static_cast<size_t>(ph_ + 1) * (p_ + 1));
-      add_.resize(keep_.size());
-      for (int k = 1; k <= ph_; ++k) {
-        for (int c = 1; c <= std::min(k, p_); ++c) {
-          keep_[Weight(k, c)] = c < k ? static_cast<double>(k - c) / k : 0.0;
-          add_[Weight(k, c)] = static_cast<double>(c) / k;
-        }
-      }
+      const size_t triangle = static_cast<size_t>(p_ + 1) * (p_ + 2) / 2;
+      shared_.resize(triangle);
+      nested_.resize(triangle);
     }
   }
 
@@ -230,34 +217,26 @@ class BlossomElevator {
     result.points.values.resize(static_cast<size_t>(count) * dim_);
     CancellationPoll poll(cancel);
     const size_t work_per_point =
-        static_cast<size_t>(ph_) * (p() + 1) * (p() + 1) * dim_;
+        static_cast<size_t>(ph_) * (p() + 1) * (p() + 1) + (p() + 1) * dim_;
     int span = p();
     for (int i = 0; i < count; ++i) {
       if (absl::Status status = poll.Done(work_per_point); !status.ok()) {
         return status;
       }
       span = SpanFor(uh, i, span);
-      Blossom(span, &uh[i + 1], result.points.at(i));
+      const double* weights = ph() == p() + 1
+                                  ? LeaveOneOutWeights(span, &uh[i + 1])
+                                  : AveragingWeights(span, &uh[i + 1]);
+      WeightedSum(span, weights, result.points.at(i));
     }
     return result;
   }
 
  private:
-  // Whether the loops over k and c unroll, their weights then constants.
-  static constexpr bool kUnrolled = kDegree != kAnyDegree && kBy > 0;
-
   int p() const { return DegreeOf<kDegree>(p_); }
-  int ph() const {
-    if constexpr (kUnrolled) {
-      return kDegree + kBy;
-    } else {
-      return ph_;
-    }
-  }
+  int ph() const { return kDegree != kAnyDegree && kBy > 0 ? p() + kBy : ph_; }
   int dim() const { return kDim > 0 ? kDim : dim_; }
-  size_t Weight(int k, int c) const {
-    return static_cast<size_t>(k) * (p() + 1) + c;
-  }
+
   // InverseDifferences returns 1 / (U_{i+p+1-c} - U_i) at i * (p + 1) + c
   // for c = 1..p (0 where the difference is 0 or runs past the knots): the
   // denominators of the de Boor steps, divided once per knot instead of
@@ -278,11 +257,6 @@ class BlossomElevator {
     return inverse;
   }
 
-  double* Level(int c) {
-    return levels_.data() +
-           static_cast<size_t>(c * (2 * p() + 3 - c) / 2) * dim();
-  }
-
   // SpanFor returns the original span of the non-empty new span nearest the
   // middle of Q_i's support [Uh_i, Uh_{i+ph+1}], searched from `hint` (the
   // previous point's span: the spans of consecutive points are close).
@@ -299,137 +273,99 @@ class BlossomElevator {
                         uh[best], knots_);
   }
 
-  // Blossom writes F(args[0..ph-1]) of the elevated piece on span s.
-  void Blossom(int s, const double* args, double* out) {
-    if (ph() == p() + 1) {
-      BlossomLeavingOneOut(s, args, out);
-    } else {
-      BlossomAveraging(s, args, out);
+  // Level c (p + 1 - c weights) of a triangle of weights.
+  double* Level(double* triangle, int c) const {
+    return triangle + c * (2 * p() + 3 - c) / 2;
+  }
+
+  // LeaveOneOutWeights returns the weights for ph = p + 1, where F is the
+  // mean of the p + 1 values f(args without args[l]). f without args[l]
+  // takes args[0..l-1] at de Boor levels 1..l and args[l+1..p] at levels
+  // l+1..p: its weights are S_1(args[0])^T .. S_l(args[l-1])^T T_l, where
+  // S_c(x) is the step of level c at x and T_l = S_{l+1}(args[l+1])^T ..
+  // S_p(args[p])^T [1] is shared. The sum over l then nests like Horner's
+  // rule: H_p = [1], H_{c-1} = T_{c-1} + S_c(args[c-1])^T H_c, and
+  // H_0 / (p + 1) holds the weights. That is p(p+1) combinations of scalars
+  // (12 for a cubic) where the averaging makes 20.
+  const double* LeaveOneOutWeights(int s, const double* args) {
+    const int p = this->p();
+    double* shared = shared_.data();  // T_c at Level(shared, c)
+    double* nested = nested_.data();  // H_c
+    *Level(shared, p) = 1;
+    *Level(nested, p) = 1;
+#pragma GCC unroll 8
+    for (int c = p; c >= 1; --c) {
+      std::fill_n(Level(shared, c - 1), p + 2 - c, 0.0);
+      AddStepTransposed(s, c, args[c], 1.0, Level(shared, c),
+                        Level(shared, c - 1));
+      std::copy_n(Level(shared, c - 1), p + 2 - c, Level(nested, c - 1));
+      AddStepTransposed(s, c, args[c - 1], 1.0, Level(nested, c),
+                        Level(nested, c - 1));
+    }
+    const double mean = 1.0 / (p + 1);
+#pragma GCC unroll 8
+    for (int j = 0; j <= p; ++j) nested[j] *= mean;
+    return nested;
+  }
+
+  // AveragingWeights returns the weights for any elevation. Forwards, the
+  // average over subsets is built one argument at a time: A_k[c], the
+  // average over the c-subsets of the first k arguments of the level-c de
+  // Boor points, is (k-c)/k A_{k-1}[c] + c/k S_c(x_k) A_{k-1}[c-1], for
+  // c = min(k, p) down to 1, and F = A_ph[p]. Backwards, from the weight 1
+  // on level p, each of these updates is undone in the reverse order.
+  const double* AveragingWeights(int s, const double* args) {
+    const int p = this->p();
+    double* weights = nested_.data();
+    std::fill_n(weights, (p + 1) * (p + 2) / 2, 0.0);
+    *Level(weights, p) = 1;
+#pragma GCC unroll 8
+    for (int k = ph(); k >= 1; --k) {
+#pragma GCC unroll 8
+      for (int c = 1; c <= std::min(k, p); ++c) {
+        AddStepTransposed(s, c, args[k - 1], static_cast<double>(c) / k,
+                          Level(weights, c), Level(weights, c - 1));
+        const double keep = static_cast<double>(k - c) / k;
+#pragma GCC unroll 8
+        for (int idx = 0; idx <= p - c; ++idx) {
+          Level(weights, c)[idx] *= keep;
+        }
+      }
+    }
+    return weights;
+  }
+
+  // AddStepTransposed adds `scale` times the weights of the p + 2 - c
+  // points of level c - 1 that give the same sum as `from`, the weights of
+  // the p + 1 - c points of level c, after the de Boor step of level c at
+  // x on span s (The NURBS Book eq. 5.15 with x for the knot), to `to`.
+  void AddStepTransposed(int s, int c, double x, double scale,
+                         const double* from, double* to) const {
+    const int p = this->p();
+#pragma GCC unroll 8
+    for (int idx = 0; idx <= p - c; ++idx) {
+      const int i = s - p + c + idx;
+      const double alpha =
+          (x - knots_[i]) *
+          inverse_[static_cast<size_t>(i) * (p + 1) + static_cast<size_t>(c)];
+      const double weight = scale * from[idx];
+      to[idx] += (1.0 - alpha) * weight;
+      to[idx + 1] += alpha * weight;
     }
   }
 
-  // BlossomLeavingOneOut is Blossom for ph = p + 1, where F is the mean of
-  // the p + 1 values f(args without args[l]). It computes the weight of
-  // each of the span's p + 1 control points in that mean, then the one
-  // weighted sum; the points are touched once, so the cost hardly grows
-  // with the point size. f without args[l] takes args[0..l-1] at de Boor
-  // levels 1..l and args[l+1..p] at levels l+1..p: its weights are
-  // S_1(args[0])^T .. S_l(args[l-1])^T T_l, where S_c(x) is the step of
-  // level c at x and T_l = S_{l+1}(args[l+1])^T .. S_p(args[p])^T [1] is
-  // shared. The sum over l then nests like Horner's rule:
-  // H_p = [1], H_{c-1} = T_{c-1} + S_c(args[c-1])^T H_c, and H_0 holds the
-  // weights. That is p(p+1) combinations of scalars (12 for a cubic) and
-  // one weighted sum, where the averaging makes 20 combinations of points.
-  void BlossomLeavingOneOut(int s, const double* args, double* out) {
+  // WeightedSum writes the sum of the span's control points P_{s-p+j} times
+  // weights[j].
+  void WeightedSum(int s, const double* weights, double* out) const {
     const int p = this->p();
     const int d = dim();
-    double* shared = scratch_.data();            // T_c
-    double* nested = scratch_.data() + (p + 1);  // H_c
-    shared[0] = 1;
-    nested[0] = 1;
-#pragma GCC unroll 8
-    for (int c = p; c >= 1; --c) {
-      StepTransposed(s, c, args[c], shared);
-      StepTransposed(s, c, args[c - 1], nested);
-#pragma GCC unroll 8
-      for (int idx = 0; idx <= p + 1 - c; ++idx) nested[idx] += shared[idx];
-    }
     const double* points = points_.at(s - p);
-    const double mean = 1.0 / (p + 1);
 #pragma GCC unroll 4
     for (int e = 0; e < d; ++e) {
       double sum = 0;
 #pragma GCC unroll 8
-      for (int j = 0; j <= p; ++j) sum += nested[j] * points[j * d + e];
-      out[e] = sum * mean;
-    }
-  }
-
-  // StepTransposed turns the weights of the p + 1 - c points of level c
-  // into those of the p + 2 - c points of level c - 1 that give the same
-  // sum after the de Boor step of level c at x on span s, in place.
-  void StepTransposed(int s, int c, double x, double* weights) const {
-    const int last = p() - c;
-    double carried = Alpha(s, c, last, x) * weights[last];
-    weights[last + 1] = carried;
-#pragma GCC unroll 8
-    for (int idx = last; idx >= 0; --idx) {
-      const double alpha = Alpha(s, c, idx, x);
-      const double own = (1.0 - alpha) * weights[idx];
-      carried = idx > 0 ? Alpha(s, c, idx - 1, x) * weights[idx - 1] : 0.0;
-      weights[idx] = own + carried;
-    }
-  }
-
-  // BlossomAveraging is Blossom for any elevation: the levels A_k[c] of the
-  // class comment, one argument at a time.
-  void BlossomAveraging(int s, const double* args, double* out) {
-    const int p = this->p();
-    std::copy_n(points_.at(s - p), (p + 1) * dim(), Level(0));
-#pragma GCC unroll 8
-    for (int k = 1; k <= ph(); ++k) {
-#pragma GCC unroll 8
-      for (int c = std::min(k, p); c >= 1; --c) {
-        Step(s, c, args[k - 1], k);
-      }
-    }
-    std::copy_n(Level(p), dim(), out);
-  }
-
-  // Alpha is the weight of the right point in the de Boor step of level c
-  // at x on span s for the point i = s - p + c + idx (The NURBS Book eq.
-  // 5.15 with x for the knot).
-  double Alpha(int s, int c, int idx, double x) const {
-    const int p = this->p();
-    const int i = s - p + c + idx;
-    return (x - knots_[i]) *
-           inverse_[static_cast<size_t>(i) * (p + 1) + static_cast<size_t>(c)];
-  }
-
-  // DeBoorStep writes level c (p + 1 - c points) at x on span s from level
-  // c - 1 at `from` to `to`, which may be `from`: point idx reads only
-  // points idx and idx + 1.
-  void DeBoorStep(int s, int c, double x, const double* from, double* to) {
-    const int d = dim();
-#pragma GCC unroll 8
-    for (int idx = 0; idx <= p() - c; ++idx) {
-      const double alpha = Alpha(s, c, idx, x);
-      const double* left = from + static_cast<size_t>(idx) * d;
-      const double* right = left + d;
-      double* target = to + static_cast<size_t>(idx) * d;
-#pragma GCC unroll 4
-      for (int e = 0; e < d; ++e) {
-        target[e] = (1.0 - alpha) * left[e] + alpha * right[e];
-      }
-    }
-  }
-
-  // Step sets level c to keep * level c + add * (the de Boor step of level
-  // c - 1 at x on span s), the weights of argument k; for c = k, where
-  // keep is 0 and add 1, to the step itself.
-  void Step(int s, int c, double x, int k) {
-    if (c == k) {
-      DeBoorStep(s, c, x, Level(c - 1), Level(c));
-      return;
-    }
-    const int d = dim();
-    const double keep =
-        kUnrolled ? static_cast<double>(k - c) / k : keep_[Weight(k, c)];
-    const double add =
-        kUnrolled ? static_cast<double>(c) / k : add_[Weight(k, c)];
-    const double* from = Level(c - 1);
-    double* to = Level(c);
-#pragma GCC unroll 8
-    for (int idx = 0; idx <= p() - c; ++idx) {
-      const double alpha = Alpha(s, c, idx, x);
-      const double* left = from + static_cast<size_t>(idx) * d;
-      const double* right = left + d;
-      double* target = to + static_cast<size_t>(idx) * d;
-#pragma GCC unroll 4
-      for (int e = 0; e < d; ++e) {
-        const double value = (1.0 - alpha) * left[e] + alpha * right[e];
-        target[e] = keep * target[e] + add * value;
-      }
+      for (int j = 0; j <= p; ++j) sum += weights[j] * points[j * d + e];
+      out[e] = sum;
     }
   }
 
@@ -439,21 +375,13 @@ class BlossomElevator {
   const std::vector<double>& knots_;
   const PointArray& points_;
   const std::vector<double> inverse_;  // InverseDifferences
-  // Room for `points` points, on the stack when the degree and the point
-  // size are compiled in.
-  template <int kPoints>
-  using Buffer = std::conditional_t<
-      kDegree == kAnyDegree || kDim == 0, std::vector<double>,
-      std::array<double, std::max(kPoints, 1) * std::max(kDim, 1)>>;
+  // Two triangles of weights, on the stack when the degree is compiled in.
   static constexpr int kFixedDegree = std::max(kDegree, 0);
-  // Level c (p + 1 - c points) at Level(c).
-  Buffer<(kFixedDegree + 1) * (kFixedDegree + 2) / 2> levels_{};
-  // BlossomLeavingOneOut's two rows of p + 1 weights.
-  std::conditional_t<kDegree == kAnyDegree, std::vector<double>,
-                     std::array<double, 2 * (kFixedDegree + 1)>>
-      scratch_{};
-  std::vector<double> keep_;  // at Weight(k, c); empty when kUnrolled
-  std::vector<double> add_;
+  using Triangle = std::conditional_t<
+      kDegree == kAnyDegree, std::vector<double>,
+      std::array<double, (kFixedDegree + 1) * (kFixedDegree + 2) / 2>>;
+  Triangle shared_{};
+  Triangle nested_{};
 };
 
 // RunBlossomElevator runs BlossomElevator compiled for the spline's degree
