@@ -252,9 +252,8 @@ def document(about, workloads, figures, operations):
         "so only scipy's averaging checksum matches freeform's.", "",
         "## Every figure and its checksum", "",
         "The checksum is the sum of x + y + z over every output point (W1-W4, "
-        "W7), the sum of the control points' coordinates (W5), the number of "
-        "control points (W6): equal checksums show that the same geometry "
-        "was computed.", ""] + figures + [
+        "W7), the sum of the control points' coordinates (W5, W6): equal "
+        "checksums show that the same geometry was computed.", ""] + figures + [
         "", "## Operations without a peer figure", "",
         "`bench/operations_bench.cc` (its header says what each one does); "
         "the checksums are sums of the results' coordinates.", ""] + \

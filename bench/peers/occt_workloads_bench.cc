@@ -14,7 +14,8 @@
 //       averaging, so the checksum, the sum of the poles' coordinates,
 //       differs)
 //   W6  Geom_BSplineCurve::IncreaseDegree by 1 of the W1 curve, the time of
-//       Copy() + IncreaseDegree less that of Copy() alone; checksum: poles
+//       Copy() + IncreaseDegree less that of Copy() alone; checksum: the sum
+//       of the poles' coordinates
 //
 // Built only with -DFREEFORM_PEER_BENCHMARKS=ON when CMake finds
 // OpenCASCADE:
@@ -188,7 +189,7 @@ void RunElevation(int runs) {
     }
   });
   PrintSeconds("W6", "occt:Geom_BSplineCurve::IncreaseDegree",
-               (elevate_seconds - copy_seconds) / kElevations, copy->NbPoles());
+               (elevate_seconds - copy_seconds) / kElevations, SumPoles(*copy));
 }
 
 }  // namespace

@@ -321,8 +321,9 @@ class BlossomElevator {
     *Level(weights, p) = 1;
 #pragma GCC unroll 8
     for (int k = ph(); k >= 1; --k) {
+      const int levels = std::min(k, p);
 #pragma GCC unroll 8
-      for (int c = 1; c <= std::min(k, p); ++c) {
+      for (int c = 1; c <= levels; ++c) {
         AddStepTransposed(s, c, args[k - 1], static_cast<double>(c) / k,
                           Level(weights, c), Level(weights, c - 1));
         const double keep = static_cast<double>(k - c) / k;
