@@ -217,7 +217,8 @@ class BlossomElevator {
     result.points.values.resize(static_cast<size_t>(count) * dim_);
     CancellationPoll poll(cancel);
     const size_t work_per_point =
-        static_cast<size_t>(ph_) * (p() + 1) * (p() + 1) + (p() + 1) * dim_;
+        static_cast<size_t>(ph_) * (p() + 1) * (p() + 1) +
+        static_cast<size_t>(p() + 1) * dim_;
     int span = p();
     for (int i = 0; i < count; ++i) {
       if (absl::Status status = poll.Done(work_per_point); !status.ok()) {
