@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "core_workloads.h"
 #include "freeform/core/elevation.h"
 #include "freeform/core/interpolation.h"
 #include "workloads.h"
@@ -45,16 +46,10 @@ BENCHMARK(BM_W5_GlobalCubicInterpolation)
 // the sum of the elevated control points' coordinates (OpenCASCADE's W6
 // figure reports the same sum).
 void ElevateW1(benchmark::State& state, int by) {
-  const std::vector<double> control = freeform::bench::RandomPoints(1, 100, 3);
-  const std::vector<double> knots =
-      freeform::bench::ClampedUniformKnots(100, 3);
-  const freeform::BSplineCurveView curve{.degree = 3,
-                                         .control_points = {3, control},
-                                         .knots = knots,
-                                         .weights = {}};
+  const freeform::BSplineCurveData curve = freeform::bench::W1Curve();
   absl::StatusOr<freeform::BSplineCurveData> elevated;
   for (auto _ : state) {
-    elevated = freeform::ElevateBSplineCurve(curve, by);
+    elevated = freeform::ElevateBSplineCurve(curve.view(), by);
     benchmark::DoNotOptimize(elevated);
   }
   if (!elevated.ok()) {

@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "core_workloads.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/thread_pool.h"
 #include "workloads.h"
@@ -110,8 +111,7 @@ BENCHMARK(BM_HelperStartDelay)->UseManualTime()->Unit(benchmark::kMicrosecond);
 class ChunkTrace {
  public:
   ChunkTrace()
-      : control_(freeform::bench::RandomPoints(1, 100, 3)),
-        knots_(freeform::bench::ClampedUniformKnots(100, 3)),
+      : curve_(freeform::bench::W1Curve()),
         parameters_(freeform::bench::UniformParameters(1'000'000)),
         output_(parameters_.size() * 3) {}
 
@@ -121,22 +121,18 @@ class ChunkTrace {
   // Evaluates the chunk [begin, end) on the calling thread.
   void Evaluate(size_t begin, size_t end) {
     absl::Span<double> points(output_.data() + 3 * begin, 3 * (end - begin));
-    const freeform::BSplineCurveView curve{
-        .degree = 3,
-        .control_points = {.dimension = 3, .coordinates = control_},
-        .knots = knots_};
     const absl::Status status = freeform::EvaluateBSplineCurve(
-        curve, absl::MakeConstSpan(parameters_).subspan(begin, end - begin),
+        curve_.view(),
+        absl::MakeConstSpan(parameters_).subspan(begin, end - begin),
         absl::MakeSpan(&points, 1), {});
     benchmark::DoNotOptimize(status.ok());
   }
 
   // ExecutionContext's default grain.
-  static constexpr size_t kGrain = 4096;
+  inline static const size_t kGrain = freeform::ExecutionContext{}.grain;
 
  private:
-  std::vector<double> control_;
-  std::vector<double> knots_;
+  freeform::BSplineCurveData curve_;
   std::vector<double> parameters_;
   std::vector<double> output_;
 };
