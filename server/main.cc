@@ -70,6 +70,9 @@ ABSL_FLAG(uint64_t, max_simplify_moves, uint64_t{1} << 35,
           "Control-point values one knot simplification may move (interior "
           "knots times the net's values; its array moves grow with the "
           "square of the size)");
+ABSL_FLAG(absl::Duration, max_call_time, absl::Seconds(60),
+          "Longest time a call may run: its deadline when the client sets "
+          "none or a later one (0 = no server-side limit)");
 ABSL_FLAG(uint64_t, memory_budget, 768ull << 20,
           "Bytes the process may use: calls together may reserve 3/4 of it "
           "for their answers and work (a call that does not fit gets "
@@ -117,6 +120,7 @@ freeform::server::ServerOptions OptionsFromFlags() {
       absl::GetFlag(FLAGS_max_closest_point_pieces);
   limits.max_simplify_moves = absl::GetFlag(FLAGS_max_simplify_moves);
   limits.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget);
+  limits.max_call_time = absl::GetFlag(FLAGS_max_call_time);
   return options;
 }
 

@@ -330,7 +330,7 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Tessellate(
       [this, context, request, response]() -> absl::StatusOr<UnaryWork> {
         const ServiceLimits& limits = frame_->limits();
         CancellationToken planning;
-        WatchCall(*context, planning);
+        WatchCall(*context, limits.max_call_time, planning);
         absl::StatusOr<MeshInput> input = PrepareMesh(
             *request, limits, static_cast<uint64_t>(limits.max_message_bytes),
             &planning);
@@ -362,7 +362,7 @@ SurfaceServiceImpl::TessellateStream(
       [this, context, request]() -> absl::StatusOr<Work> {
         const ServiceLimits& limits = frame_->limits();
         CancellationToken planning;
-        WatchCall(*context, planning);
+        WatchCall(*context, limits.max_call_time, planning);
         absl::StatusOr<MeshInput> input =
             PrepareMesh(*request, limits, UINT64_MAX, &planning);
         if (!input.ok()) return input.status();
