@@ -93,10 +93,14 @@ struct KeyFree {
 using Certificate = std::unique_ptr<X509, X509Free>;
 using PrivateKey = std::unique_ptr<EVP_PKEY, KeyFree>;
 
-// Empties OpenSSL's error queue of this thread when it goes out of scope:
-// a failed parse here must leave nothing for gRPC's own use of OpenSSL.
+// Empties OpenSSL's error queue of this thread on entering a check (its
+// last error is the check's) and on leaving it: a failed parse here must
+// leave nothing for gRPC's own use of OpenSSL.
 struct ClearOpenSslErrors {
+  ClearOpenSslErrors() { ERR_clear_error(); }
   ~ClearOpenSslErrors() { ERR_clear_error(); }
+  ClearOpenSslErrors(const ClearOpenSslErrors&) = delete;
+  ClearOpenSslErrors& operator=(const ClearOpenSslErrors&) = delete;
 };
 
 // MemoryBio reads `pem`, which ReadTlsFile kept below 1 MiB (an int).
@@ -113,9 +117,11 @@ int NoPassphrase(char* /*buffer*/, int /*size*/, int /*writing*/,
   return -1;
 }
 
-// FirstCertificate returns the first certificate of the PEM chain of
-// `flag` (the server's own, for the certificate file), after checking that
-// every PEM block of the file is a certificate, as gRPC will read it.
+// FirstCertificate returns the first certificate of the PEM file of `flag`
+// (the server's own, for the certificate file), after checking that every
+// certificate block of the file parses, as gRPC will read them all. Like
+// gRPC (and OpenSSL's PEM reader), it skips text outside the blocks and
+// blocks of other types.
 absl::StatusOr<Certificate> FirstCertificate(const char* flag,
                                              const std::string& path,
                                              const std::string& pem) {
@@ -128,8 +134,8 @@ absl::StatusOr<Certificate> FirstCertificate(const char* flag,
              PEM_read_bio_X509(bio.get(), nullptr, NoPassphrase, nullptr))) {
     if (count++ == 0) first = std::move(next);
   }
-  // The loop ends at the end of the data (no further PEM start line) or at
-  // a block that is not a certificate.
+  // The loop ends at the end of the data (no further certificate block)
+  // or at a certificate block that does not parse.
   const unsigned long error = ERR_peek_last_error();
   const bool clean_end = ERR_GET_LIB(error) == ERR_LIB_PEM &&
                          ERR_GET_REASON(error) == PEM_R_NO_START_LINE;
@@ -139,8 +145,10 @@ absl::StatusOr<Certificate> FirstCertificate(const char* flag,
   }
   if (!clean_end) {
     return absl::InvalidArgumentError(
-        absl::StrCat(flag, "=", path, " holds something after certificate ",
-                     count, " that is not a PEM certificate"));
+        absl::StrCat(flag, "=", path,
+                     " holds a PEM certificate block after "
+                     "certificate ",
+                     count, " that does not parse"));
   }
   return first;
 }

@@ -160,6 +160,15 @@ TEST(FreeformdTlsConfig, FilesWithoutWhatTheFlagNeedsAreNamed) {
   EXPECT_THAT(StartFailure({"--tls_cert=" + not_pem, key}),
               HasSubstr(absl::StrCat("--tls_cert=", not_pem,
                                      " holds no PEM certificate")));
+  // The server's chain, then a certificate block that does not parse.
+  const std::string broken_chain =
+      WriteTempFile(ReadLog(certificates.Path("server.pem")) +
+                    "-----BEGIN CERTIFICATE-----\nbm90IERFUg==\n"
+                    "-----END CERTIFICATE-----\n");
+  EXPECT_THAT(StartFailure({"--tls_cert=" + broken_chain, key}),
+              HasSubstr(absl::StrCat("--tls_cert=", broken_chain,
+                                     " holds a PEM certificate block after "
+                                     "certificate 1 that does not parse")));
   // A certificate where the key should be.
   EXPECT_THAT(
       StartFailure({cert, "--tls_key=" + certificates.Path("client.pem")}),
