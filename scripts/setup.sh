@@ -23,8 +23,11 @@ packages=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libabsl-dev libhwy-dev libspdlog-dev libcli11-dev nlohmann-json3-dev
   # freeformd's Prometheus metrics (--metrics_listen): prometheus-cpp core
-  # and pull (its HTTP exposer, on civetweb).
-  prometheus-cpp-dev
+  # and pull (its HTTP exposer), on civetweb, whose options and request
+  # hook freeformd sets.
+  prometheus-cpp-dev libcivetweb-dev
+  # freeformd checks its TLS key against its certificate with libcrypto.
+  libssl-dev
   # grpc/health/v1/health.proto for the client's health check.
   grpc-proto
 )
