@@ -13,16 +13,13 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Conditioning returns max(1, max(|a|, |b|) / (b - a)) over the
-// non-empty spans between consecutive `breakpoints`.
-double Conditioning(absl::Span<const double> breakpoints) {
-  double worst = 1.0;
-  for (size_t k = 1; k < breakpoints.size(); ++k) {
-    const double a = breakpoints[k - 1], b = breakpoints[k];
-    if (!(b > a)) continue;
-    worst = std::max(worst, std::max(std::abs(a), std::abs(b)) / (b - a));
-  }
-  return worst;
+// PieceStart returns the largest breakpoint <= x (the first one when x is
+// below them all): where the piece holding x starts.
+double PieceStart(absl::Span<const double> breakpoints, double x) {
+  if (breakpoints.empty()) return 0.0;
+  const auto after =
+      std::upper_bound(breakpoints.begin(), breakpoints.end(), x);
+  return after == breakpoints.begin() ? breakpoints.front() : *(after - 1);
 }
 
 // The measures of a set of Bezier pieces (coordinates, weights).
@@ -32,7 +29,7 @@ struct PieceMeasures {
   bool polynomial = true;
   std::vector<double> lower, upper;
 
-  PieceMeasures(int dimension)
+  explicit PieceMeasures(int dimension)
       : lower(static_cast<size_t>(dimension), kInf),
         upper(static_cast<size_t>(dimension), -kInf) {}
 
@@ -52,6 +49,20 @@ struct PieceMeasures {
     }
   }
 };
+
+// MovedBack returns `values` with every value of the axes in `axes` (bit
+// k for values k, k + stride, ...) one ulp lower, but not below `start`.
+std::vector<double> MovedBack(absl::Span<const double> values, size_t stride,
+                              unsigned axes, const double* start) {
+  std::vector<double> moved(values.begin(), values.end());
+  for (size_t k = 0; k < moved.size(); ++k) {
+    const size_t axis = k % stride;
+    if ((axes >> axis) & 1u) {
+      moved[k] = std::max(start[axis], std::nextafter(moved[k], -kInf));
+    }
+  }
+  return moved;
+}
 
 }  // namespace
 
@@ -74,12 +85,39 @@ double Norm(const double* a, int dimension) {
   return Distance(a, zero.data(), dimension);
 }
 
+bool AllFinite(absl::Span<const double> values) {
+  return std::all_of(values.begin(), values.end(),
+                     [](double v) { return std::isfinite(v); });
+}
+
 double LargestMagnitude(absl::Span<const double> values) {
   double largest = 0.0;
   for (double v : values) {
     if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
   }
   return largest;
+}
+
+double Evaluation::DistanceTo(size_t k, absl::Span<const double> x) const {
+  double best = std::numeric_limits<double>::quiet_NaN();
+  if (!AllFinite(x)) return best;
+  for (size_t side = 0; side < sides_.size(); ++side) {
+    const absl::Span<const double> p = Side(side, k);
+    if (!AllFinite(p)) continue;
+    const double d = Distance(p.data(), x.data(), dimension_);
+    if (!(d >= best)) best = d;
+  }
+  return best;
+}
+
+double Evaluation::Gap(size_t k, const Evaluation& other,
+                       size_t other_k) const {
+  double best = std::numeric_limits<double>::quiet_NaN();
+  for (size_t side = 0; side < other.sides_.size(); ++side) {
+    const double d = DistanceTo(k, other.Side(side, other_k));
+    if (!(d >= best)) best = d;
+  }
+  return best;
 }
 
 // ---------------------------------------------------------------- curves --
@@ -90,6 +128,9 @@ absl::StatusOr<OracleCurve> OracleCurve::Create(
   absl::StatusOr<Curve> curve = server::PrepareCurve(message, limits, field);
   if (!curve.ok()) return curve.status();
   OracleCurve oracle(*std::move(curve));
+  if (const auto* bspline = std::get_if<BSplineCurve>(&oracle.curve_)) {
+    oracle.continuous_ = bspline->degree() > 0;
+  }
   absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(oracle.curve_);
   if (!pieces.ok()) return pieces.status();
   oracle.pieces_ = *std::move(pieces);
@@ -102,7 +143,6 @@ absl::StatusOr<OracleCurve> OracleCurve::Create(
   oracle.polynomial_ = measures.polynomial;
   oracle.hull_lower_ = std::move(measures.lower);
   oracle.hull_upper_ = std::move(measures.upper);
-  oracle.conditioning_ = Conditioning(oracle.pieces_.breakpoints);
   return oracle;
 }
 
@@ -116,6 +156,38 @@ absl::StatusOr<std::vector<double>> OracleCurve::Evaluate(
     return status;
   }
   return points;
+}
+
+absl::StatusOr<Evaluation> OracleCurve::EvaluateSides(
+    absl::Span<const double> parameters) const {
+  const size_t dim = static_cast<size_t>(dimension());
+  std::vector<double> points(parameters.size() * dim);
+  std::vector<double> derivatives(points.size());
+  const absl::Span<double> output[] = {absl::MakeSpan(points),
+                                       absl::MakeSpan(derivatives)};
+  if (absl::Status status = EvaluateCurve(curve_, parameters, output);
+      !status.ok()) {
+    return status;
+  }
+  std::vector<double> slack(parameters.size());
+  for (size_t k = 0; k < parameters.size(); ++k) {
+    const double t = parameters[k];
+    const double magnitude =
+        std::abs(t) + 2.0 * std::abs(PieceStart(pieces_.breakpoints, t));
+    slack[k] = kParameterRounding * Norm(&derivatives[k * dim], dimension()) *
+               magnitude;
+    if (std::isnan(slack[k])) slack[k] = kInf;
+  }
+  std::vector<std::vector<double>> sides;
+  sides.push_back(std::move(points));
+  if (!continuous_) {
+    const double start = domain().start;
+    absl::StatusOr<std::vector<double>> left =
+        Evaluate(MovedBack(parameters, 1, 1u, &start));
+    if (!left.ok()) return left.status();
+    sides.push_back(*std::move(left));
+  }
+  return Evaluation(dimension(), std::move(sides), std::move(slack));
 }
 
 std::vector<double> OracleCurve::Samples(double a, double b, size_t count,
@@ -171,25 +243,20 @@ absl::StatusOr<OracleSurface> OracleSurface::Create(
   oracle.positive_weights_ = measures.positive_weights;
   oracle.hull_lower_ = std::move(measures.lower);
   oracle.hull_upper_ = std::move(measures.upper);
-  if (pieces->triangular) {
-    // Barycentric coordinates of a point of the domain triangle are ratios
-    // of areas: their rounding is that of the corners' coordinates over
-    // the triangle's size.
-    const std::vector<double>& t = pieces->domain_triangle;
-    if (t.size() == 6) {
-      const double area = std::abs((t[2] - t[0]) * (t[5] - t[1]) -
-                                   (t[4] - t[0]) * (t[3] - t[1]));
-      const double edge =
-          std::max({Distance(&t[0], &t[2], 2), Distance(&t[2], &t[4], 2),
-                    Distance(&t[4], &t[0], 2)});
-      oracle.conditioning_ =
-          area > 0.0 ? std::max(1.0, LargestMagnitude(t) * edge / area) : kInf;
-    }
-  } else {
-    oracle.conditioning_ = std::max(Conditioning(pieces->pieces.breakpoints_u),
-                                    Conditioning(pieces->pieces.breakpoints_v));
-  }
+  oracle.breakpoints_[0] = pieces->pieces.breakpoints_u;
+  oracle.breakpoints_[1] = pieces->pieces.breakpoints_v;
+  oracle.triangle_magnitude_ = LargestMagnitude(pieces->domain_triangle);
   return oracle;
+}
+
+double OracleSurface::ParameterMagnitude(int axis, double x) const {
+  // On a domain triangle the parameters are its points, rounded against
+  // its corners; barycentric and tensor parameters against their piece.
+  if (triangle_magnitude_ > 0.0) {
+    return std::abs(x) + 2.0 * triangle_magnitude_;
+  }
+  return std::abs(x) +
+         2.0 * std::abs(PieceStart(breakpoints_[static_cast<size_t>(axis)], x));
 }
 
 absl::StatusOr<std::vector<double>> OracleSurface::Evaluate(
@@ -202,6 +269,52 @@ absl::StatusOr<std::vector<double>> OracleSurface::Evaluate(
     return status;
   }
   return points;
+}
+
+absl::StatusOr<Evaluation> OracleSurface::EvaluateSides(
+    absl::Span<const double> uv) const {
+  const size_t dim = static_cast<size_t>(dimension());
+  const size_t count = uv.size() / 2;
+  // The points and their partials S_u and S_v.
+  std::vector<double> partials[3];
+  for (std::vector<double>& p : partials) p.resize(count * dim);
+  const absl::Span<double> output[] = {absl::MakeSpan(partials[0]),
+                                       absl::MakeSpan(partials[1]),
+                                       absl::MakeSpan(partials[2])};
+  if (absl::Status status =
+          EvaluateSurface(surface_, SurfaceSamples::Pairs(uv), output, {});
+      !status.ok()) {
+    return status;
+  }
+  std::vector<double> slack(count);
+  for (size_t k = 0; k < count; ++k) {
+    slack[k] = kParameterRounding * (Norm(&partials[1][k * dim], dimension()) *
+                                         ParameterMagnitude(0, uv[2 * k]) +
+                                     Norm(&partials[2][k * dim], dimension()) *
+                                         ParameterMagnitude(1, uv[2 * k + 1]));
+    if (std::isnan(slack[k])) slack[k] = kInf;
+  }
+  // The directions that jump at their knots: the degree-0 ones of a
+  // B-spline surface. Side s moves u back when bit 0 of s is set, v when
+  // bit 1 is.
+  unsigned jumps = 0;
+  double start[2] = {0.0, 0.0};
+  if (const auto* bspline = std::get_if<BSplineSurface>(&surface_)) {
+    jumps = (bspline->view().degree_u == 0 ? 1u : 0u) |
+            (bspline->view().degree_v == 0 ? 2u : 0u);
+    start[0] = bspline->domain().u_start;
+    start[1] = bspline->domain().v_start;
+  }
+  std::vector<std::vector<double>> sides;
+  sides.push_back(std::move(partials[0]));
+  for (unsigned side = 1; side < 4; ++side) {
+    if ((side & ~jumps) != 0) continue;
+    absl::StatusOr<std::vector<double>> points =
+        Evaluate(MovedBack(uv, 2, side, start));
+    if (!points.ok()) return points.status();
+    sides.push_back(*std::move(points));
+  }
+  return Evaluation(dimension(), std::move(sides), std::move(slack));
 }
 
 std::vector<double> OracleSurface::Samples() const {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -59,6 +60,12 @@ absl::Span<const double> PointAt(absl::Span<const double> values, size_t index,
                         static_cast<size_t>(dimension));
 }
 
+// ValueMargin is the rounding margin of values the query computed from
+// geometry of size `size` (ulps in the subnormal range are absolute).
+double ValueMargin(double size) {
+  return kRoundingMargin * size + kAbsoluteMargin;
+}
+
 double Tolerance(bool has_value, double value, double fallback) {
   return has_value ? value : fallback;
 }
@@ -103,9 +110,8 @@ struct ClosestPointGeometry {
   int dimension = 0;
   int parameter_count = 1;
   double scale = 0.0;
-  double conditioning = 1.0;
-  std::function<absl::StatusOr<std::vector<double>>(absl::Span<const double>)>
-      evaluate;
+
+  std::function<absl::StatusOr<Evaluation>(absl::Span<const double>)> evaluate;
   // Parameters of samples of the geometry and their points.
   std::vector<double> sample_parameters;
   std::vector<double> sample_points;
@@ -159,7 +165,7 @@ Finding CheckClosestPoints(const v1::Points& queries,
   const double tolerance =
       Tolerance(options.has_tolerance(), options.tolerance(),
                 server::kDefaultQueryTolerance);
-  const absl::StatusOr<std::vector<double>> evaluated =
+  const absl::StatusOr<Evaluation> evaluated =
       geometry.evaluate(SpanOf(answer.parameters()));
   if (!evaluated.ok()) {
     return Unevaluated("ClosestPoint: the minima's parameters",
@@ -170,8 +176,8 @@ Finding CheckClosestPoints(const v1::Points& queries,
   size_t k = 0;
   for (size_t r = 0; r < count; ++r) {
     const absl::Span<const double> q = PointAt(q_all, r, dim);
-    const double margin = kRoundingMargin * geometry.conditioning *
-                          std::max(geometry.scale, LargestMagnitude(q));
+    const double margin =
+        ValueMargin(std::max(geometry.scale, LargestMagnitude(q)));
     const double distance = answer.distances(static_cast<int>(r));
     const double lower = answer.lower_bounds(static_cast<int>(r));
     const std::string query = absl::StrCat(
@@ -190,16 +196,16 @@ Finding CheckClosestPoints(const v1::Points& queries,
     for (uint32_t c = 0; c < answer.minima_counts(static_cast<int>(r));
          ++c, ++k) {
       const absl::Span<const double> point = PointAt(points, k, dim);
-      const absl::Span<const double> at = PointAt(*evaluated, k, dim);
       const std::string minimum = absl::StrCat(
           query, "minimum ", c, " at ", PointText(PointAt(params, k, pc)),
           " is ", PointText(point), ", and there the geometry is ",
-          PointText(at));
-      const double off = Distance(point.data(), at.data(), dim);
-      if (off > margin) {
+          PointText(evaluated->Point(k)));
+      const double off = evaluated->DistanceTo(k, point);
+      if (off > margin + evaluated->Slack(k)) {
         return absl::StrCat(minimum, ": ", Num(off), " apart");
       }
-      const double reached = Distance(q.data(), at.data(), dim);
+      // The point is the geometry's (within the margin): its distance.
+      const double reached = Distance(q.data(), point.data(), dim);
       if (reached > distance + tolerance + margin ||
           reached < distance - margin) {
         return absl::StrCat(minimum, ", at distance ", Num(reached),
@@ -210,7 +216,7 @@ Finding CheckClosestPoints(const v1::Points& queries,
     for (size_t s = 0; s < samples.size() / static_cast<size_t>(dim); ++s) {
       const absl::Span<const double> sample = PointAt(samples, s, dim);
       const double reached = Distance(q.data(), sample.data(), dim);
-      if (reached < lower - margin) {
+      if (AllFinite(sample) && reached < lower - margin) {
         return absl::StrCat(
             query, "the geometry at ",
             PointText(PointAt(geometry.sample_parameters, s, pc)), " is ",
@@ -233,9 +239,8 @@ Finding CheckCurveClosestPoint(const v1::CurveClosestPointRequest& request,
       .dimension = curve->dimension(),
       .parameter_count = 1,
       .scale = curve->scale(),
-      .conditioning = curve->conditioning(),
       .evaluate =
-          [&](absl::Span<const double> t) { return curve->Evaluate(t); },
+          [&](absl::Span<const double> t) { return curve->EvaluateSides(t); },
       .sample_parameters =
           curve->Samples(domain.start, domain.end, kCurveSamples, true)};
   absl::StatusOr<std::vector<double>> samples =
@@ -253,14 +258,14 @@ Finding CheckSurfaceClosestPoint(const v1::SurfaceClosestPointRequest& request,
   absl::StatusOr<OracleSurface> surface =
       OracleSurface::Create(request.surface(), limits, "surface");
   if (!surface.ok()) return Unprepared(surface.status());
-  ClosestPointGeometry geometry{
-      .dimension = surface->dimension(),
-      .parameter_count = 2,
-      .scale = surface->scale(),
-      .conditioning = surface->conditioning(),
-      .evaluate =
-          [&](absl::Span<const double> uv) { return surface->Evaluate(uv); },
-      .sample_parameters = surface->Samples()};
+  ClosestPointGeometry geometry{.dimension = surface->dimension(),
+                                .parameter_count = 2,
+                                .scale = surface->scale(),
+                                .evaluate =
+                                    [&](absl::Span<const double> uv) {
+                                      return surface->EvaluateSides(uv);
+                                    },
+                                .sample_parameters = surface->Samples()};
   absl::StatusOr<std::vector<double>> samples =
       surface->Evaluate(geometry.sample_parameters);
   if (!samples.ok()) {
@@ -273,38 +278,36 @@ Finding CheckSurfaceClosestPoint(const v1::SurfaceClosestPointRequest& request,
 
 // --------------------------------------------------------- intersections --
 
-// CheckCoincident checks that points `a` and `b` (of `count` pairs) are
-// within tolerance + margin of each other; `what(k)` names pair k.
-Finding CheckCoincident(absl::Span<const double> a, absl::Span<const double> b,
-                        int dim, double tolerance, double margin,
+// CheckCoincident checks that points 0..count-1 of `a` and `b` are within
+// tolerance + margin of each other; `what(k)` names pair k.
+Finding CheckCoincident(const Evaluation& a, const Evaluation& b, size_t count,
+                        double tolerance, double margin,
                         const std::function<std::string(size_t)>& what) {
-  for (size_t k = 0; k < a.size() / static_cast<size_t>(dim); ++k) {
-    const double gap = Distance(&a[k * static_cast<size_t>(dim)],
-                                &b[k * static_cast<size_t>(dim)], dim);
-    if (gap > tolerance + margin) {
+  for (size_t k = 0; k < count; ++k) {
+    const double gap = a.Gap(k, b, k);
+    if (gap > tolerance + margin + a.Slack(k) + b.Slack(k)) {
       return absl::StrCat(what(k), ": the inputs there are ",
-                          PointText(PointAt(a, k, dim)), " and ",
-                          PointText(PointAt(b, k, dim)), ", ", Num(gap),
-                          " apart, over the tolerance ", Num(tolerance),
-                          " + margin ", Num(margin));
+                          PointText(a.Point(k)), " and ", PointText(b.Point(k)),
+                          ", ", Num(gap), " apart, over the tolerance ",
+                          Num(tolerance), " + margin ", Num(margin));
     }
   }
   return std::nullopt;
 }
 
-// CheckSamePoints checks the answer's points against the first input's.
+// CheckSamePoints checks the answer's `count` points against the
+// geometry's there.
 Finding CheckSamePoints(absl::Span<const double> reported,
-                        absl::Span<const double> evaluated, int dim,
+                        const Evaluation& evaluated, size_t count, int dim,
                         double margin,
                         const std::function<std::string(size_t)>& what) {
-  for (size_t k = 0; k < evaluated.size() / static_cast<size_t>(dim); ++k) {
-    const double off = Distance(&reported[k * static_cast<size_t>(dim)],
-                                &evaluated[k * static_cast<size_t>(dim)], dim);
-    if (off > margin) {
-      return absl::StrCat(what(k), ": the answer's point ",
-                          PointText(PointAt(reported, k, dim)),
+  for (size_t k = 0; k < count; ++k) {
+    const absl::Span<const double> point = PointAt(reported, k, dim);
+    const double off = evaluated.DistanceTo(k, point);
+    if (off > margin + evaluated.Slack(k)) {
+      return absl::StrCat(what(k), ": the answer's point ", PointText(point),
                           " is not the input's point there ",
-                          PointText(PointAt(evaluated, k, dim)), " (", Num(off),
+                          PointText(evaluated.Point(k)), " (", Num(off),
                           " apart)");
     }
   }
@@ -341,10 +344,7 @@ Finding CheckCurveIntersections(const v1::IntersectCurvesRequest& request,
   const double tolerance =
       Tolerance(request.options().has_tolerance(),
                 request.options().tolerance(), server::kDefaultQueryTolerance);
-  const double margin =
-      kRoundingMargin *
-      std::max(first->conditioning(), second->conditioning()) *
-      std::max(first->scale(), second->scale());
+  const double margin = ValueMargin(std::max(first->scale(), second->scale()));
   // The points, then the overlaps' starts and ends, as parameter lists.
   std::vector<double> s(answer.first_parameters().begin(),
                         answer.first_parameters().end());
@@ -354,10 +354,10 @@ Finding CheckCurveIntersections(const v1::IntersectCurvesRequest& request,
            answer.first_intervals().end());
   t.insert(t.end(), answer.second_intervals().begin(),
            answer.second_intervals().end());
-  const absl::StatusOr<std::vector<double>> a = first->Evaluate(s);
+  const absl::StatusOr<Evaluation> a = first->EvaluateSides(s);
   if (!a.ok())
     return Unevaluated("Intersect: the first parameters", a.status());
-  const absl::StatusOr<std::vector<double>> b = second->Evaluate(t);
+  const absl::StatusOr<Evaluation> b = second->EvaluateSides(t);
   if (!b.ok()) {
     return Unevaluated("Intersect: the second parameters", b.status());
   }
@@ -377,13 +377,12 @@ Finding CheckCurveIntersections(const v1::IntersectCurvesRequest& request,
                           Num(s[k + 1]));
     }
   }
-  if (Finding apart = CheckCoincident(*a, *b, dim, tolerance, margin, what)) {
+  if (Finding apart =
+          CheckCoincident(*a, *b, s.size(), tolerance, margin, what)) {
     return apart;
   }
-  return CheckSamePoints(
-      SpanOf(answer.points().coordinates()),
-      absl::MakeConstSpan(*a).subspan(0, count * static_cast<size_t>(dim)), dim,
-      margin, what);
+  return CheckSamePoints(SpanOf(answer.points().coordinates()), *a, count, dim,
+                         margin, what);
 }
 
 Finding CheckCurveSurfaceIntersections(
@@ -409,17 +408,14 @@ Finding CheckCurveSurfaceIntersections(
   const double tolerance =
       Tolerance(request.options().has_tolerance(),
                 request.options().tolerance(), server::kDefaultQueryTolerance);
-  const double margin =
-      kRoundingMargin *
-      std::max(curve->conditioning(), surface->conditioning()) *
-      std::max(curve->scale(), surface->scale());
-  const absl::StatusOr<std::vector<double>> c =
-      curve->Evaluate(SpanOf(answer.curve_parameters()));
+  const double margin = ValueMargin(std::max(curve->scale(), surface->scale()));
+  const absl::StatusOr<Evaluation> c =
+      curve->EvaluateSides(SpanOf(answer.curve_parameters()));
   if (!c.ok()) {
     return Unevaluated("IntersectCurve: the curve parameters", c.status());
   }
-  const absl::StatusOr<std::vector<double>> s =
-      surface->Evaluate(SpanOf(answer.surface_parameters()));
+  const absl::StatusOr<Evaluation> s =
+      surface->EvaluateSides(SpanOf(answer.surface_parameters()));
   if (!s.ok()) {
     return Unevaluated("IntersectCurve: the surface parameters", s.status());
   }
@@ -430,11 +426,11 @@ Finding CheckCurveSurfaceIntersections(
         Num(answer.surface_parameters(static_cast<int>(2 * k))), ", ",
         Num(answer.surface_parameters(static_cast<int>(2 * k + 1))), ")");
   };
-  if (Finding apart = CheckCoincident(*c, *s, dim, tolerance, margin, what)) {
+  if (Finding apart = CheckCoincident(*c, *s, count, tolerance, margin, what)) {
     return apart;
   }
-  return CheckSamePoints(SpanOf(answer.points().coordinates()), *c, dim, margin,
-                         what);
+  return CheckSamePoints(SpanOf(answer.points().coordinates()), *c, count, dim,
+                         margin, what);
 }
 
 // --------------------------------------------------------------- section --
@@ -455,8 +451,8 @@ Finding CheckSection(const v1::SectionSurfaceRequest& request,
   const double length = Norm(n.data(), dim);
   std::vector<double> unit(n.begin(), n.end());
   for (double& x : unit) x /= length;
-  const double margin = kRoundingMargin * surface->conditioning() *
-                        std::max(surface->scale(), LargestMagnitude(p));
+  const double margin =
+      ValueMargin(std::max(surface->scale(), LargestMagnitude(p)));
   uint64_t vertices = 0;
   for (int k = 0; k < answer.polylines_size(); ++k) {
     const v1::SectionPolyline& polyline = answer.polylines(k);
@@ -470,8 +466,8 @@ Finding CheckSection(const v1::SectionSurfaceRequest& request,
                           polyline.parameters_size(), " parameters");
     }
     vertices += count;
-    const absl::StatusOr<std::vector<double>> on_surface =
-        surface->Evaluate(SpanOf(polyline.parameters()));
+    const absl::StatusOr<Evaluation> on_surface =
+        surface->EvaluateSides(SpanOf(polyline.parameters()));
     if (!on_surface.ok()) {
       return Unevaluated(
           absl::StrCat("Section polyline ", k, ": the parameters"),
@@ -488,10 +484,10 @@ Finding CheckSection(const v1::SectionSurfaceRequest& request,
       if (!(off_plane <= tolerance + margin)) {
         return absl::StrCat(vertex, "it is ", Num(off_plane), " off the plane");
       }
-      const absl::Span<const double> s = PointAt(*on_surface, i, dim);
-      const double off_surface = Distance(x.data(), s.data(), dim);
-      if (!(off_surface <= tolerance + margin)) {
-        return absl::StrCat(vertex, "the surface there is ", PointText(s), ", ",
+      const double off_surface = on_surface->DistanceTo(i, x);
+      if (off_surface > tolerance + margin + on_surface->Slack(i)) {
+        return absl::StrCat(vertex, "the surface there is ",
+                            PointText(on_surface->Point(i)), ", ",
                             Num(off_surface), " away");
       }
     }
@@ -511,18 +507,28 @@ Finding CheckSection(const v1::SectionSurfaceRequest& request,
 
 // ------------------------------------------------------------ arc length --
 
-// LengthBounds returns what is wrong with `length` as the length of the
-// curve over [a, b]: shorter than an inscribed polyline of `vertices`, or
-// (polynomial curves) longer than the control polygons of its pieces.
+// CheckLengthBounds returns what is wrong with `length` as the length of
+// the curve over [a, b]: shorter than an inscribed polyline of `vertices`
+// (a continuous curve whose points there do not overflow), or (polynomial
+// curves) longer than the control polygons of its pieces. `slack` is how
+// much the length may change with the rounding of b (a parameter the
+// query found).
 Finding CheckLengthBounds(const OracleCurve& curve, double a, double b,
-                          double length, double tolerance, size_t vertices,
-                          absl::string_view what) {
-  const absl::StatusOr<std::vector<double>> points =
-      curve.Evaluate(curve.Samples(a, b, vertices, false));
-  if (!points.ok()) return Unevaluated(what, points.status());
-  const double polyline = PolylineLength(*points, curve.dimension());
-  const double margin = kRoundingMargin * curve.conditioning() *
-                        std::max({curve.scale(), std::abs(length), polyline});
+                          double length, double tolerance, double slack,
+                          size_t vertices, absl::string_view what) {
+  double polyline = std::numeric_limits<double>::quiet_NaN();
+  if (curve.continuous()) {
+    const absl::StatusOr<std::vector<double>> points =
+        curve.Evaluate(curve.Samples(a, b, vertices, false));
+    if (!points.ok()) return Unevaluated(what, points.status());
+    if (AllFinite(*points)) {
+      polyline = PolylineLength(*points, curve.dimension());
+    }
+  }
+  const double margin =
+      ValueMargin(std::max({curve.scale(), std::abs(length),
+                            std::isnan(polyline) ? 0.0 : polyline})) +
+      slack;
   const std::string context = absl::StrCat(
       what, " over [", Num(a), ", ", Num(b), "] is ", Num(length),
       " (tolerance ", Num(tolerance), ", margin ", Num(margin), "): ");
@@ -567,7 +573,7 @@ Finding CheckArcLength(const v1::ArcLengthRequest& request,
     const double b = interval.has_end() ? interval.end() : domain.end;
     if (Finding wrong = CheckLengthBounds(
             *curve, a, b, answer.lengths(static_cast<int>(i)), tolerance,
-            vertices, absl::StrCat("ArcLength ", i))) {
+            /*slack=*/0.0, vertices, absl::StrCat("ArcLength ", i))) {
       return wrong;
     }
   }
@@ -595,16 +601,15 @@ Finding CheckParametersAtArcLength(
   const double tolerance =
       Tolerance(request.has_tolerance(), request.tolerance(),
                 server::kDefaultQueryTolerance);
-  const absl::StatusOr<std::vector<double>> points =
-      curve->Evaluate(SpanOf(answer.parameters()));
+  const absl::StatusOr<Evaluation> points =
+      curve->EvaluateSides(SpanOf(answer.parameters()));
   if (!points.ok()) {
     return Unevaluated("ParametersAtArcLength: the parameters",
                        points.status());
   }
-  const double margin =
-      kRoundingMargin * curve->conditioning() * curve->scale();
+  const double margin = ValueMargin(curve->scale());
   if (Finding off = CheckSamePoints(
-          SpanOf(answer.points().coordinates()), *points, dim, margin,
+          SpanOf(answer.points().coordinates()), *points, count, dim, margin,
           [](size_t k) { return absl::StrCat("ParametersAtArcLength ", k); })) {
     return off;
   }
@@ -618,7 +623,7 @@ Finding CheckParametersAtArcLength(
     }
     if (Finding wrong = CheckLengthBounds(
             *curve, start, t, request.lengths(static_cast<int>(i)), tolerance,
-            vertices,
+            points->Slack(i), vertices,
             absl::StrCat("ParametersAtArcLength ", i,
                          ": the requested length"))) {
       return wrong;
@@ -641,6 +646,9 @@ Finding CheckSampleByArcLength(const v1::SampleByArcLengthRequest& request,
   const double end =
       request.interval().has_end() ? request.interval().end() : domain.end;
   const size_t count = request.count();
+  const double tolerance =
+      Tolerance(request.has_tolerance(), request.tolerance(),
+                server::kDefaultQueryTolerance);
   if (static_cast<size_t>(answer.parameters_size()) != count ||
       static_cast<size_t>(answer.points().coordinates_size()) !=
           count * static_cast<size_t>(dim)) {
@@ -654,17 +662,35 @@ Finding CheckSampleByArcLength(const v1::SampleByArcLengthRequest& request,
                         " to ", Num(t[static_cast<int>(count) - 1]),
                         ", not from ", Num(start), " to ", Num(end));
   }
-  if (!std::is_sorted(t.begin(), t.end())) {
-    return std::string("SampleByArcLength: the parameters decrease");
+  // The lengths at the samples are k L / (count - 1) within the tolerance,
+  // so the parameters increase when that spacing exceeds twice the
+  // tolerance, as it does when an inscribed polyline's share does.
+  if (!std::is_sorted(t.begin(), t.end()) && curve->continuous()) {
+    const absl::StatusOr<std::vector<double>> polyline_points =
+        curve->Evaluate(curve->Samples(start, end, kPolylineVertices, false));
+    if (!polyline_points.ok()) {
+      return Unevaluated("SampleByArcLength", polyline_points.status());
+    }
+    const double spacing = AllFinite(*polyline_points)
+                               ? PolylineLength(*polyline_points, dim) /
+                                     static_cast<double>(count - 1)
+                               : 0.0;
+    if (spacing > 2.0 * tolerance + ValueMargin(curve->scale())) {
+      return absl::StrCat(
+          "SampleByArcLength: the parameters decrease, with "
+          "samples at least ",
+          Num(spacing), " apart along the curve (tolerance ", Num(tolerance),
+          ")");
+    }
   }
-  const absl::StatusOr<std::vector<double>> points = curve->Evaluate(SpanOf(t));
+  const absl::StatusOr<Evaluation> points = curve->EvaluateSides(SpanOf(t));
   if (!points.ok()) {
     return Unevaluated("SampleByArcLength: the parameters", points.status());
   }
-  return CheckSamePoints(
-      SpanOf(answer.points().coordinates()), *points, dim,
-      kRoundingMargin * curve->conditioning() * curve->scale(),
-      [](size_t k) { return absl::StrCat("SampleByArcLength ", k); });
+  return CheckSamePoints(SpanOf(answer.points().coordinates()), *points, count,
+                         dim, ValueMargin(curve->scale()), [](size_t k) {
+                           return absl::StrCat("SampleByArcLength ", k);
+                         });
 }
 
 // ---------------------------------------------------------- bounding box --
@@ -673,7 +699,7 @@ Finding CheckSampleByArcLength(const v1::SampleByArcLengthRequest& request,
 struct BoxGeometry {
   int dimension = 0;
   double scale = 0.0;
-  double conditioning = 1.0;
+
   bool positive_weights = true;
   std::function<double(int)> hull_lower, hull_upper;
   std::vector<double> sample_points;
@@ -688,8 +714,7 @@ Finding CheckBox(const v1::BoundingBoxResponse& answer, double tolerance,
                         answer.dimension(), " with ", answer.lower_size(),
                         " lower and ", answer.upper_size(), " upper values");
   }
-  const double margin =
-      kRoundingMargin * geometry.conditioning * geometry.scale;
+  const double margin = ValueMargin(geometry.scale);
   const std::string box =
       absl::StrCat("BoundingBox ", PointText(SpanOf(answer.lower())), " - ",
                    PointText(SpanOf(answer.upper())), " (tolerance ",
@@ -697,6 +722,7 @@ Finding CheckBox(const v1::BoundingBoxResponse& answer, double tolerance,
   const absl::Span<const double> samples = geometry.sample_points;
   for (size_t s = 0; s < samples.size() / static_cast<size_t>(dim); ++s) {
     const absl::Span<const double> x = PointAt(samples, s, dim);
+    if (!AllFinite(x)) continue;  // an evaluation that overflowed
     for (int j = 0; j < dim; ++j) {
       if (x[static_cast<size_t>(j)] < answer.lower(j) - margin ||
           x[static_cast<size_t>(j)] > answer.upper(j) + margin) {
@@ -731,7 +757,6 @@ Finding CheckCurveBox(const v1::CurveBoundingBoxRequest& request,
   const BoxGeometry geometry{
       .dimension = curve->dimension(),
       .scale = curve->scale(),
-      .conditioning = curve->conditioning(),
       .positive_weights = curve->positive_weights(),
       .hull_lower = [&](int j) { return curve->HullLower(j); },
       .hull_upper = [&](int j) { return curve->HullUpper(j); },
@@ -756,7 +781,6 @@ Finding CheckSurfaceBox(const v1::SurfaceBoundingBoxRequest& request,
   const BoxGeometry geometry{
       .dimension = surface->dimension(),
       .scale = surface->scale(),
-      .conditioning = surface->conditioning(),
       .positive_weights = surface->positive_weights(),
       .hull_lower = [&](int j) { return surface->HullLower(j); },
       .hull_upper = [&](int j) { return surface->HullUpper(j); },

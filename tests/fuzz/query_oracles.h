@@ -23,11 +23,13 @@
 //     the box, and, with positive weights, the box is within the tolerance
 //     of the control points' box.
 // Every comparison allows the request's tolerance (or its documented
-// default) plus a rounding margin of kRoundingMargin times the geometry's
-// scale and conditioning (oracle_geometry.h). Thread-compatible.
+// default) plus a rounding margin (kRoundingMargin times the geometry's
+// scale, kAbsoluteMargin) and, where the answer names parameters, the
+// slack of their rounding (oracle_geometry.h). Thread-compatible.
 #ifndef FREEFORM_TESTS_FUZZ_QUERY_ORACLES_H_
 #define FREEFORM_TESTS_FUZZ_QUERY_ORACLES_H_
 
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -37,17 +39,24 @@
 
 namespace freeform::fuzz {
 
-// The rounding margin, relative to the geometry's scale times its
-// conditioning. One evaluation of a piece of degree <= 16 (the fuzz
-// server's limit) by de Casteljau or de Boor rounds by at most about
-// 2 * 16 * 2^-53 = 3.6e-15 of the control points' magnitude (positive
-// weights keep a rational one within the same bound: numerator and
-// denominator are sums of positive terms), a decomposition into pieces
-// adds as much again, and a distance or a polyline of up to 4096 segments
-// sums such errors. 1e-10 is above 4096 * 4 * 3.6e-15 = 6e-11, so a right
-// answer never trips it, while the wrong answers the oracles look for
-// (issue 30: 0.2 to 1 off at scale 1) are far beyond it.
+// The rounding margin of a value a query computed, relative to the
+// geometry's scale (oracle_geometry.h). One evaluation of a piece of
+// degree <= 16 (the fuzz server's limit) by de Casteljau or de Boor rounds
+// by at most about 2 * 16 * 2^-53 = 3.6e-15 of the control points'
+// magnitude (positive weights keep a rational one within the same bound:
+// numerator and denominator are sums of positive terms), a decomposition
+// into pieces adds as much, and a distance or a polyline of up to 4096
+// segments sums such errors. 1e-10 is above 4096 * 4 * 3.6e-15 = 6e-11, so
+// a right answer never trips it, while the wrong answers the oracles look
+// for (issue 30: 0.2 to 1 off at scale 1) are far beyond it. A point that
+// an answer places at parameters gets their slack on top
+// (kParameterRounding).
 inline constexpr double kRoundingMargin = 1e-10;
+
+// In the subnormal range rounding is absolute, half of 2^-1074 per
+// operation: 1024 of them.
+inline constexpr double kAbsoluteMargin =
+    1024 * std::numeric_limits<double>::denorm_min();
 
 // CheckQueryAnswer checks the OK `answer` of `method` to `request` (both
 // of the method's types) and returns what is wrong with it, or nullopt

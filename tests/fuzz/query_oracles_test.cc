@@ -287,6 +287,46 @@ TEST(QueryOraclesTest, ArcLengthOfARationalCornerWithAHugeWeight) {
               HasSubstr("shorter than an inscribed polyline"));
 }
 
+TEST(QueryOraclesTest, APiecewiseConstantCurveHasNoLengthAndTwoValuesAtAKnot) {
+  // Degree 0: the point 0 on [0, 0.5), the point 1 on [0.5, 1].
+  const std::string curve = R"pb(
+    curve {
+      bspline {
+        degree: 0
+        control_points {
+          dimension: 1
+          coordinates: [ 0, 1 ]
+        }
+        knots: [ 0, 0.5, 1 ]
+      }
+    })pb";
+  const auto length = ParseText<v1::ArcLengthRequest>(curve);
+  v1::ArcLengthResponse answer;
+  answer.add_lengths(0.0);
+  EXPECT_EQ(Check("CurveService.ArcLength", length, answer), std::nullopt);
+  answer.set_lengths(0, 1.0);
+  EXPECT_THAT(Check("CurveService.ArcLength", length, answer).value_or(""),
+              HasSubstr("longer than the control polygons"));
+
+  // The query 0.25 is nearest to the point 0, at the end 0.5 of its piece
+  // (the left-hand limit there).
+  auto closest = ParseText<v1::CurveClosestPointRequest>(curve);
+  closest.mutable_queries()->set_dimension(1);
+  closest.mutable_queries()->add_coordinates(0.25);
+  auto minimum = ParseText<v1::ClosestPointResponse>(R"pb(
+    parameter_count: 1
+    distances: 0.25
+    lower_bounds: 0.25
+    minima_counts: 1
+    complete: true
+    parameters: 0.5
+    points { dimension: 1 coordinates: 0 })pb");
+  EXPECT_EQ(Check("CurveService.ClosestPoint", closest, minimum), std::nullopt);
+  minimum.set_parameters(0, 0.75);
+  EXPECT_THAT(Check("CurveService.ClosestPoint", closest, minimum).value_or(""),
+              HasSubstr("and there the geometry is (1)"));
+}
+
 TEST(QueryOraclesTest, ParametersAndSamplesAlongASegment) {
   // The segment (0, 0)-(2, 0) at unit speed 2: length 1 is at t = 1/2.
   const auto at_length = ParseText<v1::ParametersAtArcLengthRequest>(R"pb(
@@ -342,6 +382,35 @@ TEST(QueryOraclesTest, ParametersAndSamplesAlongASegment) {
   EXPECT_THAT(Check("CurveService.SampleByArcLength", sample, short_of_end)
                   .value_or(""),
               HasSubstr("not from 0 to 1"));
+}
+
+TEST(QueryOraclesTest, SamplesMayComeOutOfOrderOnlyWithinTheTolerance) {
+  // Four samples of the segment (0, 0)-(2, 0) are 2/3 apart: with a
+  // tolerance of 1 (their lengths within 1 of 0, 2/3, 4/3, 2) the middle
+  // two may swap, with the default 1e-9 they may not.
+  auto request = ParseText<v1::SampleByArcLengthRequest>(R"pb(
+    curve {
+      bezier {
+        control_points {
+          dimension: 2
+          coordinates: [ 0, 0, 2, 0 ]
+        }
+      }
+    }
+    count: 4
+    tolerance: 1)pb");
+  const auto swapped = ParseText<v1::SampleByArcLengthResponse>(R"pb(
+    parameters: [ 0, 0.625, 0.375, 1 ]
+    points {
+      dimension: 2
+      coordinates: [ 0, 0, 1.25, 0, 0.75, 0, 2, 0 ]
+    })pb");
+  EXPECT_EQ(Check("CurveService.SampleByArcLength", request, swapped),
+            std::nullopt);
+  request.clear_tolerance();
+  EXPECT_THAT(
+      Check("CurveService.SampleByArcLength", request, swapped).value_or(""),
+      HasSubstr("the parameters decrease"));
 }
 
 TEST(QueryOraclesTest, BoundingBoxOfASegment) {
