@@ -196,6 +196,16 @@ std::vector<double> Nodes(size_t count, FuzzRandom& random) {
   return nodes;
 }
 
+// SetNodes gives a Lagrange or Hermite curve of `count` points new nodes
+// (Nodes), or now and then none (the default nodes).
+void SetNodes(DoubleField& nodes, size_t count, FuzzRandom& random) {
+  if (random.OneIn(4)) {
+    nodes.Clear();
+  } else {
+    Assign(nodes, Nodes(count, random));
+  }
+}
+
 // --------------------------------------------------------------- curves --
 
 bool MutateBSplineCurve(v1::BSplineCurve& curve, const MutationLimits& limits,
@@ -265,17 +275,13 @@ bool MutateLagrangeCurve(v1::LagrangeCurve& curve, const MutationLimits& limits,
              random);
       Write(points, *curve.mutable_points());
       [[fallthrough]];
-    case 1:  // nodes for the points, or none (uniform)
-      if (random.OneIn(4)) {
-        curve.clear_nodes();
-      } else {
-        Assign(*curve.mutable_nodes(), Nodes(points.count(), random));
-      }
+    case 1:
+      SetNodes(*curve.mutable_nodes(), points.count(), random);
       return true;
     default:
-      MutatePointValues(*curve.mutable_points()->mutable_coordinates(),
-                        points.dimension, random);
-      return true;
+      return MutateValues(nullptr, 0,
+                          *curve.mutable_points()->mutable_coordinates(),
+                          points.dimension, random);
   }
 }
 
@@ -301,11 +307,7 @@ bool MutateHermiteCurve(v1::HermiteCurve& curve, const MutationLimits& limits,
           Resample(tangents.values, tangents.dimension, positions);
       Write(points, *curve.mutable_points());
       Write(tangents, *curve.mutable_tangents());
-      if (random.OneIn(2)) {
-        curve.clear_nodes();
-      } else {
-        Assign(*curve.mutable_nodes(), Nodes(count, random));
-      }
+      SetNodes(*curve.mutable_nodes(), count, random);
       return true;
     }
     case 1:  // tangents zero, or scaled far
@@ -318,12 +320,12 @@ bool MutateHermiteCurve(v1::HermiteCurve& curve, const MutationLimits& limits,
       Write(tangents, *curve.mutable_tangents());
       return true;
     case 2:
-      Assign(*curve.mutable_nodes(), Nodes(points.count(), random));
+      SetNodes(*curve.mutable_nodes(), points.count(), random);
       return true;
     default:
-      MutatePointValues(*curve.mutable_points()->mutable_coordinates(),
-                        points.dimension, random);
-      return true;
+      return MutateValues(nullptr, 0,
+                          *curve.mutable_points()->mutable_coordinates(),
+                          points.dimension, random);
   }
 }
 
