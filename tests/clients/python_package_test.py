@@ -10,9 +10,10 @@ built in the source tree); an sdist and a wheel made from it by Debian's
 python3-build without network (`python3 -m build --no-isolation`), whose
 contents are checked; a venv over Debian's site-packages (python3-grpcio,
 python3-protobuf, python3-numpy) into which pip installs the package from
-the copied folder (`pip install --no-build-isolation --no-index`); then
-clients/python/tests under that venv's python, each test module starting
-freeformd on a free port (clients/python/tests/support.py).
+the copied folder (`pip install --no-build-isolation --no-index`); mypy
+over the installed package; then clients/python/tests under that venv's
+python against one freeformd on a free port (clients/python/tests/
+support.py; the TLS tests start their own).
 """
 
 import argparse
@@ -92,6 +93,13 @@ def main():
     if not installed.startswith(os.path.abspath(venv) + os.sep):
         raise RuntimeError("freeform imports from %s, not the venv" %
                            installed)
+
+    # The type hints (py.typed) hold together, checked by Debian's mypy on
+    # the installed package (settings in clients/python/pyproject.toml).
+    run([python, "-m", "mypy", "--config-file",
+         os.path.join(package, "pyproject.toml"), "--cache-dir",
+         os.path.join(args.work_dir, "mypy_cache"), "-p", "freeform"],
+        cwd=args.work_dir)
 
     environment = dict(os.environ, FREEFORMD=args.freeformd,
                        FREEFORM_CLI=args.cli,

@@ -12,10 +12,11 @@ from freeform._geometry import points_of
 from freeform._wire import View, WireError
 
 
-def enum_value(enum: Any, value: Any, name: str) -> int:
+def enum_value(enum: Any, value: Any, name: str) -> Any:
     """The number of an enum value given by its number, its full name
     ("KNOT_RULE_UNIFORM") or its short name in any case ("uniform"); None is
-    0 (the proto's default)."""
+    0 (the proto's default). (Any: the generated type hints give each enum
+    a type of its own.)"""
     if value is None:
         return 0
     if isinstance(value, str):

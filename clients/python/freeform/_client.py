@@ -35,12 +35,11 @@ _SERVICES = {
     "CurveService": _curves.DESCRIPTOR.services_by_name["CurveService"],
     "SurfaceService": _surfaces.DESCRIPTOR.services_by_name["SurfaceService"],
 }
-# Every message class of freeform.v1, by full name.
-_MESSAGE_CLASSES: Dict[str, type] = {
-    value.DESCRIPTOR.full_name: value
+# The message classes of freeform.v1, by full name.
+_MESSAGE_CLASSES: Dict[str, Any] = {
+    descriptor.full_name: getattr(module, name)
     for module in (_geometry, _query, _curves, _surfaces)
-    for value in vars(module).values()
-    if isinstance(value, type) and issubclass(value, _message.Message)
+    for name, descriptor in module.DESCRIPTOR.message_types_by_name.items()
 }
 
 

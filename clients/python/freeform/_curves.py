@@ -72,7 +72,8 @@ class Curves:
                           chunk_size: int = 0) -> _curves.EvaluateCurveRequest:
         return _curves.EvaluateCurveRequest(
             curve=check_type(curve, _geometry.Curve, "curve"),
-            parameters=parameters_message(at), derivative_order=derivative_order,
+            parameters=parameters_message(at),
+            derivative_order=derivative_order,
             bezier_algorithm=enum_value(_curves.BezierAlgorithm, algorithm,
                                         "algorithm"),
             chunk_size=chunk_size)
@@ -112,7 +113,8 @@ class Curves:
         derivative of function i at parameter r."""
         request = _curves.EvaluateBasisRequest(
             basis=check_type(basis, _curves.Basis, "basis"),
-            parameters=parameters_message(at), derivative_order=derivative_order)
+            parameters=parameters_message(at),
+            derivative_order=derivative_order)
 
         def convert(view: View) -> np.ndarray:
             message = view.message

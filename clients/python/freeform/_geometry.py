@@ -12,13 +12,14 @@ Shapes: points are ``(n, d)`` (n points of dimension d), control nets
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import NamedTuple, Optional, Sequence, Union
 
 import numpy as np
 from google.protobuf import message as _message
 from numpy.typing import ArrayLike
 
-from freeform._wire import View, WireError
+from freeform._wire import SMALL_FIELD, View, WireError
 from freeform.v1 import curve_service_pb2 as _curves
 from freeform.v1 import geometry_pb2 as _geometry
 
@@ -53,13 +54,15 @@ def set_doubles(message: _message.Message, field: str,
     ``values`` (``name`` in errors) in one parse of their bytes."""
     array = float_array(values, name, 1)
     message.ClearField(field)
-    if array.size == 0:
+    if array.size < SMALL_FIELD:
+        # A few values: quicker one by one (tolist keeps every double).
+        getattr(message, field).extend(array.tolist())
         return
     number = message.DESCRIPTOR.fields_by_name[field].number
     # Tag (length-delimited), byte count, then the doubles themselves.
     message.MergeFromString(b"".join((
         _varint(number << 3 | 2), _varint(array.nbytes),
-        memoryview(array).cast("B"))))
+        array.data.cast("B"))))
 
 
 def _fill_points(message: _message.Message, points: ArrayLike,
@@ -279,7 +282,8 @@ def hermite_basis() -> _curves.Basis:
 
 # ------------------------------------------------------------- parameters --
 
-class Range(NamedTuple):
+@dataclass(frozen=True)
+class Range:
     """``count`` equally spaced parameters from ``start`` to ``end``
     (numpy.linspace's values), computed by the server; without start and
     end, the whole domain of the geometry."""

@@ -30,7 +30,7 @@ T = TypeVar("T")
 SurfaceBasis = Union[Tuple[_curves.Basis, _curves.Basis], int]
 
 
-def _direction(value: Any) -> int:
+def _direction(value: Any) -> Any:
     return enum_value(_surfaces.SurfaceDirection, value, "direction")
 
 

@@ -19,7 +19,8 @@ taken from the parsed message instead (slowly, but right).
 
 from __future__ import annotations
 
-from typing import Dict, List, Optional, Sequence, Tuple
+import functools
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 from google.protobuf import message as _message
@@ -30,6 +31,9 @@ _DOUBLE = np.dtype("<f8")
 
 # (wire type, first byte, one past the last byte) of one field occurrence.
 Span = Tuple[int, int, int]
+# Fields of fewer values are read from the parsed message: below about 64
+# values that costs less than locating their bytes (a few microseconds).
+SMALL_FIELD = 64
 
 
 class WireError(ValueError):
@@ -99,18 +103,23 @@ class View:
     """One message: its parsed form and where its fields lie in the bytes.
 
     A singular submessage may arrive in several pieces (protobuf merges
-    them), so a View covers a list of byte ranges.
+    them), so a View covers a list of byte ranges, found when first needed:
+    a field of fewer than SMALL_FIELD values is read from the parsed
+    message, where it costs less than finding its bytes.
     """
 
     def __init__(self, data: bytes, message: _message.Message,
-                 ranges: Optional[Sequence[Tuple[int, int]]] = None):
+                 ranges: Optional[Sequence[Tuple[int, int]]] = None,
+                 locate: Optional[Callable[[], Sequence[Tuple[int, int]]]]
+                 = None):
         self.data = data
         self.message = message
-        self._ranges = ranges if ranges is not None else [(0, len(data))]
+        self._ranges = ranges
+        self._locate = locate
         self._fields: Optional[Dict[int, List[Span]]] = None
 
     @classmethod
-    def parse(cls, data: bytes, message_class) -> "View":
+    def parse(cls, data: bytes, message_class: Any) -> "View":
         """Parses ``data`` as ``message_class`` and keeps the bytes."""
         return cls(data, message_class.FromString(data))
 
@@ -118,6 +127,9 @@ class View:
         """The occurrences of field ``name`` (none when unreadable)."""
         number = self.message.DESCRIPTOR.fields_by_name[name].number
         if self._fields is None:
+            if self._ranges is None:
+                self._ranges = (self._locate() if self._locate else
+                                [(0, len(self.data))])
             self._fields = {}
             try:
                 for start, end in self._ranges:
@@ -129,24 +141,31 @@ class View:
                 self._fields = {}
         return self._fields.get(number, [])
 
-    def submessage(self, name: str) -> "View":
-        """The singular message field ``name`` (all its pieces)."""
+    def _message_spans(self, name: str) -> List[Tuple[int, int]]:
+        """The byte ranges of the message field ``name``'s occurrences
+        (none when they are not all length-delimited)."""
         spans = self._spans(name)
         if any(wire_type != _LENGTH_DELIMITED for wire_type, _, _ in spans):
-            spans = []
+            return []
+        return [(start, end) for _, start, end in spans]
+
+    def submessage(self, name: str) -> "View":
+        """The singular message field ``name`` (all its pieces)."""
         return View(self.data, getattr(self.message, name),
-                    [(start, end) for _, start, end in spans])
+                    locate=lambda: self._message_spans(name))
 
     def submessages(self, name: str) -> List["View"]:
         """The repeated message field ``name``, one View per element."""
-        spans = self._spans(name)
         parsed = getattr(self.message, name)
-        if (len(spans) != len(parsed) or
-                any(wire_type != _LENGTH_DELIMITED
-                    for wire_type, _, _ in spans)):
-            return [View(self.data, element, []) for element in parsed]
-        return [View(self.data, element, [(start, end)])
-                for element, (_, start, end) in zip(parsed, spans)]
+
+        def element(index: int) -> List[Tuple[int, int]]:
+            ranges = self._message_spans(name)
+            # Unreadable unless there is one range per parsed element.
+            return [ranges[index]] if len(ranges) == len(parsed) else []
+
+        return [View(self.data, message,
+                     locate=functools.partial(element, index))
+                for index, message in enumerate(parsed)]
 
     def _pieces(self, name: str, wire_type: int, width: int) -> List[Span]:
         spans = self._spans(name)
@@ -161,12 +180,16 @@ class View:
                 ) -> np.ndarray:
         """The repeated double field ``name`` as a float64 array (into the
         flat C-contiguous ``out`` when given, which must fit exactly)."""
-        count = len(getattr(self.message, name))
+        parsed = getattr(self.message, name)
+        count = len(parsed)
         if out is None:
             out = np.empty(count, dtype=np.float64)
         elif out.size != count:
             raise WireError("field %s has %d values, not %d" %
                             (name, count, out.size))
+        if count < SMALL_FIELD:
+            out[:] = np.fromiter(parsed, np.float64, count)
+            return out
         try:
             position = 0
             for _, start, end in self._pieces(name, _FIXED64, 8):
@@ -180,13 +203,15 @@ class View:
             if position != count:
                 raise WireError("field %s has fewer values than parsed" % name)
         except WireError:
-            out[:] = np.fromiter(getattr(self.message, name), np.float64,
-                                 count)
+            out[:] = np.fromiter(parsed, np.float64, count)
         return out
 
-    def varints(self, name: str, dtype) -> np.ndarray:
+    def varints(self, name: str, dtype: Any) -> np.ndarray:
         """The repeated unsigned integer (or enum, or bool) field ``name``."""
-        count = len(getattr(self.message, name))
+        parsed = getattr(self.message, name)
+        count = len(parsed)
+        if count < SMALL_FIELD:
+            return np.fromiter(parsed, dtype, count)
         try:
             pieces = [np.frombuffer(self.data, np.uint8, end - start, start)
                       for _, start, end in self._pieces(name, _VARINT, 0)]
@@ -195,4 +220,4 @@ class View:
             # astype truncates as protobuf's parser does (uint32, enums).
             return decode_varints(data, count).astype(dtype)
         except WireError:
-            return np.fromiter(getattr(self.message, name), dtype, count)
+            return np.fromiter(parsed, dtype, count)

@@ -75,7 +75,8 @@ class GenericCallTest(unittest.TestCase):
 
     def test_an_existing_channel(self):
         channel = grpc.insecure_channel(support.address())
-        with freeform.Client(channel=channel, timeout=support.TIMEOUT) as client:
+        with freeform.Client(channel=channel,
+                             timeout=support.TIMEOUT) as client:
             samples = client.curves.evaluate(cubic(), [0.5])
         np.testing.assert_allclose(samples.points, [[2, 1.5]])
 

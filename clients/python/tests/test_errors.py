@@ -137,7 +137,8 @@ class LocalErrorTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, r"weights of shape \(2, 3\)"):
             freeform.bezier_surface(np.zeros((3, 2, 3)),
                                     weights=np.ones((2, 3)))
-        with self.assertRaisesRegex(ValueError, r"parameters must be \(u, v\)"):
+        with self.assertRaisesRegex(ValueError,
+                                    r"parameters must be \(u, v\)"):
             with support.client() as client:
                 client.surfaces.evaluate(freeform.bezier_surface(
                     np.zeros((2, 2, 3))), [0.1, 0.2, 0.3])
