@@ -11,8 +11,12 @@ Answers: CurveService.Evaluate of the worked cubic at N uniform parameters
   - as a parsed message (the generated stub, no numpy),
   - by freeform (client.curves.evaluate: arrays of shape (2, N, 2)),
   - from the parsed message by np.array and by np.fromiter.
-Requests: N 3D points into a Points message, by freeform.to_points and by
-RepeatedScalarContainer.extend. Small calls: the cubic at 3 parameters,
+The same answer decoded from its bytes without a call (protobuf's parse
+alone, freeform, and the parse with np.array or np.fromiter). Requests: N
+3D points into a Points message, by freeform.to_points and by
+RepeatedScalarContainer.extend. numpy operations on the aligned arrays
+freeform returns and on views of the received bytes, which are misaligned
+(why freeform copies). Small calls: the cubic at 3 parameters,
 p50 of sequential calls, by freeform and by the generated stub.
 
 Each figure: best and median seconds of the rounds; Python's peak
@@ -34,6 +38,8 @@ import grpc
 import numpy as np
 
 import freeform
+from freeform._answers import curve_samples
+from freeform._wire import View
 from freeform.v1 import curve_service_pb2, geometry_pb2
 
 METHOD = "/freeform.v1.CurveService/Evaluate"
@@ -75,6 +81,40 @@ def answer_readers(address, count):
         "message + np.fromiter": lambda: by_numpy(
             lambda values: np.fromiter(values, np.float64, len(values))),
     }
+
+
+def answer_decoders(readers):
+    """{name: a function that decodes one received answer}."""
+    data = readers["bytes only (gRPC)"]()
+    parse = curve_service_pb2.EvaluateCurveResponse.FromString
+
+    def by_numpy(convert):
+        return [convert(points.coordinates)
+                for points in parse(data).derivatives]
+
+    return {
+        "protobuf parse": lambda: parse(data),
+        "freeform": lambda: curve_samples(View.parse(
+            data, curve_service_pb2.EvaluateCurveResponse)),
+        "parse + np.array": lambda: by_numpy(np.array),
+        "parse + np.fromiter": lambda: by_numpy(
+            lambda values: np.fromiter(values, np.float64, len(values))),
+    }
+
+
+def answer_arrays(readers):
+    """The derivatives of one answer as freeform's array and as a view of
+    the received bytes (the second Points' doubles start at an offset that
+    is not a multiple of 8)."""
+    data = readers["bytes only (gRPC)"]()
+    view = View.parse(data, curve_service_pb2.EvaluateCurveResponse)
+    aligned = curve_samples(view).derivatives
+    points = view.submessages("derivatives")[1]
+    _, start, end = points._pieces("coordinates", 1, 8)[0]
+    misaligned = np.frombuffer(data, "<f8", (end - start) // 8, start)
+    if misaligned.flags.aligned:
+        raise RuntimeError("the answer's doubles happen to be aligned")
+    return aligned[1].reshape(-1), misaligned
 
 
 def request_writers(count):
@@ -140,8 +180,9 @@ def table(rows):
     print("| | best s | median s | Python peak MB | resident peak growth MB |")
     print("|---|---|---|---|---|")
     for name, (best, median), peak, resident in rows:
-        print("| %s | %.3f | %.3f | %.1f | %.1f |" % (
-            name, best, median, peak / MB, resident / MB))
+        print("| %s | %.3f | %.3f | %.1f | %s |" % (
+            name, best, median, peak / MB,
+            "%.1f" % (resident / MB) if resident else "-"))
 
 
 def run(args):
@@ -154,6 +195,20 @@ def run(args):
     table([(name, timed(call, args.rounds), traced_peak(call),
             resident_growth(args, "answer", name))
            for name, call in readers.items()])
+    print("\nThe same answer decoded from its received bytes (no call)\n")
+    table([(name, timed(call, args.rounds), traced_peak(call), 0)
+           for name, call in answer_decoders(readers).items()])
+    print("\nnumpy on the answer's first derivative, 10^6 x 2 doubles: "
+          "freeform's aligned array against a view of the received bytes "
+          "(misaligned)\n")
+    aligned, misaligned = answer_arrays(readers)
+    print("| | aligned s | misaligned view s | ratio |")
+    print("|---|---|---|---|")
+    for name, operation in (("sum", np.sum), ("x * 2", lambda x: x * 2),
+                            ("x @ x", lambda x: x @ x), ("copy", np.copy)):
+        fast = timed(lambda: operation(aligned), args.rounds)[0]
+        slow = timed(lambda: operation(misaligned), args.rounds)[0]
+        print("| %s | %.4f | %.4f | %.1f |" % (name, fast, slow, slow / fast))
     print("\nRequests: %d 3D points into a Points message (%.1f MB)\n" %
           (args.points, args.points * 24 / MB))
     table([(name, timed(call, args.rounds), traced_peak(call),

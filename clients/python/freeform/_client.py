@@ -148,13 +148,13 @@ class Client:
                  _service_config(round_robin, retry_unavailable)),
                 ("grpc.enable_retries", int(retry_unavailable)),
             ] + list(options)
-            if tls is False:
-                channel = grpc.insecure_channel(address, channel_options)
+            if isinstance(tls, grpc.ChannelCredentials):
+                channel = grpc.secure_channel(address, tls, channel_options)
+            elif tls:
+                channel = grpc.secure_channel(
+                    address, grpc.ssl_channel_credentials(), channel_options)
             else:
-                credentials = (grpc.ssl_channel_credentials() if tls is True
-                               else tls)
-                channel = grpc.secure_channel(address, credentials,
-                                              channel_options)
+                channel = grpc.insecure_channel(address, channel_options)
         self._channel = channel
         self._callables: Dict[Tuple[str, bool], Any] = {}
         self.curves = Curves(self)

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import functools
 from importlib import resources
-from typing import NamedTuple, Optional, Tuple
+from typing import Any, NamedTuple, Optional, Tuple
 
 import grpc
 from google.protobuf import descriptor_pb2, descriptor_pool, message_factory
@@ -87,6 +87,10 @@ class FreeformError(Exception):
         self.message = message
         self.violations = violations
         self.rpc_error = rpc_error
+
+    def __reduce__(self) -> Any:
+        # Picklable (to cross process pools), without the gRPC error.
+        return (type(self), (self.code, self.message, self.violations))
 
     @property
     def field(self) -> Optional[str]:

@@ -412,10 +412,12 @@ def to_array(message: _message.Message) -> np.ndarray:
             raise ValueError("the surface has no kind set")
         return to_array(getattr(getattr(message, kind),
                                 _SURFACE_POINTS[kind]))
-    view = View(message.SerializeToString(), message)
+    if not isinstance(message, (_geometry.Points, _geometry.ControlNet)):
+        raise TypeError("to_array takes Points, ControlNet, Curve or "
+                        "Surface, not %s" % type(message).__name__)
+    # Few values are read from the message itself (View.doubles).
+    view = View(message.SerializeToString()
+                if len(message.coordinates) >= SMALL_FIELD else b"", message)
     if isinstance(message, _geometry.Points):
         return points_of(view)
-    if isinstance(message, _geometry.ControlNet):
-        return net_of(view)
-    raise TypeError("to_array takes Points, ControlNet, Curve or Surface, "
-                    "not %s" % type(message).__name__)
+    return net_of(view)

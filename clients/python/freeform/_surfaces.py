@@ -158,6 +158,10 @@ class Surfaces:
             surface=check_type(surface, _geometry.Surface, "surface"),
             direction=_direction(direction))
         if direction is None:
+            if np.shape(at) != (2,):
+                raise ValueError("a triangular patch splits at a point (u, "
+                                 "v); a tensor patch at a parameter with "
+                                 "direction='u' or 'v'")
             request.u, request.v = at  # type: ignore[misc]
         else:
             request.parameter = at  # type: ignore[assignment]

@@ -6,6 +6,7 @@ paths (docs/clients.md).
 """
 
 import math
+import pickle
 import socket
 import unittest
 
@@ -87,6 +88,16 @@ class FieldViolationTest(unittest.TestCase):
             grpc.StatusCode.RESOURCE_EXHAUSTED, "tolerance")
         self.assertIn("5", error.description)
 
+    def test_an_error_pickles_with_its_fields(self):
+        with self.assertRaises(freeform.FreeformError) as caught:
+            self.client.curves.evaluate(cubic(), [2])
+        error = caught.exception
+        copy = pickle.loads(pickle.dumps(error))
+        self.assertEqual((copy.code, copy.message, copy.violations),
+                         (error.code, error.message, error.violations))
+        self.assertEqual(copy.field, "parameters.list.values[0]")
+        self.assertEqual(str(copy), str(error))
+
     def test_a_stream_raises_when_iterated(self):
         stream = self.client.curves.evaluate_stream(cubic(), [0.5, -1])
         with self.assertRaises(freeform.FreeformError) as caught:
@@ -144,11 +155,16 @@ class LocalErrorTest(unittest.TestCase):
                     np.zeros((2, 2, 3))), [0.1, 0.2, 0.3])
         with self.assertRaisesRegex(TypeError, "must hold real numbers"):
             freeform.bezier([[1j, 0]])
+        with self.assertRaisesRegex(TypeError, "to_array takes"):
+            freeform.to_array(freeform.bernstein_basis(2))
 
     def test_types_and_names(self):
         with support.client() as client:
             with self.assertRaisesRegex(TypeError, "curve must be a freeform"):
                 client.curves.evaluate([[0, 0], [1, 1]], [0.5])
+            with self.assertRaisesRegex(ValueError, "direction='u' or 'v'"):
+                client.surfaces.split(freeform.bezier_surface(
+                    np.zeros((2, 2, 3))), 0.5)
             with self.assertRaisesRegex(ValueError, "algorithm must be one"):
                 client.curves.evaluate(cubic(), [0.5], algorithm="magic")
             with self.assertRaisesRegex(ValueError, "unknown method"):
