@@ -15,6 +15,7 @@ import signal
 import subprocess
 import tempfile
 import time
+import unittest
 
 import freeform
 
@@ -111,3 +112,17 @@ def client(**options) -> freeform.Client:
     """A Client of the shared server."""
     options.setdefault("timeout", TIMEOUT)
     return freeform.Client(address(), **options)
+
+
+class ClientTestCase(unittest.TestCase):
+    """Tests that share one Client of the shared server, ``self.client``."""
+
+    client: freeform.Client
+
+    @classmethod
+    def setUpClass(cls):
+        cls.client = client()
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.client.close()

@@ -15,15 +15,7 @@ from freeform.v1 import curve_service_pb2, geometry_pb2
 from support import cubic, cubic_point
 
 
-class StreamTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class StreamTest(support.ClientTestCase):
     def test_chunks_follow_one_another(self):
         chunks = list(self.client.curves.evaluate_stream(
             cubic(), freeform.Range(9), 1, chunk_size=4))

@@ -20,15 +20,7 @@ def line(start, end):
     return freeform.bezier([start, end])
 
 
-class EvaluateTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class EvaluateTest(support.ClientTestCase):
     def test_worked_cubic(self):
         samples = self.client.curves.evaluate(cubic(), [0, 0.5, 1],
                                               derivative_order=1)
@@ -102,15 +94,7 @@ class EvaluateTest(unittest.TestCase):
         close(hermite[0], [[0.5, 0.5, 0.125, -0.125]])
 
 
-class RefinementTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class RefinementTest(support.ClientTestCase):
     def test_split_is_de_casteljau(self):
         left, right = self.client.curves.split(cubic(), 0.5)
         # The de Casteljau triangle at 1/2: P01 = (0.5, 1), P12 = (2, 2),
@@ -175,15 +159,7 @@ class RefinementTest(unittest.TestCase):
         self.assertLess(reduction.error_bound, 1e-12)
 
 
-class InterpolationTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class InterpolationTest(support.ClientTestCase):
     def test_interpolate_passes_through_the_points(self):
         angles = np.linspace(0, math.pi, 7)
         points = np.stack([np.cos(angles), np.sin(angles)], axis=1)
@@ -250,15 +226,7 @@ class InterpolationTest(unittest.TestCase):
                          [0, 0, 0, 0, 1, 1, 1, 1])
 
 
-class QueryTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class QueryTest(support.ClientTestCase):
     def test_closest_points_of_the_circle(self):
         answer = self.client.curves.closest_point(
             unit_circle(), [[2, 0], [0, 3], [-3, -4]])

@@ -19,15 +19,7 @@ from freeform.v1 import curve_service_pb2
 from support import cubic, unit_circle
 
 
-class FieldViolationTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class FieldViolationTest(support.ClientTestCase):
     def assert_names_field(self, call, code, field):
         with self.assertRaises(freeform.FreeformError) as caught:
             call()

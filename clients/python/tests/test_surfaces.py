@@ -50,15 +50,7 @@ def projected_area(mesh):
                         (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
 
 
-class EvaluateTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class EvaluateTest(support.ClientTestCase):
     def test_partials_and_normals(self):
         uv = [[0.25, 0.5], [1, 0]]
         samples = self.client.surfaces.evaluate(saddle(), uv, 2,
@@ -113,15 +105,7 @@ class EvaluateTest(unittest.TestCase):
         close(joined.normals, unary.normals, 0)
 
 
-class MeshTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class MeshTest(support.ClientTestCase):
     def check_saddle_mesh(self, mesh):
         self.assertEqual(mesh.vertices.shape[1], 3)
         self.assertEqual(mesh.triangles.shape[1], 3)
@@ -178,15 +162,7 @@ class MeshTest(unittest.TestCase):
         self.assertEqual(len(vertices) - len(counts) + len(triangles), 0)
 
 
-class RefinementTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class RefinementTest(support.ClientTestCase):
     def test_split_in_u(self):
         low, high = self.client.surfaces.split(saddle(), 0.5, direction="u")
         close(freeform.to_array(low),
@@ -225,15 +201,7 @@ class RefinementTest(unittest.TestCase):
                [[1, 0, 0], [1, 1, 1]]])
 
 
-class FittingTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class FittingTest(support.ClientTestCase):
     def test_interpolate_a_grid(self):
         x = np.linspace(0, 1, 5)
         net = np.stack(np.meshgrid(x, x, indexing="ij") +
@@ -268,15 +236,7 @@ class FittingTest(unittest.TestCase):
               1e-9)
 
 
-class QueryTest(unittest.TestCase):
-    @classmethod
-    def setUpClass(cls):
-        cls.client = support.client()
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.client.close()
-
+class QueryTest(support.ClientTestCase):
     def test_closest_point_above_a_plane(self):
         plane = freeform.bezier_surface(
             [[[0, 0, 0], [0, 1, 0]], [[1, 0, 0], [1, 1, 0]]])
