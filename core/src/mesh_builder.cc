@@ -289,6 +289,18 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
   return absl::OkStatus();
 }
 
+// CellIndex converts a cell coordinate to an integer, saturated at +-2^62
+// (a NaN to 0): a vertex far out of the geometry's scale (an epsilon of
+// 1e-300 against coordinates near 1) would overflow int64. Vertices it
+// merges into one cell are still welded only within epsilon of each other.
+int64_t CellIndex(double scaled) {
+  constexpr double kLargest = 4611686018427387904.0;  // 2^62
+  if (scaled >= kLargest) return int64_t{1} << 62;
+  if (scaled <= -kLargest) return -(int64_t{1} << 62);
+  if (!(scaled == scaled)) return 0;
+  return static_cast<int64_t>(scaled);
+}
+
 // WeldMap returns, for every vertex, an earlier unwelded vertex within
 // `epsilon` of it (itself when none), found by hashing into cells of 4
 // epsilon: a vertex within epsilon of another lies in the same cell or in a
@@ -317,7 +329,7 @@ std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
     std::array<int, 3> step_count;
     for (int x = 0; x < 3; ++x) {
       const double scaled = std::floor(p[x] / cell_size);
-      cell[x] = static_cast<int64_t>(scaled);
+      cell[x] = CellIndex(scaled);
       const double offset = p[x] - scaled * cell_size;
       steps[x] = {0, 0};
       step_count[x] = 1;
