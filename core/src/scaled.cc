@@ -14,18 +14,28 @@ template <typename Value>
 double SumOfScaledSquares(int d, int e, Value value) {
   double sum = 0.0;
   for (int j = 0; j < d; ++j) {
-    const double x = std::ldexp(value(j), -e);
+    const double x = e == 0 ? value(j) : std::ldexp(value(j), -e);
     sum += x * x;
   }
   return sum;
 }
 
-// NormOf returns the norm of the d values value(j) (ScaledNorm).
+// Values whose magnitudes lie in [2^-500, 2^500] square without underflow
+// or overflow (a sum of 64 such squares included).
+constexpr double kSafeLow = 0x1p-500;
+constexpr double kSafeHigh = 0x1p500;
+
+// NormOf returns the norm of the d values value(j) (ScaledNorm): the plain
+// sum of squares when the largest value is safe to square, else the scaled
+// one.
 template <typename Value>
 double NormOf(int d, Value value) {
   double largest = 0.0;
   for (int j = 0; j < d; ++j) largest = std::max(largest, std::abs(value(j)));
   if (largest == 0.0 || !std::isfinite(largest)) return largest;
+  if (largest >= kSafeLow && largest <= kSafeHigh) {
+    return std::sqrt(SumOfScaledSquares(d, 0, value));
+  }
   const int e = ExponentAbove(largest);
   return std::ldexp(std::sqrt(SumOfScaledSquares(d, e, value)), e);
 }
@@ -42,6 +52,11 @@ double LargestWeight(const Net& net) {
 }
 
 }  // namespace
+
+int SafeExponent(double largest) {
+  if (largest >= kSafeLow && largest <= kSafeHigh) return 0;
+  return ExponentAbove(largest);
+}
 
 int ExponentAbove(double x) {
   if (x == 0.0 || !std::isfinite(x)) return 0;

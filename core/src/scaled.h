@@ -17,6 +17,11 @@ namespace freeform::internal {
 // and 0 for 0 or a value that is not finite.
 int ExponentAbove(double x);
 
+// SafeExponent returns 0 when values of magnitude up to `largest` (itself
+// at least 2^-500) square safely, else ExponentAbove(largest): the exponent
+// by which to divide them first.
+int SafeExponent(double largest);
+
 // ScaledNorm returns |v| for `d` values: they are divided by the power of
 // two at or above the largest magnitude before they are squared, so the
 // result is exact to rounding for every finite v (infinite when the norm
