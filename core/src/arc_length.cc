@@ -4,9 +4,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <cstdint>
 #include <mutex>
 #include <numbers>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
@@ -653,7 +655,35 @@ absl::StatusOr<double> LengthOf(const CurvePieces& pieces, double start,
   return pieces.scaled.scale().Length(table->total());
 }
 
+uint64_t SaturatingProduct(uint64_t a, uint64_t b) {
+  uint64_t product = 0;
+  return __builtin_mul_overflow(a, b, &product) ? UINT64_MAX : product;
+}
+
+uint64_t SaturatingSum(uint64_t a, uint64_t b) {
+  return a > UINT64_MAX - b ? UINT64_MAX : a + b;
+}
+
+bool IsRational(const Curve& curve) {
+  if (const auto* bezier = std::get_if<BezierCurve>(&curve)) {
+    return bezier->view().rational();
+  }
+  if (const auto* bspline = std::get_if<BSplineCurve>(&curve)) {
+    return bspline->view().rational();
+  }
+  return false;
+}
+
 }  // namespace
+
+uint64_t ArcLengthWorkValues(const Curve& curve, size_t tables) {
+  const uint64_t pieces = CurveBreakpoints(curve).size();
+  const uint64_t per_table =
+      SaturatingSum(SaturatingProduct(pieces, 48),
+                    IsRational(curve) ? kMaxArcLengthWeightValues : 0);
+  return SaturatingSum(SaturatingProduct(DecomposedCurveValues(curve), 3),
+                       SaturatingProduct(per_table, tables));
+}
 
 void GaussLegendreRule(int points, absl::Span<double> nodes,
                        absl::Span<double> weights) {

@@ -813,7 +813,21 @@ struct Finisher {
   absl::Status Finish(size_t r, ClosestPoints& answer) const;
   absl::Status CertificationError(size_t r, double distance,
                                   double lower) const;
+  absl::Status DistanceOverflow(size_t r, int dim) const;
 };
+
+absl::Status Finisher::DistanceOverflow(size_t r, int dim) const {
+  const double* q = queries.point(r);
+  int largest = 0;
+  for (int x = 1; x < dim; ++x) {
+    if (std::abs(q[x]) > std::abs(q[largest])) largest = x;
+  }
+  return InvalidFieldError(
+      IndexedField("queries.coordinates",
+                   r * static_cast<size_t>(dim) + static_cast<size_t>(largest)),
+      "the distance from this query point to the geometry exceeds the "
+      "largest double");
+}
 
 absl::Status Finisher::CertificationError(size_t r, double distance,
                                           double lower) const {
@@ -857,6 +871,7 @@ absl::Status Finisher::Finish(size_t r, ClosestPoints& answer) const {
                                       points + k * static_cast<size_t>(dim),
                                       q, dim));
   }
+  if (!std::isfinite(distance)) return DistanceOverflow(r, dim);
   constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
   const double lower =
       far[r] != 0

@@ -367,7 +367,17 @@ SurfacePoint CurvaturePoint(SurfaceOutput partials, size_t r, const double* n) {
   const double s12 = SecondForm(lmn, e1, e2);
   const double s22 = SecondForm(lmn, e2, e2);
   point.mean = 0.5 * (s11 + s22);
-  point.gaussian = s11 * s22 - s12 * s12;
+  // K is exact to a few rounding errors of the shape operator's size
+  // squared (those of s11, s22 and s12 themselves); below that it is noise,
+  // returned as 0, which on a cylinder of radius 1e-300 would otherwise be
+  // scaled back to an overflow.
+  const double size = std::max({std::abs(s11), std::abs(s22), std::abs(s12)});
+  const double gaussian = s11 * s22 - s12 * s12;
+  point.gaussian =
+      std::abs(gaussian) <=
+              16.0 * std::numeric_limits<double>::epsilon() * size * size
+          ? 0.0
+          : gaussian;
   const double radius = std::hypot(0.5 * (s11 - s22), s12);
   point.principal = {point.mean + radius, point.mean - radius};
   const bool umbilic =

@@ -58,6 +58,7 @@
 #define FREEFORM_CORE_ARC_LENGTH_H_
 
 #include <cstddef>
+#include <cstdint>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
@@ -130,6 +131,17 @@ absl::Status EqualArcLengthParameters(const Curve& curve, double start,
                                       double tolerance,
                                       absl::Span<double> parameters,
                                       const ExecutionContext& context = {});
+
+// ArcLengthWorkValues returns an estimate, known before any work, of the
+// doubles a call on `curve` holds besides its answer when `tables` length
+// tables are built at once (one per thread of ArcLengths; one for the
+// inverse): three copies of the curve's Bezier pieces (DecomposedCurveValues:
+// the decomposition, its lifted nets and the rescaled copy of the curve),
+// and per table 48 values per piece (a kept interval holds 4, a piece keeps
+// a few at tolerances it resolves, up to kMaxArcLengthIntervals below
+// them) and, for a rational curve, kMaxArcLengthWeightValues. Saturates at
+// UINT64_MAX.
+uint64_t ArcLengthWorkValues(const Curve& curve, size_t tables);
 
 // GaussLegendreRule returns the `points` >= 1 nodes (ascending) and weights
 // of the Gauss-Legendre rule on [-1, 1], which integrates polynomials of
