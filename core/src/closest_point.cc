@@ -65,6 +65,9 @@ struct Candidate {
   size_t piece = 0;
   double x[2] = {0.0, 0.0};
   double distance = kInfinity;
+  // False for a point of a flat part, which Newton has nowhere to move
+  // (it would only follow the rounding of a zero gradient).
+  bool polish = true;
 };
 
 // What every query reads about the pieces, computed once per batch: their
@@ -490,6 +493,7 @@ void Search::MarkIfFlat(const Node& node, const Candidate& found) {
   const int count = options_.max_minima;
   for (int k = 0; k < count; ++k) {
     Candidate spread = found;
+    spread.polish = false;
     const double fraction = count > 1 ? k / (count - 1.0) : 0.5;
     spread.x[0] = node.lo[0] + fraction * (node.hi[0] - node.lo[0]);
     candidates_.push_back(spread);
@@ -658,7 +662,9 @@ void Search::Report(size_t r, ClosestPoints& answer) {
       continue;
     }
     last = &candidate;
-    const Candidate polished = Newton(candidate, zero, one, kPolishNewtonSteps);
+    const Candidate polished =
+        candidate.polish ? Newton(candidate, zero, one, kPolishNewtonSteps)
+                         : candidate;
     if (std::isfinite(polished.distance)) polished_.push_back(polished);
   }
   // Stable: minima at one distance (a flat part's) keep their order.
