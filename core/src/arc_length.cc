@@ -625,19 +625,42 @@ absl::Status ForEachChunk(size_t count, const ExecutionContext& context,
   return status.ok() ? failure : status;
 }
 
+// What the inverse solves in: the pieces, their table from start to end
+// (keeping the stretches' nets) and the tolerance of each solve, half the
+// call's, in the copy's units.
+struct Inverse {
+  CurvePieces pieces;
+  LengthTable table;
+  double tolerance = 0.0;
+};
+
+absl::StatusOr<Inverse> BuildInverse(const Curve& curve, double start,
+                                     double end, double tolerance,
+                                     const CancellationToken* cancel) {
+  absl::StatusOr<CurvePieces> pieces = LiftCurvePieces(curve, cancel);
+  if (!pieces.ok()) return pieces.status();
+  const double half = 0.5 * ScaledTolerance(*pieces, tolerance);
+  absl::StatusOr<LengthTable> table =
+      BuildTable(*pieces, pieces->scaled.ToScaled(start),
+                 pieces->scaled.ToScaled(end), half, true, cancel);
+  if (!table.ok()) return table.status();
+  return Inverse{.pieces = *std::move(pieces),
+                 .table = *std::move(table),
+                 .tolerance = half};
+}
+
 // SolveAll writes the original parameter of Solve(targets(i)) into
 // parameters[i] for i < count, in chunks on the context's pool.
 template <typename Targets>
-absl::Status SolveAll(const CurvePieces& pieces, const LengthTable& table,
-                      size_t count, Targets targets, double tolerance,
+absl::Status SolveAll(const Inverse& inverse, size_t count, Targets targets,
                       double* parameters, const ExecutionContext& context) {
   return ForEachChunk(count, context, [&](size_t b, size_t e) {
     SpeedIntegrator integrator;
-    const TableReader reader{pieces, table, integrator};
+    const TableReader reader{inverse.pieces, inverse.table, integrator};
     for (size_t i = b; i < e; ++i) {
-      absl::StatusOr<double> t = Solve(reader, targets(i), tolerance);
+      absl::StatusOr<double> t = Solve(reader, targets(i), inverse.tolerance);
       if (!t.ok()) return t.status();
-      parameters[i] = pieces.scaled.ToOriginal(*t);
+      parameters[i] = inverse.pieces.scaled.ToOriginal(*t);
     }
     return absl::OkStatus();
   });
@@ -778,29 +801,23 @@ absl::Status ParametersAtArcLengths(const Curve& curve, double start,
       !status.ok()) {
     return status;
   }
-  absl::StatusOr<CurvePieces> pieces =
-      LiftCurvePieces(curve, context.cancellation);
-  if (!pieces.ok()) return pieces.status();
-  const double scaled_tolerance = ScaledTolerance(*pieces, tolerance);
-  absl::StatusOr<LengthTable> table = BuildTable(
-      *pieces, pieces->scaled.ToScaled(start), pieces->scaled.ToScaled(end),
-      0.5 * scaled_tolerance, true, context.cancellation);
-  if (!table.ok()) return table.status();
-  const internal::ScaledValues& scale = pieces->scaled.scale();
+  absl::StatusOr<Inverse> inverse =
+      BuildInverse(curve, start, end, tolerance, context.cancellation);
+  if (!inverse.ok()) return inverse.status();
+  const internal::ScaledValues& scale = inverse->pieces.scaled.scale();
+  const double total = inverse->table.total();
   for (size_t i = 0; i < lengths.size(); ++i) {
-    if (scale.Unlength(lengths[i]) > table->total() + scaled_tolerance) {
+    if (scale.Unlength(lengths[i]) > total + 2 * inverse->tolerance) {
       return InvalidFieldError(
           IndexedField("lengths", i),
           absl::StrCat(lengths[i], " is beyond the curve's length ",
-                       scale.Length(table->total()), " from start"));
+                       scale.Length(total), " from start"));
     }
   }
   return SolveAll(
-      *pieces, *table, lengths.size(),
-      [&](size_t i) {
-        return std::min(scale.Unlength(lengths[i]), table->total());
-      },
-      0.5 * scaled_tolerance, parameters.data(), context);
+      *inverse, lengths.size(),
+      [&](size_t i) { return std::min(scale.Unlength(lengths[i]), total); },
+      parameters.data(), context);
 }
 
 absl::Status EqualArcLengthParameters(const Curve& curve, double start,
@@ -816,29 +833,23 @@ absl::Status EqualArcLengthParameters(const Curve& curve, double start,
   if (absl::Status status = CheckOutputSize(parameters, count); !status.ok()) {
     return status;
   }
-  absl::StatusOr<CurvePieces> pieces =
-      LiftCurvePieces(curve, context.cancellation);
-  if (!pieces.ok()) return pieces.status();
-  const double scaled_tolerance = ScaledTolerance(*pieces, tolerance);
-  absl::StatusOr<LengthTable> table = BuildTable(
-      *pieces, pieces->scaled.ToScaled(start), pieces->scaled.ToScaled(end),
-      0.5 * scaled_tolerance, true, context.cancellation);
-  if (!table.ok()) return table.status();
+  absl::StatusOr<Inverse> inverse =
+      BuildInverse(curve, start, end, tolerance, context.cancellation);
+  if (!inverse.ok()) return inverse.status();
   const double last = static_cast<double>(count - 1);
+  const double total = inverse->table.total();
   parameters.front() = start;
   parameters.back() = end;
-  if (!(table->total() > 0.0)) {
+  if (!(total > 0.0)) {
     for (size_t k = 1; k + 1 < count; ++k) {
       parameters[k] = start + (end - start) * (static_cast<double>(k) / last);
     }
     return absl::OkStatus();
   }
   return SolveAll(
-      *pieces, *table, count - 2,
-      [&](size_t i) {
-        return table->total() * (static_cast<double>(i + 1) / last);
-      },
-      0.5 * scaled_tolerance, parameters.data() + 1, context);
+      *inverse, count - 2,
+      [&](size_t i) { return total * (static_cast<double>(i + 1) / last); },
+      parameters.data() + 1, context);
 }
 
 }  // namespace freeform
