@@ -168,9 +168,9 @@ CurvePoint FrenetAt(const CurveDerivatives& derivatives, size_t r) {
   CurvePoint point = FrenetPoint(derivatives.at(1, r), derivatives.at(2, r),
                                  derivatives.at(3, r), derivatives.dimension,
                                  derivatives.width);
-  point.curvature =
-      std::ldexp(point.curvature, -derivatives.coordinate_exponent);
-  point.torsion = std::ldexp(point.torsion, -derivatives.coordinate_exponent);
+  const internal::PowerOfTwoScale back(-derivatives.coordinate_exponent);
+  point.curvature = back(point.curvature);
+  point.torsion = back(point.torsion);
   return point;
 }
 
@@ -318,25 +318,29 @@ double SecondForm(const std::array<double, 3>& lmn,
 // the products below stay within the double range whatever the geometry's
 // scale, and the curvatures do not change.
 struct UnitPartials {
-  std::array<std::array<double, 3>, 5> p{};
+  // p[a] points at partial a: the evaluated one when e = 0, else its
+  // scaled copy in `scaled`.
+  std::array<const double*, 5> p{};
+  std::array<std::array<double, 3>, 5> scaled{};
 
   UnitPartials(SurfaceOutput partials, size_t r) {
     const std::array<std::pair<int, int>, 5> orders = {
         {{1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}}};
+    for (size_t a = 0; a < orders.size(); ++a) {
+      p[a] = PartialAt(partials, orders[a].first, orders[a].second, r);
+    }
     double largest = 0.0;
     for (int a = 0; a < 2; ++a) {
-      const double* from = PartialAt(partials, orders[a].first,
-                                     orders[a].second, r);
-      for (int j = 0; j < 3; ++j) largest = std::max(largest, std::abs(from[j]));
+      for (int j = 0; j < 3; ++j) largest = std::max(largest, std::abs(p[a][j]));
     }
     const int e = largest == 0.0 ? 0 : internal::SafeExponent(largest);
+    if (e == 0) return;
     for (size_t a = 0; a < orders.size(); ++a) {
-      const double* from =
-          PartialAt(partials, orders[a].first, orders[a].second, r);
       const int order = orders[a].first + orders[a].second;
       for (int j = 0; j < 3; ++j) {
-        p[a][j] = e == 0 ? from[j] : std::ldexp(from[j], -order * e);
+        scaled[a][j] = std::ldexp(p[a][j], -order * e);
       }
+      p[a] = scaled[a].data();
     }
   }
 };
@@ -346,8 +350,8 @@ struct UnitPartials {
 SurfacePoint CurvaturePoint(SurfaceOutput partials, size_t r, const double* n) {
   SurfacePoint point;
   const UnitPartials unit(partials, r);
-  const double* su = unit.p[0].data();
-  const double* sv = unit.p[1].data();
+  const double* su = unit.p[0];
+  const double* sv = unit.p[1];
   const double e = Dot(su, su, 3);
   const double f = Dot(su, sv, 3);
   const double g = Dot(sv, sv, 3);
@@ -355,9 +359,8 @@ SurfacePoint CurvaturePoint(SurfaceOutput partials, size_t r, const double* n) {
   Cross(su, sv, cross.data());
   const double area = Norm(cross.data(), 3);
   if (!(area > kSingularSurface * (e + g))) return point;
-  const std::array<double, 3> lmn = {Dot(unit.p[2].data(), n, 3),
-                                     Dot(unit.p[3].data(), n, 3),
-                                     Dot(unit.p[4].data(), n, 3)};
+  const std::array<double, 3> lmn = {Dot(unit.p[2], n, 3), Dot(unit.p[3], n, 3),
+                                     Dot(unit.p[4], n, 3)};
   // e1 = S_u / |S_u| and e2 = n x e1 = (E S_v - F S_u) / (|S_u| area) in
   // parameter coordinates.
   const double root_e = std::sqrt(e);
@@ -560,13 +563,15 @@ absl::Status EvaluateSurfaceCurvatures(const Surface& surface,
     return status;
   }
   const int exponent = scaled.scale().coordinate_exponent;
+  const internal::PowerOfTwoScale back(-exponent);
+  const internal::PowerOfTwoScale back_squared(-2 * exponent);
   return ParallelFor(count, context, [&](size_t b, size_t e) {
     for (size_t r = b; r < e; ++r) {
       const double* normal = normals.data() + 3 * r;
       SurfacePoint point = CurvaturePoint(partials, r, normal);
-      point.mean = std::ldexp(point.mean, -exponent);
-      point.gaussian = std::ldexp(point.gaussian, -2 * exponent);
-      for (double& k : point.principal) k = std::ldexp(k, -exponent);
+      point.mean = back(point.mean);
+      point.gaussian = back_squared(point.gaussian);
+      for (double& k : point.principal) k = back(k);
       StoreCurvature(point, normal, r, output);
     }
   });

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "absl/strings/str_cat.h"
 #include "scaled.h"
@@ -44,29 +43,29 @@ double Length(const Vec3& a) {
   return internal::ScaledNorm(values, 3);
 }
 
-// The exponent by which to divide the partials of point r (SafeExponent of
-// the largest component of S_u and S_v; exact, and the normal's direction
-// does not change), so that S_u x S_v and the squares below neither
-// overflow nor underflow for a surface of size 1e160 or 1e-160.
-int ScaleOf(SurfaceOutput partials, size_t r) {
-  double largest = 0.0;
-  for (const auto& [k, l] : {std::pair{1, 0}, std::pair{0, 1}}) {
-    const double* p = partials[PartialIndex(k, l)].data() + 3 * r;
-    for (int j = 0; j < 3; ++j) largest = std::max(largest, std::abs(p[j]));
-  }
-  return largest == 0.0 ? 0 : internal::SafeExponent(largest);
-}
-
 // The unit normal of point r, degenerate points approached by
-// (sign_u h, sign_v h), h > 0 (see normals.h).
+// (sign_u h, sign_v h), h > 0 (see normals.h). Partials too large or too
+// small to square (|S_u|^2 + |S_v|^2 outside [2^-480, 2^500]) are first
+// divided by the power of two at or above their largest component (exact,
+// and the normal's direction does not change), so that a surface of size
+// 1e160 or 1e-160 gets its normal.
 Vec3 UnitNormal(SurfaceOutput partials, size_t r, double sign_u,
                 double sign_v) {
-  const int e = ScaleOf(partials, r);
-  const Vec3 su = Partial(partials, 1, 0, r, e);
-  const Vec3 sv = Partial(partials, 0, 1, r, e);
+  int e = 0;
+  Vec3 su = Partial(partials, 1, 0, r, e);
+  Vec3 sv = Partial(partials, 0, 1, r, e);
+  double size = Dot(su, su) + Dot(sv, sv);
+  if (!(size >= 0x1p-480 && size <= 0x1p500) && size != 0.0) {
+    e = internal::ExponentAbove(
+        std::max({std::abs(su.x), std::abs(su.y), std::abs(su.z),
+                  std::abs(sv.x), std::abs(sv.y), std::abs(sv.z)}));
+    su = Partial(partials, 1, 0, r, e);
+    sv = Partial(partials, 0, 1, r, e);
+    size = Dot(su, su) + Dot(sv, sv);
+  }
   Vec3 normal = Cross(su, sv);
   double length = Length(normal);
-  if (!(length > kDegenerate * (Dot(su, su) + Dot(sv, sv)))) {
+  if (!(length > kDegenerate * size)) {
     if (MaxOrderOf(partials) < 2) return {};
     const Vec3 suu = Partial(partials, 2, 0, r, e);
     const Vec3 suv = Partial(partials, 1, 1, r, e);

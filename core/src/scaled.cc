@@ -53,11 +53,6 @@ double LargestWeight(const Net& net) {
 
 }  // namespace
 
-int SafeExponent(double largest) {
-  if (largest >= kSafeLow && largest <= kSafeHigh) return 0;
-  return ExponentAbove(largest);
-}
-
 int ExponentAbove(double x) {
   if (x == 0.0 || !std::isfinite(x)) return 0;
   int e = 0;
@@ -65,11 +60,11 @@ int ExponentAbove(double x) {
   return fraction == 0.5 ? e - 1 : e;
 }
 
-double ScaledNorm(const double* v, int d) {
+double ScaledNormOf(const double* v, int d) {
   return NormOf(d, [v](int j) { return v[j]; });
 }
 
-double ScaledDistance(const double* a, const double* b, int d) {
+double ScaledDistanceOf(const double* a, const double* b, int d) {
   return NormOf(d, [a, b](int j) { return a[j] - b[j]; });
 }
 
