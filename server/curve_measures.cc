@@ -230,11 +230,11 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
               &response](const ExecutionContext& execution) -> absl::Status {
         const absl::Span<double> parameters = UninitializedArray(
             *response.mutable_parameters(), static_cast<size_t>(count));
-        if (absl::Status status = LengthError(
-                EqualArcLengthParameters(curve, start, end,
-                                         static_cast<size_t>(count), tolerance,
-                                         parameters, execution),
-                request, true);
+        if (absl::Status status =
+                LengthError(EqualArcLengthParameters(
+                                curve, start, end, static_cast<size_t>(count),
+                                tolerance, parameters, execution),
+                            request, true);
             !status.ok()) {
           return status;
         }
@@ -249,8 +249,7 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
 // values, and one value per parameter.
 uint64_t ScaledCopyBytes(const Curve& curve,
                          const std::vector<double>& parameters) {
-  return SaturatingProduct(DecomposedCurveValues(curve) + parameters.size(),
-                           8);
+  return SaturatingProduct(DecomposedCurveValues(curve) + parameters.size(), 8);
 }
 
 // Points of `dimension` coordinates in a response, `count` of them, or none
@@ -279,8 +278,8 @@ absl::StatusOr<UnaryWork> PlanCurvature(
     return status;
   }
   return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values + ScaledCopyBytes(*curve, *parameters),
-                         limits),
+      .plan = AnswerPlan(
+          values, 8 * values + ScaledCopyBytes(*curve, *parameters), limits),
       .run = [curve = *std::move(curve), parameters = *std::move(parameters),
               dimension, sizes,
               &response](const ExecutionContext& execution) -> absl::Status {
@@ -337,8 +336,8 @@ absl::StatusOr<UnaryWork> PlanRotationMinimizingFrames(
     return status;
   }
   return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values + ScaledCopyBytes(*curve, *parameters),
-                         limits),
+      .plan = AnswerPlan(
+          values, 8 * values + ScaledCopyBytes(*curve, *parameters), limits),
       .run = [curve = *std::move(curve), parameters = *std::move(parameters),
               reference = SpanOf(request.initial_reference()), dimension, sizes,
               request = &request.parameters(),

@@ -190,12 +190,12 @@ absl::StatusOr<UnaryWork> PlanClosestPoints(
   }
   // The search works on a copy of the geometry rescaled by powers of two
   // (a third of the pieces' share) and of the queries.
-  const uint64_t copies = work_bytes / 3 + 8 * uint64_t{points->coordinates.size()};
+  const uint64_t copies =
+      work_bytes / 3 + 8 * uint64_t{points->coordinates.size()};
   return UnaryWork{
-      .plan = {.memory_bytes = AnswerPlan(values, 8 * values + work_bytes +
-                                                      copies,
-                                          limits)
-                                   .memory_bytes,
+      .plan = {.memory_bytes =
+                   AnswerPlan(values, 8 * values + work_bytes + copies, limits)
+                       .memory_bytes,
                .heavy = true},
       .run = [points = *points, options = *core_options,
               search = std::move(search), geometry = std::move(geometry),

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <utility>
@@ -161,8 +161,8 @@ class SpeedIntegrator {
     const double half = 0.5 * (b - a);
     double sum = 0.0;
     for (int i = 0; i < kRulePoints; ++i) {
-      sum += rule.weights[i] * Speed(net, std::clamp(mid + half * rule.nodes[i],
-                                                     a, b));
+      sum += rule.weights[i] *
+             Speed(net, std::clamp(mid + half * rule.nodes[i], a, b));
     }
     return half * sum;
   }
@@ -334,8 +334,8 @@ absl::Status WeightsError(absl::string_view why) {
 // are: each halving roughly halves the spread of the weights where the
 // speed concentrates, so a spread of 2^m takes about m halvings there, and
 // then the speed is as smooth as a polynomial's.
-absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0,
-                      double u1, double budget, bool keep_nets,
+absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0, double u1,
+                      double budget, bool keep_nets,
                       SpeedIntegrator& integrator, CancellationPoll& poll,
                       LengthTable& table) {
   const Net& whole = pieces.nets[k];
@@ -366,18 +366,23 @@ absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0,
       continue;
     }
     if (top.depth >= kMaxArcLengthWeightHalvings) {
-      return WeightsError(absl::StrCat("more than ",
-                                       kMaxArcLengthWeightHalvings,
-                                       " halvings of one piece"));
+      return WeightsError(absl::StrCat(
+          "more than ", kMaxArcLengthWeightHalvings, " halvings of one piece"));
     }
     if (absl::Status status = poll.Done(top.net.values.size() * 4);
         !status.ok()) {
       return status;
     }
-    Stretch low{.net = {}, .u_a = top.u_a, .u_b = 0.5 * (top.u_a + top.u_b),
-                .budget = 0.5 * top.budget, .depth = top.depth + 1};
-    Stretch high{.net = {}, .u_a = low.u_b, .u_b = top.u_b,
-                 .budget = low.budget, .depth = low.depth};
+    Stretch low{.net = {},
+                .u_a = top.u_a,
+                .u_b = 0.5 * (top.u_a + top.u_b),
+                .budget = 0.5 * top.budget,
+                .depth = top.depth + 1};
+    Stretch high{.net = {},
+                 .u_a = low.u_b,
+                 .u_b = top.u_b,
+                 .budget = low.budget,
+                 .depth = low.depth};
     internal::Halve(top.net, true, low.net, high.net);
     // Halves far from the largest weight would square weights that
     // underflow: each keeps its weights at most 1 (scaled.h).
@@ -385,8 +390,9 @@ absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0,
     internal::NormalizeWeights(high.net);
     held += low.net.values.size() + high.net.values.size();
     if (held > kMaxArcLengthWeightValues) {
-      return WeightsError(absl::StrCat("its halved pieces would hold more than ",
-                                       kMaxArcLengthWeightValues, " values"));
+      return WeightsError(
+          absl::StrCat("its halved pieces would hold more than ",
+                       kMaxArcLengthWeightValues, " values"));
     }
     stack.push_back(std::move(high));
     stack.push_back(std::move(low));
@@ -417,10 +423,9 @@ absl::StatusOr<LengthTable> BuildTable(const CurvePieces& pieces, double start,
     const double share =
         (std::min(end, breaks[k + 1]) - std::max(start, breaks[k])) /
         (end - start);
-    if (absl::Status status =
-            AddPiece(pieces, k, std::clamp(u0, 0.0, 1.0),
-                     std::clamp(u1, 0.0, 1.0), tolerance * share, keep_nets,
-                     integrator, poll, table);
+    if (absl::Status status = AddPiece(
+            pieces, k, std::clamp(u0, 0.0, 1.0), std::clamp(u1, 0.0, 1.0),
+            tolerance * share, keep_nets, integrator, poll, table);
         !status.ok()) {
       return status;
     }
@@ -452,12 +457,13 @@ struct TableReader {
   double LengthIn(size_t index, double s) const {
     const Segment& segment = table.segments[index];
     if (segment.first == segment.end) return table.cumulative[segment.first];
-    const auto hi_begin = table.hi.begin() + static_cast<ptrdiff_t>(segment.first);
+    const auto hi_begin =
+        table.hi.begin() + static_cast<ptrdiff_t>(segment.first);
     const auto hi_end = table.hi.begin() + static_cast<ptrdiff_t>(segment.end);
-    const size_t k = std::min(
-        static_cast<size_t>(std::lower_bound(hi_begin, hi_end, s) -
-                            table.hi.begin()),
-        segment.end - 1);
+    const size_t k =
+        std::min(static_cast<size_t>(std::lower_bound(hi_begin, hi_end, s) -
+                                     table.hi.begin()),
+                 segment.end - 1);
     if (s <= table.lo[k]) return table.cumulative[k];
     return table.cumulative[k] +
            integrator.Integrate(NetOf(index), table.lo[k], s);
@@ -553,12 +559,12 @@ absl::StatusOr<double> Solve(const TableReader& reader, double length,
   const double t = SegmentParameter(reader.pieces, segment, s);
   // The double t stands for s only to its rounding: check the length at t
   // itself unless that rounding moves it by far less than the tolerance.
-  const double width = reader.pieces.Width(segment.piece) *
-                       (segment.u_b - segment.u_a);
+  const double width =
+      reader.pieces.Width(segment.piece) * (segment.u_b - segment.u_a);
   const double moved =
-      width > 0.0 ? speed * std::abs(t) *
-                        std::numeric_limits<double>::epsilon() / width
-                  : std::numeric_limits<double>::infinity();
+      width > 0.0
+          ? speed * std::abs(t) * std::numeric_limits<double>::epsilon() / width
+          : std::numeric_limits<double>::infinity();
   if (moved <= 0.25 * tolerance) return t;
   const auto [least, largest] = reader.LengthRangeAt(t);
   const double missed =

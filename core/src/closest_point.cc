@@ -669,9 +669,9 @@ void Search::Report(size_t r, ClosestPoints& answer) {
   }
   // Stable: minima at one distance (a flat part's) keep their order.
   std::stable_sort(polished_.begin(), polished_.end(),
-            [](const Candidate& a, const Candidate& b) {
-              return a.distance < b.distance;
-            });
+                   [](const Candidate& a, const Candidate& b) {
+                     return a.distance < b.distance;
+                   });
   const int dim = pieces_.dimension;
   const int pc = pieces_.parameter_count;
   const size_t slots = static_cast<size_t>(answer.max_minima);
@@ -787,8 +787,8 @@ absl::StatusOr<ClosestPoints> SearchAll(const Pieces& pieces,
     CancellationPoll poll(context.cancellation);
     std::vector<double> from(static_cast<size_t>(pieces.dimension));
     for (size_t r = b; r < e && !stopped.load(std::memory_order_relaxed); ++r) {
-      far[r] = SearchPoint(queries.point(r), pieces.dimension, scale,
-                           from.data());
+      far[r] =
+          SearchPoint(queries.point(r), pieces.dimension, scale, from.data());
       if (!search.Run(from.data(), r, poll, answer).ok()) {
         stopped.store(true, std::memory_order_relaxed);
       }
@@ -800,8 +800,8 @@ absl::StatusOr<ClosestPoints> SearchAll(const Pieces& pieces,
 }
 
 // Evaluates a geometry's points at `count` parameter tuples.
-using PointEvaluator =
-    absl::FunctionRef<absl::Status(absl::Span<const double>, absl::Span<double>)>;
+using PointEvaluator = absl::FunctionRef<absl::Status(absl::Span<const double>,
+                                                      absl::Span<double>)>;
 
 // Finisher turns the search's answer into the geometry's own: parameters
 // and distances back in the original units, each returned point the
@@ -844,10 +844,10 @@ absl::Status Finisher::CertificationError(size_t r, double distance,
       "; the geometry moves that far between adjacent parameters there");
   if (rational) {
     return InvalidFieldError(
-        "weights",
-        absl::StrCat(rule, " (its weights vary that steeply: "
-                           "docs/references.md, 'Closest points by branch "
-                           "and bound')"));
+        "weights", absl::StrCat(rule,
+                                " (its weights vary that steeply: "
+                                "docs/references.md, 'Closest points by branch "
+                                "and bound')"));
   }
   return InvalidFieldError("tolerance", rule);
 }
@@ -873,16 +873,15 @@ absl::Status Finisher::Finish(size_t r, ClosestPoints& answer) const {
   const double* q = queries.point(r);
   double distance = kInfinity;
   for (size_t k = 0; k < count; ++k) {
-    distance = std::min(distance, internal::ScaledDistance(
-                                      points + k * static_cast<size_t>(dim),
-                                      q, dim));
+    distance =
+        std::min(distance, internal::ScaledDistance(
+                               points + k * static_cast<size_t>(dim), q, dim));
   }
   if (!std::isfinite(distance)) return DistanceOverflow(r, dim);
   constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
   const double lower =
-      far[r] != 0
-          ? distance * (1.0 - 16.0 * kEpsilon)
-          : std::min(scale.Length(answer.lower_bounds[r]), distance);
+      far[r] != 0 ? distance * (1.0 - 16.0 * kEpsilon)
+                  : std::min(scale.Length(answer.lower_bounds[r]), distance);
   answer.distances[r] = distance;
   answer.lower_bounds[r] = lower;
   // From a far query every point is at the minimum distance to rounding.

@@ -331,7 +331,8 @@ struct UnitPartials {
     }
     double largest = 0.0;
     for (int a = 0; a < 2; ++a) {
-      for (int j = 0; j < 3; ++j) largest = std::max(largest, std::abs(p[a][j]));
+      for (int j = 0; j < 3; ++j)
+        largest = std::max(largest, std::abs(p[a][j]));
     }
     const int e = largest == 0.0 ? 0 : internal::SafeExponent(largest);
     if (e == 0) return;
@@ -556,9 +557,9 @@ absl::Status EvaluateSurfaceCurvatures(const Surface& surface,
   const internal::ScaledSurface scaled = internal::ScaledSurface::Of(surface);
   std::vector<double> storage;
   std::vector<double> normals(3 * count);
-  if (absl::Status status = EvaluateSurface(
-          scaled.surface(), scaled.Samples(samples, storage), partials,
-          absl::MakeSpan(normals), context);
+  if (absl::Status status =
+          EvaluateSurface(scaled.surface(), scaled.Samples(samples, storage),
+                          partials, absl::MakeSpan(normals), context);
       !status.ok()) {
     return status;
   }

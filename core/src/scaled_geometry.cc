@@ -12,7 +12,8 @@ namespace {
 
 int LargestExponent(absl::Span<const double> values) {
   double largest = 0.0;
-  for (const double value : values) largest = std::max(largest, std::abs(value));
+  for (const double value : values)
+    largest = std::max(largest, std::abs(value));
   return ExponentAbove(largest);
 }
 
@@ -129,9 +130,9 @@ std::optional<Surface> Copy(const BezierSurface& surface,
                             ScaledValues& values) {
   const BezierSurfaceView& view = surface.view();
   ScaleCoordinates(view.control_net.coordinates, view.weights, values);
-  return SurfaceOf(BezierSurface::Create(
-      {.control_net = ScaledNet(view.control_net, values),
-       .weights = values.weights}));
+  return SurfaceOf(
+      BezierSurface::Create({.control_net = ScaledNet(view.control_net, values),
+                             .weights = values.weights}));
 }
 
 std::optional<Surface> Copy(const BSplineSurface& surface,
@@ -139,10 +140,10 @@ std::optional<Surface> Copy(const BSplineSurface& surface,
   const BSplineSurfaceView& view = surface.view();
   ScaleCoordinates(view.control_net.coordinates, view.weights, values);
   const SurfaceDomain domain = surface.domain();
-  values.u_exponent = ScaleKnots(
-      view.knots_u, domain.u_end - domain.u_start, values.knots_u);
-  values.v_exponent = ScaleKnots(
-      view.knots_v, domain.v_end - domain.v_start, values.knots_v);
+  values.u_exponent =
+      ScaleKnots(view.knots_u, domain.u_end - domain.u_start, values.knots_u);
+  values.v_exponent =
+      ScaleKnots(view.knots_v, domain.v_end - domain.v_start, values.knots_v);
   return SurfaceOf(BSplineSurface::Create(
       {.degree_u = view.degree_u,
        .degree_v = view.degree_v,

@@ -21,9 +21,9 @@ constexpr auto Distance = testing_util::PointDistance;
 using testing_util::CornerLength;
 using testing_util::EvenlySpaced;
 using testing_util::NurbsCircle;
-using testing_util::RationalCorner;
 using testing_util::RandomKnots;
 using testing_util::RandomValues;
+using testing_util::RationalCorner;
 
 std::vector<double> Points(const Curve& curve,
                            const std::vector<double>& parameters) {
@@ -390,9 +390,9 @@ TEST(ParametersAtArcLengths, RationalCornerMeetsTheToleranceOrNamesTheWeights) {
       corner, 0.0, second_leg, 1e-9, absl::MakeSpan(one));
   EXPECT_EQ(refused.code(), absl::StatusCode::kInvalidArgument);
   EXPECT_EQ(FieldPathOf(refused), "weights") << refused;
-  ASSERT_TRUE(ParametersAtArcLengths(corner, 0.0, second_leg, 1e-7,
-                                     absl::MakeSpan(one))
-                  .ok());
+  ASSERT_TRUE(
+      ParametersAtArcLengths(corner, 0.0, second_leg, 1e-7, absl::MakeSpan(one))
+          .ok());
   EXPECT_NEAR(static_cast<double>(CornerLength(w, one[0])), 1.5, 1e-7 + 1e-11);
 }
 

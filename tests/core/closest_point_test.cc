@@ -686,7 +686,8 @@ double CornerSampleDistance(long double w, const double* q) {
   long double best = INFINITY;
   const long double lowest = std::log10(1e-40L / w);
   for (int k = 0; k <= 20000; ++k) {
-    const long double e = std::pow(10.0L, lowest + (-0.302L - lowest) * k / 20000);
+    const long double e =
+        std::pow(10.0L, lowest + (-0.302L - lowest) * k / 20000);
     for (const bool from_end : {false, true}) {
       long double point[2];
       CornerPoint(w, e, from_end ? e : 0, point);
@@ -729,8 +730,7 @@ TEST(ClosestPointTest, ExtremeWeightsAreAnsweredOrRefused) {
       EXPECT_EQ(point[1], answer->points[1]);
       EXPECT_NEAR(answer->distances[0], Distance(point.data(), q.data(), 2),
                   1e-15);
-      EXPECT_LE(answer->distances[0],
-                CornerSampleDistance(w, q.data()) + 1e-9)
+      EXPECT_LE(answer->distances[0], CornerSampleDistance(w, q.data()) + 1e-9)
           << "w = " << w << ", q = (" << q[0] << ", " << q[1] << ")";
       EXPECT_TRUE(answer->complete[0]);
       EXPECT_LE(answer->lower_bounds[0], answer->distances[0]);

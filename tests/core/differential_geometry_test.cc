@@ -317,9 +317,9 @@ TEST(RotationMinimizingFrames, PlanarCircleAtEveryScale) {
     circle.dimension = 3;
     circle.coordinates.clear();
     for (size_t i = 0; i < flat.weights.size(); ++i) {
-      circle.coordinates.insert(circle.coordinates.end(),
-                                {flat.coordinates[2 * i],
-                                 flat.coordinates[2 * i + 1], 0.0});
+      circle.coordinates.insert(
+          circle.coordinates.end(),
+          {flat.coordinates[2 * i], flat.coordinates[2 * i + 1], 0.0});
     }
     const Curve curve = *BSplineCurve::Create(circle.view());
     const std::vector<double> t = EvenlySpaced(0.0, 1.0, 33);

@@ -154,7 +154,8 @@ inline long double CornerSpeed(long double w, long double t) {
   const long double dnx = -2 * s + 2 * w * (1 - 2 * t);
   const long double ny = 2 * w * t * s + t * t;
   const long double dny = 2 * w * (1 - 2 * t) + 2 * t;
-  return std::hypot((dnx * d - nx * dd) / (d * d), (dny * d - ny * dd) / (d * d));
+  return std::hypot((dnx * d - nx * dd) / (d * d),
+                    (dny * d - ny * dd) / (d * d));
 }
 
 // CornerLength returns the arc length of RationalCorner(w) over [0, t],

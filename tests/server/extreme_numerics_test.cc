@@ -94,9 +94,10 @@ TEST_F(ExtremeNumericsTest, ArcLengthOfTheRationalCorner) {
   ASSERT_EQ(spaced->parameters_size(), 11);
   const double spacing = static_cast<double>(CornerLength(1e10, 1.0)) / 10;
   for (int k = 0; k + 1 < 11; ++k) {
-    EXPECT_NEAR(static_cast<double>(CornerLength(1e10, spaced->parameters(k + 1)) -
-                                    CornerLength(1e10, spaced->parameters(k))),
-                spacing, 2e-7 + 1e-11)
+    EXPECT_NEAR(
+        static_cast<double>(CornerLength(1e10, spaced->parameters(k + 1)) -
+                            CornerLength(1e10, spaced->parameters(k))),
+        spacing, 2e-7 + 1e-11)
         << k;
   }
 }

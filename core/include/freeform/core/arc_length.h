@@ -50,8 +50,8 @@
 // the best parameter misses.
 //
 // Errors name their field: "start", "end", "tolerance", "lengths[i]",
-// "count", "weights". Output buffers have a size known before any work (the number of
-// lengths, or `count`); a wrongly sized buffer is INVALID_ARGUMENT.
+// "count", "weights". Output buffers have a size known before any work (the
+// number of lengths, or `count`); a wrongly sized buffer is INVALID_ARGUMENT.
 //
 // All functions are thread-safe and allocate per call or per chunk.
 #ifndef FREEFORM_CORE_ARC_LENGTH_H_
