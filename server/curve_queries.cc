@@ -27,7 +27,8 @@ absl::StatusOr<UnaryWork> PlanClosestPoint(
       PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
   if (!work.ok()) return work.status();
   return PlanClosestPoints(
-      DimensionOf(*curve), 1, *work, request.queries(), request.options(),
+      GeometryFieldOf(request), DimensionOf(*curve), 1, *work,
+      request.queries(), request.options(),
       [curve = *std::move(curve)](const PointsView& queries,
                                   const ClosestPointOptions& options,
                                   const ExecutionContext& execution) {

@@ -6,6 +6,7 @@
 #define FREEFORM_SERVER_QUERIES_H_
 
 #include <cstdint>
+#include <string>
 
 #include "absl/functional/any_invocable.h"
 #include "absl/status/statusor.h"
@@ -68,6 +69,14 @@ absl::StatusOr<IntersectionOptions> ToCore(
 // options.tolerance. Other errors pass unchanged.
 absl::Status IntersectionError(const absl::Status& status);
 
+// QueryError maps the core's fields of a query no double parameter answers
+// (core/arc_length.h, core/closest_point.h) to the request's: "weights" to
+// the geometry's weights (`geometry` is its path, "curve.bspline", so
+// "curve.bspline.weights") and "tolerance" to `tolerance` ("tolerance" or
+// "options.tolerance"). Other errors pass unchanged.
+absl::Status QueryError(const absl::Status& status, absl::string_view geometry,
+                        absl::string_view tolerance);
+
 // A closest-point search of a prepared geometry: (queries, options,
 // context) -> minima.
 using ClosestPointSearch = absl::AnyInvocable<absl::StatusOr<ClosestPoints>(
@@ -75,15 +84,17 @@ using ClosestPointSearch = absl::AnyInvocable<absl::StatusOr<ClosestPoints>(
                                                   const>;
 
 // PlanClosestPoints plans a batch of closest-point queries of a geometry
-// of `dimension` with `parameter_count` parameters per point, whose pieces
-// take `work_bytes` (PieceWorkBytes): the queries
-// ("queries", within the parameter limit) and options are checked and the
-// answer's size bounded before any work.
+// at the request path `geometry` ("curve.bspline") of `dimension` with
+// `parameter_count` parameters per point, whose pieces take `work_bytes`
+// (PieceWorkBytes; the search adds a rescaled copy of the geometry and of
+// the queries): the queries ("queries", within the parameter limit) and
+// options are checked and the answer's size bounded before any work. The
+// search's errors name the request's fields (QueryError).
 absl::StatusOr<UnaryWork> PlanClosestPoints(
-    int dimension, int parameter_count, uint64_t work_bytes,
-    const v1::Points& queries, const v1::ClosestPointOptions& options,
-    ClosestPointSearch search, const ServiceLimits& limits,
-    v1::ClosestPointResponse& response);
+    std::string geometry, int dimension, int parameter_count,
+    uint64_t work_bytes, const v1::Points& queries,
+    const v1::ClosestPointOptions& options, ClosestPointSearch search,
+    const ServiceLimits& limits, v1::ClosestPointResponse& response);
 
 // A bounding-box computation of a prepared geometry at a tolerance.
 using BoxComputation = absl::AnyInvocable<absl::StatusOr<BoundingBox>(

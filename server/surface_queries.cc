@@ -52,7 +52,8 @@ absl::StatusOr<UnaryWork> PlanClosestPoint(
       PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
   if (!work.ok()) return work.status();
   return PlanClosestPoints(
-      DimensionOf(*surface), 2, *work, request.queries(), request.options(),
+      GeometryFieldOf(request), DimensionOf(*surface), 2, *work,
+      request.queries(), request.options(),
       [surface = *std::move(surface)](const PointsView& queries,
                                       const ClosestPointOptions& options,
                                       const ExecutionContext& execution) {
@@ -212,8 +213,12 @@ absl::StatusOr<UnaryWork> PlanCurvature(
       !status.ok()) {
     return status;
   }
+  // The core evaluates a copy of the surface rescaled by powers of two (at
+  // most its pieces' values) at a copy of the samples (two values each).
+  const uint64_t copies =
+      SaturatingProduct(SurfacePieceValues(*plan.surface) + 2 * plan.size(), 8);
   return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values, limits),
+      .plan = AnswerPlan(values, 8 * values + copies, limits),
       .run = [plan = std::move(plan),
               &response](const ExecutionContext& execution) -> absl::Status {
         const SurfaceCurvatureSizes sizes = CurvatureSizes(plan.size());
