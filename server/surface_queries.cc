@@ -80,15 +80,20 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
         "surface", absl::StrCat("must have the curve's dimension ", dimension,
                                 ", not ", DimensionOf(*surface)));
   }
-  // A point holds (t, u, v) and the curve's point.
+  // A point holds (t, u, v) and the curve's point, an overlap two
+  // parameters.
   const uint64_t per_result = 3 + static_cast<uint64_t>(dimension);
   absl::StatusOr<IntersectionOptions> options =
       ToCore(request.options(), per_result, limits);
   if (!options.ok()) return options.status();
   const uint64_t values = options->max_results * per_result;
+  // The search keeps its candidates besides the answer.
+  const uint64_t candidates =
+      IntersectionCandidateBytes(options->max_results, dimension);
   return UnaryWork{
       .plan = {.memory_bytes =
-                   AnswerPlan(values, 8 * values + *work + *surface_work,
+                   AnswerPlan(values,
+                              8 * values + *work + *surface_work + candidates,
                               limits)
                        .memory_bytes,
                .heavy = true},
@@ -107,6 +112,8 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
             static_cast<uint32_t>(found->dimension));
         response.mutable_points()->mutable_coordinates()->Add(
             found->points.begin(), found->points.end());
+        response.mutable_curve_intervals()->Add(found->curve_intervals.begin(),
+                                                found->curve_intervals.end());
         return absl::OkStatus();
       }};
 }

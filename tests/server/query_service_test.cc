@@ -263,6 +263,96 @@ TEST_F(QueryServiceTest, LineThroughAPlaneAndASphere) {
   ExpectInvalid(call().status(), "surface");
 }
 
+// A tolerance below what double precision resolves on the inputs (2^-48 of
+// their largest coordinate) is refused at once, naming it.
+TEST_F(QueryServiceTest, IntersectionToleranceBelowTheResolutionIsRefused) {
+  v1::IntersectCurvesRequest curves;
+  *curves.mutable_first() = CircleMessage(1.0, 0.0, 0.0);
+  *curves.mutable_second() = CircleMessage(1.0, 0.0, 0.0);
+  curves.mutable_options()->set_tolerance(5e-324);
+  ExpectInvalid(
+      client_
+          ->Unary(client_->curves(), &v1::CurveService::Stub::Intersect, curves)
+          .status(),
+      "options.tolerance");
+  v1::IntersectCurveSurfaceRequest surface;
+  *surface.mutable_curve() = BezierMessage(3, {0.25, 0.5, -1, 0.25, 0.5, 1});
+  *surface.mutable_surface() = UnitSquareMessage();
+  surface.mutable_options()->set_tolerance(1e-17);
+  auto call = [&] {
+    return client_->Unary(client_->surfaces(),
+                          &v1::SurfaceService::Stub::IntersectCurve, surface);
+  };
+  ExpectInvalid(call().status(), "options.tolerance");
+  // Twice the resolution finds the crossing at the curve's middle.
+  surface.mutable_options()->set_tolerance(std::ldexp(1.0, -47));
+  absl::StatusOr<v1::IntersectCurveSurfaceResponse> answer = call();
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  EXPECT_THAT(answer->curve_parameters(), ElementsAre(DoubleNear(0.5, 1e-14)));
+  EXPECT_THAT(answer->surface_parameters(),
+              ElementsAre(DoubleNear(0.25, 1e-14), DoubleNear(0.5, 1e-14)));
+}
+
+// The parabola B-spline of degree 2 on knots 0, 0, 0, 1/2, 1, 1, 1 through
+// (-1, 1), (-1/2, 0), (1/2, 0), (1, 1) is (2s - 1, (2s - 1)^2) on both
+// pieces; it touches the line (-2 + 4t, 0) at its knot. One point comes
+// back, where the two are within the tolerance.
+TEST_F(QueryServiceTest, TangencyOnAKnotIsOnePoint) {
+  v1::IntersectCurvesRequest request;
+  v1::BSplineCurve& parabola = *request.mutable_first()->mutable_bspline();
+  parabola.set_degree(2);
+  parabola.mutable_control_points()->set_dimension(2);
+  Append(parabola.mutable_control_points()->mutable_coordinates(),
+         {-1, 1, -0.5, 0, 0.5, 0, 1, 1});
+  Append(parabola.mutable_knots(), {0, 0, 0, 0.5, 1, 1, 1});
+  *request.mutable_second() = BezierMessage(2, {-2, 0, 2, 0});
+  for (const double tolerance : {1e-6, 1e-9, 1e-12}) {
+    request.mutable_options()->set_tolerance(tolerance);
+    absl::StatusOr<v1::IntersectCurvesResponse> answer = client_->Unary(
+        client_->curves(), &v1::CurveService::Stub::Intersect, request);
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    ASSERT_EQ(answer->first_parameters_size(), 1) << tolerance;
+    EXPECT_TRUE(answer->first_intervals().empty());
+    const double x = 2 * answer->first_parameters(0) - 1;
+    const double line_x = -2 + 4 * answer->second_parameters(0);
+    EXPECT_LE(std::hypot(x - line_x, x * x), tolerance);
+  }
+}
+
+// A stretch of a curve lying in the surface is an overlap: a segment in the
+// unit square, and (t, 1/2, (1 - 2t)^16), the Bezier curve of control
+// points (i / 16, 1/2, (-1)^i), along [1/2 - r, 1/2 + r] with
+// (2r)^16 = 1e-9, where it is within 1e-9 of the square.
+TEST_F(QueryServiceTest, CurveLyingInASurfaceIsAnOverlap) {
+  v1::IntersectCurveSurfaceRequest request;
+  *request.mutable_curve() = BezierMessage(3, {0.1, 0.2, 0, 0.8, 0.7, 0});
+  *request.mutable_surface() = UnitSquareMessage();
+  request.mutable_options()->set_tolerance(1e-3);
+  auto call = [&] {
+    return client_->Unary(client_->surfaces(),
+                          &v1::SurfaceService::Stub::IntersectCurve, request);
+  };
+  absl::StatusOr<v1::IntersectCurveSurfaceResponse> answer = call();
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  EXPECT_TRUE(answer->curve_parameters().empty());
+  EXPECT_THAT(answer->curve_intervals(),
+              ElementsAre(DoubleNear(0, 1e-12), DoubleNear(1, 1e-12)));
+  v1::Points& zigzag =
+      *request.mutable_curve()->mutable_bezier()->mutable_control_points();
+  zigzag.clear_coordinates();
+  for (int i = 0; i <= 16; ++i) {
+    Append(zigzag.mutable_coordinates(), {i / 16.0, 0.5, i % 2 ? -1.0 : 1.0});
+  }
+  request.mutable_options()->set_tolerance(1e-9);
+  answer = call();
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  EXPECT_TRUE(answer->curve_parameters().empty());
+  const double r = 0.5 * std::pow(1e-9, 1.0 / 16);
+  EXPECT_THAT(
+      answer->curve_intervals(),
+      ElementsAre(DoubleNear(0.5 - r, 1e-9), DoubleNear(0.5 + r, 1e-9)));
+}
+
 // Planes z = h cut the sphere patch of radius 2 in quarter circles of radius
 // sqrt(4 - h^2).
 TEST_F(QueryServiceTest, PlaneSectionsOfASpherePatchAreCircles) {
