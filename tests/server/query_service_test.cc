@@ -408,6 +408,134 @@ TEST_F(QueryServiceTest, PlaneSectionsOfASpherePatchAreCircles) {
                 "plane_normal");
 }
 
+// A plane holding the unit square is one region, its parameter square; one
+// holding a boundary edge gives that edge, on every side; a normal of any
+// scale cuts the same line x + y = 1/2.
+TEST_F(QueryServiceTest, SectionsInThePlaneAndAtAnyScale) {
+  v1::SectionSurfaceRequest request;
+  *request.mutable_surface() = UnitSquareMessage();
+  auto cut = [&](std::initializer_list<double> point,
+                 std::initializer_list<double> normal) {
+    request.clear_plane_point();
+    request.clear_plane_normal();
+    Append(request.mutable_plane_point(), point);
+    Append(request.mutable_plane_normal(), normal);
+    return client_->Unary(client_->surfaces(),
+                          &v1::SurfaceService::Stub::Section, request);
+  };
+  absl::StatusOr<v1::SectionSurfaceResponse> answer = cut({0, 0, 0}, {0, 0, 1});
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  EXPECT_EQ(answer->polylines_size(), 0);
+  ASSERT_EQ(answer->regions_size(), 1);
+  EXPECT_THAT(answer->regions(0).parameters(),
+              ElementsAre(0, 0, 1, 0, 1, 1, 0, 1));
+  for (const double x : {0.0, 1.0}) {
+    for (const double sign : {1.0, -1.0}) {
+      answer = cut({x, 0, 0}, {sign, 0, 0});
+      ASSERT_TRUE(answer.ok()) << answer.status();
+      ASSERT_EQ(answer->polylines_size(), 1) << "x = " << x;
+      EXPECT_EQ(answer->regions_size(), 0);
+      const auto& points = answer->polylines(0).points().coordinates();
+      for (int k = 0; k < points.size(); k += 3) EXPECT_EQ(points[k], x);
+    }
+  }
+  for (const double scale : {1e155, 1e-160}) {
+    answer = cut({0.5, 0, 0}, {scale, scale, 0});
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    ASSERT_EQ(answer->polylines_size(), 1) << scale;
+    const auto& points = answer->polylines(0).points().coordinates();
+    for (int k = 0; k < points.size(); k += 3) {
+      EXPECT_NEAR(points[k] + points[k + 1], 0.5, 1e-15);
+    }
+  }
+}
+
+// Weights of 1e20 make the surface jump between neighbouring parameters:
+// refused naming the surface, not vertices 0.5 off the plane; a tolerance
+// below the resolution is refused naming it.
+TEST_F(QueryServiceTest, SectionsThatDoublesCannotResolveAreRefused) {
+  v1::SectionSurfaceRequest request;
+  v1::BezierSurface& bezier = *request.mutable_surface()->mutable_bezier();
+  v1::ControlNet& net = *bezier.mutable_control_net();
+  net.set_dimension(3);
+  net.set_count_u(3);
+  net.set_count_v(3);
+  Append(net.mutable_coordinates(),
+         {0, 0,   0, 0, 0.5, 0, 0, 1, 0,   0.5, 0, 0, 0.5, 0.5,
+          1, 0.5, 1, 0, 1,   0, 0, 1, 0.5, 0,   1, 1, 0});
+  Append(bezier.mutable_weights(), {1, 1, 1, 1, 1e20, 1, 1, 1, 1});
+  Append(request.mutable_plane_point(), {0, 0, 0.5});
+  Append(request.mutable_plane_normal(), {0, 0, 1});
+  auto call = [&] {
+    return client_
+        ->Unary(client_->surfaces(), &v1::SurfaceService::Stub::Section,
+                request)
+        .status();
+  };
+  ExpectInvalid(call(), "surface");
+  bezier.mutable_weights()->Set(4, 2.0);
+  EXPECT_TRUE(call().ok());
+  request.set_tolerance(1e-20);
+  ExpectInvalid(call(), "tolerance");
+}
+
+// Every query cap holds exactly: max_points of a section (the cut x = 1/2
+// of the square is 3 vertices: its ends and its middle), max_results of an
+// intersection (the zigzag crosses the axis 5 times) and max_minima of a
+// closest point (from the circle's centre every point is nearest).
+TEST_F(QueryServiceTest, QueryCapsAreExact) {
+  v1::SectionSurfaceRequest section;
+  *section.mutable_surface() = UnitSquareMessage();
+  Append(section.mutable_plane_point(), {0.5, 0, 0});
+  Append(section.mutable_plane_normal(), {1, 0, 0});
+  for (const uint32_t cap : {1u, 2u, 3u}) {
+    section.set_max_points(cap);
+    absl::StatusOr<v1::SectionSurfaceResponse> answer = client_->Unary(
+        client_->surfaces(), &v1::SurfaceService::Stub::Section, section);
+    if (cap < 3) {
+      ASSERT_EQ(answer.status().code(), absl::StatusCode::kResourceExhausted)
+          << cap;
+      EXPECT_EQ(FieldViolationsOf(answer.status()).at(0).field, "max_points");
+    } else {
+      ASSERT_TRUE(answer.ok()) << answer.status();
+      EXPECT_EQ(answer->polylines(0).points().coordinates_size(), 3 * 3);
+    }
+  }
+  v1::IntersectCurvesRequest intersect;
+  v1::BSplineCurve& zigzag = *intersect.mutable_first()->mutable_bspline();
+  zigzag.set_degree(1);
+  zigzag.mutable_control_points()->set_dimension(2);
+  Append(zigzag.mutable_control_points()->mutable_coordinates(),
+         {0, -1, 1, 1, 2, -1, 3, 1, 4, -1, 5, 1});
+  Append(zigzag.mutable_knots(), {0, 0, 1, 2, 3, 4, 5, 5});
+  *intersect.mutable_second() = BezierMessage(2, {-1, 0, 6, 0});
+  for (const uint32_t cap : {4u, 5u}) {
+    intersect.mutable_options()->set_max_results(cap);
+    absl::StatusOr<v1::IntersectCurvesResponse> answer = client_->Unary(
+        client_->curves(), &v1::CurveService::Stub::Intersect, intersect);
+    if (cap < 5) {
+      ASSERT_EQ(answer.status().code(), absl::StatusCode::kResourceExhausted);
+      EXPECT_EQ(FieldViolationsOf(answer.status()).at(0).field,
+                "options.max_results");
+    } else {
+      ASSERT_TRUE(answer.ok()) << answer.status();
+      EXPECT_EQ(answer->first_parameters_size(), 5);
+    }
+  }
+  v1::CurveClosestPointRequest closest;
+  *closest.mutable_curve() = CircleMessage(2.0, 1.0, -1.0);
+  closest.mutable_queries()->set_dimension(2);
+  Append(closest.mutable_queries()->mutable_coordinates(), {1, -1});
+  for (const uint32_t cap : {1u, 2u, 3u}) {
+    closest.mutable_options()->set_max_minima(cap);
+    absl::StatusOr<v1::ClosestPointResponse> answer = client_->Unary(
+        client_->curves(), &v1::CurveService::Stub::ClosestPoint, closest);
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    EXPECT_THAT(answer->minima_counts(), ElementsAre(cap));
+    EXPECT_EQ(answer->points().coordinates_size(), static_cast<int>(2 * cap));
+  }
+}
+
 TEST_F(QueryServiceTest, ArcLengthsOfTheCircle) {
   v1::ArcLengthRequest request;
   *request.mutable_curve() = CircleMessage(2.0, 1.0, 1.0);
