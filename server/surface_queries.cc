@@ -30,7 +30,7 @@ constexpr double kDefaultSectionTolerance = 1e-6;
 constexpr uint64_t kDefaultSectionPoints = uint64_t{1} << 16;
 
 // The most work the quadtree of one section does (SectionOptions::max_work,
-// in units of about one multiply-add): about half a second of one core.
+// in units of about one multiply-add): under a second of one core.
 constexpr uint64_t kMaxSectionWork = uint64_t{1} << 28;
 
 // SectionError maps the core's work limit to the request's tolerance (a

@@ -432,7 +432,8 @@ void NetEvaluator::Evaluate(const Net& net, double s, double t,
   }
 }
 
-double NetEvaluator::Value(const Net& scalar, double s, double t) {
+double NetEvaluator::Value(const Net& scalar, double s, double t,
+                           double& magnitude) {
   const int nu = scalar.count_u;
   const int nv = scalar.count_v;
   basis_u_.assign(static_cast<size_t>(nu), 0.0);
@@ -442,10 +443,17 @@ double NetEvaluator::Value(const Net& scalar, double s, double t) {
   for (int j = 1; j < nu; ++j) RaiseBasis(j, s, basis_u_.data());
   for (int j = 1; j < nv; ++j) RaiseBasis(j, t, basis_v_.data());
   double value = 0.0;
+  magnitude = 0.0;
   for (int i = 0; i < nu; ++i) {
     double row = 0.0;
-    for (int j = 0; j < nv; ++j) row += basis_v_[j] * scalar.at(i, j)[0];
+    double row_magnitude = 0.0;
+    for (int j = 0; j < nv; ++j) {
+      const double term = basis_v_[j] * scalar.at(i, j)[0];
+      row += term;
+      row_magnitude += std::abs(term);
+    }
     value += basis_u_[i] * row;
+    magnitude += basis_u_[i] * row_magnitude;
   }
   return value;
 }

@@ -158,8 +158,9 @@ class NetEvaluator {
   void Evaluate(const Net& net, double s, double t, double* partials);
 
   // Value returns the value at (s, t) of a scalar net (dimension 1, not
-  // rational), without its partials.
-  double Value(const Net& scalar, double s, double t);
+  // rational), without its partials, and in `magnitude` the same sum of
+  // the coefficients' magnitudes (what its rounding is relative to).
+  double Value(const Net& scalar, double s, double t, double& magnitude);
 
  private:
   void EvaluateCurve(const Net& net, double s, double* partials);

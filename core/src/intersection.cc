@@ -375,8 +375,7 @@ class PairSearch {
   void Extend(Anchor& anchor, double direction);
   bool OnOverlap(Anchor& at);
   Anchor Walk(Anchor from, double direction, bool on);
-  bool Inside(const Candidate& run,
-              const std::vector<Candidate>& overlaps) const;
+  bool Inside(const Candidate& run, const std::vector<size_t>& overlaps) const;
   bool Joined(const Candidate& run, const Candidate& next);
   bool Connected(const Anchor& first, const Anchor& second);
   bool Near(Anchor& at);
@@ -408,6 +407,11 @@ void Absorb(Candidate& run, const Candidate& next);
 // RunLimit returns the most runs a search keeps: those of the answer and a
 // margin for the points that merge at the end.
 size_t RunLimit(size_t max_results) { return max_results + 1024; }
+
+// CompactionSize returns the number of candidates at which they are merged.
+size_t CompactionSize(size_t max_results) {
+  return RunLimit(max_results) + RunLimit(max_results) / 4;
+}
 
 int SecondCount(const Pieces& second) {
   return second.parameter_count == 1 ? 1 : 2;
@@ -577,11 +581,11 @@ void PairSearch::AddCandidate(Candidate candidate, const Part* b) {
       }
     }
   }
-  // Compact keeps the candidates under twice the runs the answer may hold;
-  // one pair adds at most two more. The capacity grows to that, no more.
+  // Compact keeps the candidates under CompactionSize; one pair adds at most
+  // two more. The capacity grows to that, no more.
   if (candidates_.size() == candidates_.capacity()) {
     candidates_.reserve(std::min(2 * candidates_.capacity() + 16,
-                                 2 * RunLimit(options_.max_results) + 2));
+                                 CompactionSize(options_.max_results) + 2));
   }
   candidates_.push_back(std::move(candidate));
 }
@@ -635,13 +639,16 @@ bool PairSearch::SampleStretch(const Part& a, const Part& b,
   // Where the tangents agree somewhere but not everywhere, an overlap may
   // lie inside: the pair is halved.
   if (any && !all) return false;
-  AddCandidate(
-      Candidate{.start = start, .end = end, .parallel = all, .stretch = true},
-      &b);
-  // A stretch of contact that is not an overlap gives its nearest point.
+  Candidate stretch{
+      .start = start, .end = end, .parallel = all, .stretch = true};
+  // A stretch of contact that is not an overlap has its nearest point.
   if (!all) {
-    AddPoint(nearest, std::min(nearest_distance, Refine(a, b, nearest)));
+    const double refined = Refine(a, b, nearest);
+    stretch.has_point = true;
+    stretch.point = nearest;
+    stretch.distance = std::min(nearest_distance, refined);
   }
+  AddCandidate(std::move(stretch), &b);
   return true;
 }
 
@@ -768,16 +775,23 @@ absl::Status PairSearch::Run() {
     }
   }
   Merge();
+  if (candidates_.size() > RunLimit(options_.max_results)) {
+    return ExhaustedFieldError("max_results",
+                               absl::StrCat("more than ", options_.max_results,
+                                            " separate intersections"));
+  }
   Finish();
   return budget_.Check();
 }
 
-// Compact merges the candidates once they are twice RunLimit, so that their
-// memory stays bounded; more runs than RunLimit are RESOURCE_EXHAUSTED
-// naming "max_results".
+// Compact merges the candidates once they reach CompactionSize, so that
+// their memory stays bounded; more runs than RunLimit are
+// RESOURCE_EXHAUSTED naming "max_results".
 absl::Status PairSearch::Compact() {
   const size_t limit = RunLimit(options_.max_results);
-  if (candidates_.size() < 2 * limit) return absl::OkStatus();
+  if (candidates_.size() < CompactionSize(options_.max_results)) {
+    return absl::OkStatus();
+  }
   Merge();
   if (candidates_.size() <= limit) return budget_.Check();
   return ExhaustedFieldError(
@@ -868,8 +882,8 @@ void Absorb(Candidate& run, const Candidate& next) {
 // nearest point.
 void PairSearch::Finish() {
   const size_t dim = static_cast<size_t>(first_.dimension);
-  std::vector<Candidate> overlaps;
-  std::vector<size_t> points;  // indices of the point runs
+  std::vector<size_t> overlaps;  // indices of the overlap runs
+  std::vector<size_t> points;    // and of the point runs
   std::vector<double> coordinates(candidates_.size() * dim);
   for (size_t k = 0; k < candidates_.size(); ++k) {
     Candidate& run = candidates_[k];
@@ -878,11 +892,11 @@ void PairSearch::Finish() {
     Extend(run.end, 1.0);
     run.from = Global(run.start);
     run.to = Global(run.end);
-    overlaps.push_back(run);
+    overlaps.push_back(k);
   }
   for (size_t k = 0; k < candidates_.size(); ++k) {
     const Candidate& run = candidates_[k];
-    if (run.parallel || Inside(run, overlaps)) continue;
+    if (run.parallel || !run.has_point || Inside(run, overlaps)) continue;
     std::copy_n(PointOf(run.point), dim, coordinates.begin() + k * dim);
     points.push_back(k);
   }
@@ -978,11 +992,12 @@ Anchor PairSearch::Walk(Anchor from, double direction, bool on) {
 // Inside returns true when the point of `run` lies inside one of the
 // overlaps (the first's parameter in its interval, the second's in its box).
 bool PairSearch::Inside(const Candidate& run,
-                        const std::vector<Candidate>& overlaps) const {
+                        const std::vector<size_t>& overlaps) const {
   double x[2];
   SecondGlobal(run.point.second_piece, run.point.x[1], run.point.x[2], x);
   const double s = Global(run.point);
-  for (const Candidate& overlap : overlaps) {
+  for (const size_t k : overlaps) {
+    const Candidate& overlap = candidates_[k];
     bool inside = s >= overlap.from - slack_s_ && s <= overlap.to + slack_s_;
     for (int c = 0; c < SecondCount(second_); ++c) {
       inside = inside && x[c] >= overlap.low[c] - slack_second_[c] &&
@@ -1208,12 +1223,12 @@ absl::StatusOr<CurveSurfaceIntersections> SurfaceAnswer(
 }  // namespace
 
 uint64_t IntersectionCandidateBytes(size_t max_results, int dimension) {
-  // The candidates' capacity (AddCandidate), and Finish's copy of the
-  // overlaps, the points' coordinates and indices.
+  // The candidates' capacity (AddCandidate), and Finish's points'
+  // coordinates, indices of the overlaps, of the points and of those kept,
+  // and a flag per run.
   const uint64_t runs = RunLimit(max_results);
-  return (2 * runs + 2) * sizeof(Candidate) +
-         runs * (sizeof(Candidate) + 8 * static_cast<uint64_t>(dimension) +
-                 2 * sizeof(size_t) + 1);
+  return (CompactionSize(max_results) + 2) * sizeof(Candidate) +
+         runs * (8 * static_cast<uint64_t>(dimension) + 3 * sizeof(size_t) + 1);
 }
 
 absl::StatusOr<CurveIntersections> IntersectCurves(

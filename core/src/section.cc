@@ -168,10 +168,15 @@ class Slicer {
   // positive), those on its sides that are edges of the piece in the plane
   // left out.
   bool OneSign(size_t piece, const Cell& cell) const;
-  double G(size_t piece, double s, double t);
+  // G returns g at (s, t) of a piece, and in `magnitude` the sum its
+  // rounding is relative to (NetEvaluator::Value), charging the work to
+  // max_work when `quadtree` (a vertex's work is bounded by max_points
+  // instead).
+  double G(size_t piece, double s, double t, bool quadtree, double& magnitude);
   // Root returns where g changes sign on the line where coordinate
   // `fixed_axis` is `fixed`, between lo and hi of the other coordinate.
-  double Root(size_t piece, int fixed_axis, double fixed, double lo, double hi);
+  double Root(size_t piece, int fixed_axis, double fixed, double lo, double hi,
+              bool quadtree);
   void EdgeRoots(size_t piece, int fixed_axis, double fixed,
                  std::vector<double> coefficients, double lo, double hi,
                  int depth, std::vector<double>& roots);
@@ -241,30 +246,42 @@ std::optional<EdgeKey> Slicer::Key(size_t piece, int edge) const {
   return EdgeKey{a[0], a[1], b[0], b[1]};
 }
 
-double Slicer::G(size_t piece, double s, double t) {
-  budget_.Add(ValueCost(scalars_[piece]));
-  return evaluator_.Value(scalars_[piece], s, t);
+double Slicer::G(size_t piece, double s, double t, bool quadtree,
+                 double& magnitude) {
+  if (quadtree) budget_.Add(ValueCost(scalars_[piece]));
+  return evaluator_.Value(scalars_[piece], s, t, magnitude);
 }
 
-// Root runs false position with the Illinois modification, every third
-// step a bisection, on the bracket [lo, hi] (g of different signs at its
-// ends) until g is zero or the bracket is two neighbouring doubles, at most
+// Root runs false position with the Illinois modification, bisecting where
+// two steps did not halve the bracket, on the bracket [lo, hi] (g of different
+// signs at its ends) until g is within one rounding error of the magnitude of
+// its terms there or the bracket is two neighbouring doubles, at most
 // kRootSteps evaluations.
 double Slicer::Root(size_t piece, int fixed_axis, double fixed, double lo,
-                    double hi) {
+                    double hi, bool quadtree) {
+  double magnitude = 0.0;
   auto at = [&](double x) {
-    return fixed_axis == 0 ? G(piece, fixed, x) : G(piece, x, fixed);
+    return fixed_axis == 0 ? G(piece, fixed, x, quadtree, magnitude)
+                           : G(piece, x, fixed, quadtree, magnitude);
   };
   double g_lo = at(lo);
   double g_hi = at(hi);
   const bool negative_lo = Negative(g_lo);
-  int kept = 0;  // the side kept by the last two steps: -1 lo, 1 hi
+  int kept = 0;  // the side kept by the last step: -1 lo, 1 hi
+  double width = hi - lo;
   for (int k = 0; k < kRootSteps; ++k) {
     double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
-    if (k % 3 == 2 || !(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    // Bisect when the last two steps did not halve the bracket.
+    if (k % 2 == 1) {
+      if (hi - lo > 0.5 * width) x = 0.5 * (lo + hi);
+      width = hi - lo;
+    }
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
     if (x <= lo || x >= hi) break;
     const double g = at(x);
-    if (g == 0.0) return x;
+    if (std::abs(g) <= std::numeric_limits<double>::epsilon() * magnitude) {
+      return x;
+    }
     if (Negative(g) == negative_lo) {
       lo = x;
       g_lo = g;
@@ -291,7 +308,7 @@ void Slicer::EdgeRoots(size_t piece, int fixed_axis, double fixed,
   if (changes == 0) return;
   if (changes == 1 || depth >= kMaxSectionDepth) {
     if (Negative(coefficients.front()) != Negative(coefficients.back())) {
-      roots.push_back(Root(piece, fixed_axis, fixed, lo, hi));
+      roots.push_back(Root(piece, fixed_axis, fixed, lo, hi, true));
     }
     return;
   }
@@ -415,8 +432,8 @@ absl::Status Slicer::Leaf(size_t piece, const Cell& cell, int along) {
     const int m = side == 0 ? 0 : n_across - 1;
     const double c = side == 0 ? cell.lo[across] : cell.hi[across];
     if (Negative(coefficient(0, m)) != Negative(coefficient(n_along - 1, m))) {
-      ends.emplace_back(c,
-                        Root(piece, across, c, cell.lo[along], cell.hi[along]));
+      ends.emplace_back(
+          c, Root(piece, across, c, cell.lo[along], cell.hi[along], true));
     }
   }
   std::sort(ends.begin(), ends.end());
@@ -426,7 +443,7 @@ absl::Status Slicer::Leaf(size_t piece, const Cell& cell, int along) {
     auto locate = [&](double c) {
       if (c == c0) return a0;
       if (c == c1) return a1;
-      return Root(piece, across, c, cell.lo[along], cell.hi[along]);
+      return Root(piece, across, c, cell.lo[along], cell.hi[along], false);
     };
     if (absl::Status status = Arc(piece, along, c0, c1, locate); !status.ok()) {
       return status;

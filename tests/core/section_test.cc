@@ -275,8 +275,10 @@ TEST(SectionTest, EdgesInThePlaneAreFoundOnEverySide) {
   // knot line, the edge of both pieces.
   const std::vector<double> net = {0,   0, -0.5, 0, 1, -0.5, 0.5, 0, 0,
                                    0.5, 1, 0,    1, 0, 0.5,  1,   1, 0.5};
-  const absl::StatusOr<Surface> ramp = BSplineSurface::Create(
-      {1, 1, {3, 3, 2, net}, {0, 0, 0.5, 1, 1}, {0, 0, 1, 1}, {}});
+  const std::vector<double> knots_u = {0, 0, 0.5, 1, 1};
+  const std::vector<double> knots_v = {0, 0, 1, 1};
+  const absl::StatusOr<Surface> ramp =
+      BSplineSurface::Create({1, 1, {3, 3, 2, net}, knots_u, knots_v, {}});
   ASSERT_TRUE(ramp.ok()) << ramp.status();
   const std::vector<double> origin = {0, 0, 0};
   const std::vector<double> up = {0, 0, 1};
