@@ -23,7 +23,7 @@
 // 1 and 2, until RESOURCE_EXHAUSTED.
 // Q5: the section z = 1 of the sphere patch of radius 2 at tolerance 1e-12
 // under the server's default cap of 65536 vertices, until
-// RESOURCE_EXHAUSTED; and at 1e-9 (11,000 vertices), answered.
+// RESOURCE_EXHAUSTED; and at 1e-8 (16,385 vertices), answered.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -155,7 +155,7 @@ void BM_Q4_IntersectionSpendsItsWorkBudget(benchmark::State& state) {
 BENCHMARK(BM_Q4_IntersectionSpendsItsWorkBudget)->Unit(benchmark::kMillisecond);
 
 void BM_Q5_SphereSection(benchmark::State& state) {
-  const double tolerance = state.range(0) == 12 ? 1e-12 : 1e-9;
+  const double tolerance = state.range(0) == 12 ? 1e-12 : 1e-8;
   // The octant of the sphere of radius 2 as a rational biquadratic patch
   // (tests/core/shapes.h, SpherePatch).
   const double w = std::sqrt(0.5);
@@ -187,7 +187,7 @@ void BM_Q5_SphereSection(benchmark::State& state) {
   }
   state.SetLabel(absl::StrFormat("%zu vertices", vertices));
 }
-BENCHMARK(BM_Q5_SphereSection)->Arg(12)->Arg(9)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Q5_SphereSection)->Arg(12)->Arg(8)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -814,7 +814,7 @@ const double* PairSearch::PointOf(const Anchor& at) {
 void PairSearch::Merge() {
   std::vector<Candidate>& candidates = candidates_;
   constexpr size_t kMaxActiveRuns = 16;
-  constexpr size_t kRecentRuns = 4;
+  constexpr size_t kRecentRuns = 1;
   std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& x, const Candidate& y) {
               return x.from < y.from || (x.from == y.from && x.to > y.to);
