@@ -14,15 +14,28 @@
 // as many as the proper crossings of the two curves sampled at 2 * 10^5
 // parameters each); default options. Checksums: the number of points and
 // the sum of both parameters over them.
+// Q3: the Bezier curve of degree n with control points (i / n, 1/2,
+// (-1)^i), i = 0..n, that is (t, 1/2, (1 - 2t)^n), against the unit square
+// of z = 0 at tolerance 1e-9: it touches the square to order n, one overlap
+// over |1 - 2t| <= 1e-9^(1/n). Checksum: the overlap's length.
+// Q4: a search that spends the whole default work budget (max_work 2^28):
+// two planar cubic clamped B-splines of 2000 control points from LCG seeds
+// 1 and 2, until RESOURCE_EXHAUSTED.
+// Q5: the section z = 1 of the sphere patch of radius 2 at tolerance 1e-12
+// under the server's default cap of 65536 vertices, until
+// RESOURCE_EXHAUSTED; and at 1e-8 (16,385 vertices), answered.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 #include "absl/strings/str_format.h"
+#include "freeform/core/bezier.h"
 #include "freeform/core/closest_point.h"
 #include "freeform/core/curve.h"
 #include "freeform/core/intersection.h"
+#include "freeform/core/section.h"
 #include "workloads.h"
 
 namespace {
@@ -91,6 +104,90 @@ void BM_Q2_IntersectTwoPlanarSplines(benchmark::State& state) {
       absl::StrFormat("%zu points, parameter sum %.6f", points, parameters));
 }
 BENCHMARK(BM_Q2_IntersectTwoPlanarSplines)->Unit(benchmark::kMillisecond);
+
+void BM_Q3_HighOrderContactWithASquare(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  std::vector<double> zigzag;
+  for (int i = 0; i <= n; ++i) {
+    zigzag.insert(zigzag.end(),
+                  {static_cast<double>(i) / n, 0.5, i % 2 == 0 ? 1.0 : -1.0});
+  }
+  const freeform::Curve curve =
+      *freeform::BezierCurve::Create({{3, zigzag}, {}});
+  const std::vector<double> net = {0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0};
+  const freeform::Surface square =
+      *freeform::BezierSurface::Create({{3, 2, 2, net}, {}});
+  double length = 0.0;
+  for (auto _ : state) {
+    const absl::StatusOr<freeform::CurveSurfaceIntersections> answer =
+        freeform::IntersectCurveSurface(curve, square);
+    if (!answer.ok() || answer->curve_intervals.size() != 2) {
+      state.SkipWithError(answer.status().ToString().c_str());
+      return;
+    }
+    length = answer->curve_intervals[1] - answer->curve_intervals[0];
+    benchmark::DoNotOptimize(length);
+  }
+  state.SetLabel(absl::StrFormat("overlap of length %.9f (exact %.9f)", length,
+                                 std::pow(1e-9, 1.0 / n)));
+}
+BENCHMARK(BM_Q3_HighOrderContactWithASquare)
+    ->Arg(16)
+    ->Arg(48)
+    ->Arg(64)
+    ->Unit(benchmark::kMillisecond);
+
+void BM_Q4_IntersectionSpendsItsWorkBudget(benchmark::State& state) {
+  const SplineData first_data = RandomSpline(1, 2000, 2);
+  const SplineData second_data = RandomSpline(2, 2000, 2);
+  const freeform::Curve first = CurveOf(first_data);
+  const freeform::Curve second = CurveOf(second_data);
+  for (auto _ : state) {
+    const absl::Status status =
+        freeform::IntersectCurves(first, second, {.max_results = 1 << 16})
+            .status();
+    if (status.code() != absl::StatusCode::kResourceExhausted) {
+      state.SkipWithError(status.ToString().c_str());
+      return;
+    }
+  }
+}
+BENCHMARK(BM_Q4_IntersectionSpendsItsWorkBudget)->Unit(benchmark::kMillisecond);
+
+void BM_Q5_SphereSection(benchmark::State& state) {
+  const double tolerance = state.range(0) == 12 ? 1e-12 : 1e-8;
+  // The octant of the sphere of radius 2 as a rational biquadratic patch
+  // (tests/core/shapes.h, SpherePatch).
+  const double w = std::sqrt(0.5);
+  const double r = 2.0;
+  std::vector<double> net, weights;
+  const double profile[3][3] = {{r, 0, 1}, {r, r, w}, {0, r, 1}};
+  const double turn[3][3] = {{1, 0, 1}, {1, 1, w}, {0, 1, 1}};
+  for (const auto& p : profile) {
+    for (const auto& c : turn) {
+      net.insert(net.end(), {p[0] * c[0], p[0] * c[1], p[1]});
+      weights.push_back(p[2] * c[2]);
+    }
+  }
+  const freeform::Surface sphere =
+      *freeform::BezierSurface::Create({{3, 3, 3, net}, weights});
+  const std::vector<double> point = {0, 0, 1};
+  const std::vector<double> up = {0, 0, 1};
+  size_t vertices = 0;
+  for (auto _ : state) {
+    const absl::StatusOr<freeform::Sections> answer =
+        freeform::IntersectSurfacePlane(
+            sphere, point, up, {.tolerance = tolerance, .max_points = 65536});
+    if (answer.ok() == (tolerance < 1e-10)) {
+      state.SkipWithError(answer.status().ToString().c_str());
+      return;
+    }
+    vertices = answer.ok() ? answer->points.size() / 3 : 0;
+    benchmark::DoNotOptimize(vertices);
+  }
+  state.SetLabel(absl::StrFormat("%zu vertices", vertices));
+}
+BENCHMARK(BM_Q5_SphereSection)->Arg(12)->Arg(8)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

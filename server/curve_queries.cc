@@ -81,9 +81,15 @@ absl::StatusOr<UnaryWork> PlanIntersect(
       ToCore(request.options(), per_result, limits);
   if (!options.ok()) return options.status();
   const uint64_t values = options->max_results * per_result;
+  // The search keeps its candidates besides the answer.
+  const uint64_t candidates =
+      IntersectionCandidateBytes(options->max_results, dimension);
   return UnaryWork{
       .plan = {.memory_bytes =
-                   AnswerPlan(values, 8 * values, limits).memory_bytes,
+                   AnswerPlan(values,
+                              8 * values + *work + *second_work + candidates,
+                              limits)
+                       .memory_bytes,
                .heavy = true},
       .run = [first = *std::move(first), second = *std::move(second),
               options = *options,

@@ -20,8 +20,9 @@ namespace {
 // answers complete = false.
 constexpr uint64_t kMaxPiecesPerQuery = 4096;
 
-// The most pairs of parts one intersection examines.
-constexpr size_t kMaxIntersectionPairs = size_t{1} << 20;
+// The most work one intersection does (IntersectionOptions::max_work, in
+// units of about one multiply-add): 0.5-0.9 s of one core (query_bench Q4).
+constexpr uint64_t kMaxIntersectionWork = uint64_t{1} << 28;
 
 absl::StatusOr<double> Separation(bool has_value, double value,
                                   absl::string_view field) {
@@ -133,21 +134,23 @@ absl::StatusOr<IntersectionOptions> ToCore(
   return IntersectionOptions{.tolerance = *tolerance,
                              .separation = *separation,
                              .max_results = static_cast<size_t>(max_results),
-                             .max_pairs = kMaxIntersectionPairs};
+                             .max_work = kMaxIntersectionWork};
 }
 
 absl::Status IntersectionError(const absl::Status& status) {
   const std::optional<std::string> field = FieldPathOf(status);
-  if (field == "max_results") return PrefixFieldPath(status, "options");
-  if (field == "max_pairs") {
+  if (field == "max_results" || field == "tolerance" || field == "separation") {
+    return PrefixFieldPath(status, "options");
+  }
+  if (field == "max_work") {
     return ExhaustedFieldError(
         "options.tolerance",
-        absl::StrCat("the search would examine more pairs of pieces than the "
-                     "server's ",
-                     kMaxIntersectionPairs,
-                     ": the inputs stay within the tolerance of each other "
-                     "along a stretch it cannot resolve (an overlap or a "
-                     "curve lying in the surface); ",
+        absl::StrCat("the search would do more work than the server's limit "
+                     "of ",
+                     kMaxIntersectionWork,
+                     " units: the inputs stay within the tolerance of each "
+                     "other along stretches it cannot resolve at this "
+                     "tolerance, or meet too often; ",
                      FieldRuleOf(status)));
   }
   return status;

@@ -62,10 +62,11 @@ absl::StatusOr<IntersectionOptions> ToCore(
     const v1::IntersectionOptions& options, uint64_t values_per_result,
     const ServiceLimits& limits);
 
-// IntersectionError maps the core's limits of an intersection to the
-// request's fields: "max_results" is options.max_results, and "max_pairs"
-// (more pairs of pieces than the server examines: a stretch of contact the
-// tolerance cannot resolve, a curve lying in the surface) is
+// IntersectionError maps the core's errors of an intersection to the
+// request's fields: "max_results", "tolerance" (below what double precision
+// resolves on the inputs) and "separation" are under options., and
+// "max_work" (more work than the server does for one search: stretches of
+// contact the tolerance cannot resolve, or too many crossings) is
 // options.tolerance. Other errors pass unchanged.
 absl::Status IntersectionError(const absl::Status& status);
 

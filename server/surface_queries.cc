@@ -29,18 +29,19 @@ namespace {
 constexpr double kDefaultSectionTolerance = 1e-6;
 constexpr uint64_t kDefaultSectionPoints = uint64_t{1} << 16;
 
-// The most quadtree cells one section examines.
-constexpr size_t kMaxSectionCells = size_t{1} << 20;
+// The most work the quadtree of one section does (SectionOptions::max_work,
+// in units of about one multiply-add): under a second of one core.
+constexpr uint64_t kMaxSectionWork = uint64_t{1} << 28;
 
-// SectionError maps the core's cell cap to the request's tolerance (a
-// tolerance too fine for the surface, or a surface touching the plane along
-// a region).
+// SectionError maps the core's work limit to the request's tolerance (a
+// surface touching the plane, or crossing itself on it, along a stretch the
+// quadtree halves down to its depth).
 absl::Status SectionError(const absl::Status& status) {
-  if (FieldPathOf(status) != "max_cells") return status;
+  if (FieldPathOf(status) != "max_work") return status;
   return ExhaustedFieldError(
       "tolerance",
-      absl::StrCat("the section would examine more than the server's ",
-                   kMaxSectionCells, " cells; ", FieldRuleOf(status)));
+      absl::StrCat("the section would do more work than the server's limit of ",
+                   kMaxSectionWork, " units; ", FieldRuleOf(status)));
 }
 
 absl::StatusOr<UnaryWork> PlanClosestPoint(
@@ -81,15 +82,20 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
         "surface", absl::StrCat("must have the curve's dimension ", dimension,
                                 ", not ", DimensionOf(*surface)));
   }
-  // A point holds (t, u, v) and the curve's point.
+  // A point holds (t, u, v) and the curve's point, an overlap two
+  // parameters.
   const uint64_t per_result = 3 + static_cast<uint64_t>(dimension);
   absl::StatusOr<IntersectionOptions> options =
       ToCore(request.options(), per_result, limits);
   if (!options.ok()) return options.status();
   const uint64_t values = options->max_results * per_result;
+  // The search keeps its candidates besides the answer.
+  const uint64_t candidates =
+      IntersectionCandidateBytes(options->max_results, dimension);
   return UnaryWork{
       .plan = {.memory_bytes =
-                   AnswerPlan(values, 8 * values + *work + *surface_work,
+                   AnswerPlan(values,
+                              8 * values + *work + *surface_work + candidates,
                               limits)
                        .memory_bytes,
                .heavy = true},
@@ -108,6 +114,8 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
             static_cast<uint32_t>(found->dimension));
         response.mutable_points()->mutable_coordinates()->Add(
             found->points.begin(), found->points.end());
+        response.mutable_curve_intervals()->Add(found->curve_intervals.begin(),
+                                                found->curve_intervals.end());
         return absl::OkStatus();
       }};
 }
@@ -129,6 +137,11 @@ void WriteSections(const Sections& sections,
       ToProto(sections.curves[k], *polyline.mutable_curve());
     }
   }
+  for (size_t k = 0; k + 1 < sections.region_offsets.size(); ++k) {
+    response.add_regions()->mutable_parameters()->Add(
+        sections.region_corners.begin() + 2 * sections.region_offsets[k],
+        sections.region_corners.begin() + 2 * sections.region_offsets[k + 1]);
+  }
 }
 
 absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
@@ -148,8 +161,8 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
   if (!work.ok()) return work.status();
   const int dimension = DimensionOf(*surface);
   // A vertex holds its point and (u, v), and with a fit at most one
-  // control point and a few knots of its curve; each polyline adds a few
-  // bytes.
+  // control point and a few knots of its curve; a region's corner (u, v);
+  // each polyline and region adds a few bytes.
   const uint64_t per_point =
       (*fit_tolerance > 0 ? 2 : 1) * (2 + static_cast<uint64_t>(dimension));
   const uint64_t requested = request.max_points() > 0
@@ -172,7 +185,7 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
               options =
                   SectionOptions{.tolerance = *tolerance,
                                  .max_points = static_cast<size_t>(requested),
-                                 .max_cells = kMaxSectionCells,
+                                 .max_work = kMaxSectionWork,
                                  .fit_tolerance = *fit_tolerance},
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<Sections> sections = IntersectSurfacePlane(

@@ -5,6 +5,7 @@
 #include <limits>
 #include <utility>
 
+#include "absl/strings/str_cat.h"
 #include "bezier_halving.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/points.h"
@@ -270,6 +271,49 @@ absl::Status CheckTolerances(double tolerance, double separation) {
   return absl::OkStatus();
 }
 
+double LargestCoordinate(absl::Span<const Pieces* const> pieces) {
+  double largest = 0.0;
+  for (const Pieces* each : pieces) {
+    std::vector<double> point(static_cast<size_t>(each->dimension));
+    for (const Net& net : each->nets) {
+      for (int i = 0; i < net.count_u; ++i) {
+        for (int j = 0; j < net.count_v; ++j) {
+          if (!Point(net, i, j, point.data())) continue;
+          for (const double x : point) largest = std::max(largest, std::abs(x));
+        }
+      }
+    }
+  }
+  return largest;
+}
+
+int ScaleExponent(double largest) {
+  if (!(largest > 0.0) || !std::isfinite(largest)) return 0;
+  return std::ilogb(largest);
+}
+
+void ScalePieces(int exponent, Pieces& pieces) {
+  for (Net& net : pieces.nets) {
+    const size_t stride = static_cast<size_t>(net.stride());
+    for (size_t k = 0; k < net.values.size(); ++k) {
+      if (k % stride < static_cast<size_t>(net.dimension)) {
+        net.values[k] = std::ldexp(net.values[k], -exponent);
+      }
+    }
+  }
+}
+
+absl::Status WorkBudget::Check() {
+  if (spent_ > limit_) {
+    return ExhaustedFieldError(
+        field_, absl::StrCat(what_, " needs more than ", limit_,
+                             " units of work (about one multiply-add each)"));
+  }
+  const uint64_t pending = pending_;
+  pending_ = 0;
+  return poll_.Done(static_cast<size_t>(pending));
+}
+
 double BoxDistance(absl::Span<const double> points, int dimension,
                    const double* query) {
   double sum = 0.0;
@@ -386,6 +430,32 @@ void NetEvaluator::Evaluate(const Net& net, double s, double t,
   if (net.rational) {
     ProjectHomogeneousSurfaceDerivatives(out, net.dimension, 2, partials);
   }
+}
+
+double NetEvaluator::Value(const Net& scalar, double s, double t,
+                           double& magnitude) {
+  const int nu = scalar.count_u;
+  const int nv = scalar.count_v;
+  basis_u_.assign(static_cast<size_t>(nu), 0.0);
+  basis_v_.assign(static_cast<size_t>(nv), 0.0);
+  basis_u_[0] = 1.0;
+  basis_v_[0] = 1.0;
+  for (int j = 1; j < nu; ++j) RaiseBasis(j, s, basis_u_.data());
+  for (int j = 1; j < nv; ++j) RaiseBasis(j, t, basis_v_.data());
+  double value = 0.0;
+  magnitude = 0.0;
+  for (int i = 0; i < nu; ++i) {
+    double row = 0.0;
+    double row_magnitude = 0.0;
+    for (int j = 0; j < nv; ++j) {
+      const double term = basis_v_[j] * scalar.at(i, j)[0];
+      row += term;
+      row_magnitude += std::abs(term);
+    }
+    value += basis_u_[i] * row;
+    magnitude += basis_u_[i] * row_magnitude;
+  }
+  return value;
 }
 
 void DistanceModel(NetEvaluator& evaluator, const Net& net, int parameter_count,

@@ -7,11 +7,14 @@
 #define FREEFORM_CORE_SRC_BEZIER_NET_H_
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "absl/functional/function_ref.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "absl/types/span.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/curve.h"
@@ -77,6 +80,52 @@ bool Point(const Net& net, int i, int j, double* point);
 // "tolerance" and a finite "separation" >= 0.
 absl::Status CheckTolerances(double tolerance, double separation);
 
+// LargestCoordinate returns the largest magnitude of a coordinate of the
+// Cartesian control points (those of positive weight) of all `pieces`: the
+// scale that rounding is relative to.
+double LargestCoordinate(absl::Span<const Pieces* const> pieces);
+
+// ScaleExponent returns the k for which `largest` * 2^-k lies in [1, 2)
+// (0 for 0): the queries divide their geometry by 2^k, which is exact, so
+// that squared distances neither overflow nor underflow at any scale.
+int ScaleExponent(double largest);
+
+// ScalePieces multiplies the spatial parts (w P) of every control point by
+// 2^-exponent (exact); the weights are kept.
+void ScalePieces(int exponent, Pieces& pieces);
+
+// WorkBudget counts the work of a search in units of about one
+// multiply-add on a double against a limit fixed before it starts, and
+// polls the cancellation token on the way. Not thread-safe.
+class WorkBudget {
+ public:
+  // `field` names the limit in the RESOURCE_EXHAUSTED status; `what` says
+  // what ran out of it.
+  WorkBudget(uint64_t limit, absl::string_view field, absl::string_view what,
+             const CancellationToken* cancel)
+      : limit_(limit), field_(field), what_(what), poll_(cancel) {}
+
+  // Add counts `units` of work.
+  void Add(uint64_t units) {
+    spent_ += units;
+    pending_ += units;
+  }
+  bool exhausted() const { return spent_ > limit_; }
+  uint64_t spent() const { return spent_; }
+
+  // Check returns RESOURCE_EXHAUSTED naming the field once more than the
+  // limit was spent, the token's status when it stopped, else OK.
+  absl::Status Check();
+
+ private:
+  const uint64_t limit_;
+  const std::string field_;
+  const std::string what_;
+  CancellationPoll poll_;
+  uint64_t spent_ = 0;
+  uint64_t pending_ = 0;
+};
+
 // BoxDistance returns the distance from `query` to the bounding box of
 // `points` (count points of `dimension` values).
 double BoxDistance(absl::Span<const double> points, int dimension,
@@ -107,6 +156,11 @@ class NetEvaluator {
  public:
   // Evaluate writes the 6 partials of `net` into partials[6 * dimension].
   void Evaluate(const Net& net, double s, double t, double* partials);
+
+  // Value returns the value at (s, t) of a scalar net (dimension 1, not
+  // rational), without its partials, and in `magnitude` the same sum of
+  // the coefficients' magnitudes (what its rounding is relative to).
+  double Value(const Net& scalar, double s, double t, double& magnitude);
 
  private:
   void EvaluateCurve(const Net& net, double s, double* partials);

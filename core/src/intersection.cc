@@ -1,10 +1,8 @@
 #include "freeform/core/intersection.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
 #include <numbers>
 #include <utility>
@@ -15,6 +13,7 @@
 #include "bezier_net.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "tessellation_checks.h"
 
 namespace freeform {
 namespace {
@@ -29,8 +28,13 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // radians) are checked for an overlap.
 constexpr double kNarrowCone = 0.5;
 // A parameter difference below this fraction of a domain is no difference
-// when overlaps are merged and points matched against them.
+// when stretches are merged and points matched against them.
 constexpr double kParameterSlack = 1e-6;
+// Halving rounds control points by about one unit in the last place of the
+// coordinates per level: pairs are pruned only when they are apart by more
+// than the tolerance plus this fraction of the largest coordinate, so that
+// rounding never prunes a pair within tolerance.
+constexpr double kPruneSlack = 64 * std::numeric_limits<double>::epsilon();
 
 double Dot(const double* a, const double* b, int dimension) {
   double sum = 0.0;
@@ -263,77 +267,176 @@ double Extent(const Pieces& a, const Pieces& b) {
   return std::isfinite(extent) ? extent : 0.0;
 }
 
-// A point where the inputs meet: x holds the parameters in the pieces
-// (s on the first; t, or u and v, on the second).
-struct Hit {
+// The work (IntersectionOptions::max_work) charged for examining a pair,
+// halving a part and evaluating a piece with its partials.
+uint64_t ExamineCost(const Part& a, const Part& b) {
+  return 4 * (a.net.values.size() + b.net.values.size()) + 16;
+}
+uint64_t SplitCost(const Part& part) {
+  return part.net.values.size() *
+             static_cast<uint64_t>(
+                 std::max(part.net.count_u, part.net.count_v) + 4) +
+         16;
+}
+uint64_t EvaluationCost(const Net& net) {
+  return 6 * net.values.size() + 3 * static_cast<uint64_t>(net.count_u) +
+         3 * static_cast<uint64_t>(net.count_v) + 16;
+}
+
+// A place on both inputs: the first's piece and parameter x[0] in it, the
+// second's piece and parameters x[1] (t) or x[1], x[2] (u, v) in it.
+struct Anchor {
   size_t first_piece = 0;
   size_t second_piece = 0;
   double x[3] = {0.0, 0.0, 0.0};
+};
+
+// A candidate: the first input from `start` to `end` (its parameters from
+// <= to) is within tolerance of the second, whose parameters there lie in
+// the box [low, high]. A point found by Newton has start = end; a stretch
+// found by sampling is `parallel` when the tangents agree along it. A run
+// (merged candidates) keeps its extent and the nearest of its points.
+struct Candidate {
+  Anchor start;
+  Anchor end;
+  double from = 0.0;
+  double to = 0.0;
+  double low[2] = {0.0, 0.0};
+  double high[2] = {0.0, 0.0};
+  bool parallel = false;
+  bool stretch = false;
+  bool has_point = false;
+  Anchor point;
   double distance = kInfinity;
 };
 
 // The pair search shared by curve-curve and curve-surface: parts of the
-// first input (a curve) against parts of the second.
+// first input (a curve) against parts of the second, then the candidates
+// found merged into runs.
 class PairSearch {
  public:
+  // `options` are in the pieces' (scaled) units.
   PairSearch(const Pieces& first, const Pieces& second,
-             const IntersectionOptions& options,
+             const IntersectionOptions& options, double slack_s,
+             const double* slack_second, double prune_tolerance,
              const CancellationToken* cancel)
       : first_(first),
         second_(second),
         options_(options),
-        cancel_(cancel),
+        slack_s_(slack_s),
+        slack_second_{slack_second[0], slack_second[1]},
+        prune_tolerance_(prune_tolerance),
+        rounding_(prune_tolerance - options.tolerance),
         leaf_(std::max(options.tolerance, 1e-7 * Extent(first, second))),
+        cancel_(cancel),
+        budget_(options.max_work, "max_work", "the intersection search",
+                cancel),
         scratch_a_(6 * static_cast<size_t>(first.dimension)),
-        scratch_b_(6 * static_cast<size_t>(first.dimension)) {}
+        scratch_b_(6 * static_cast<size_t>(first.dimension)),
+        partials_(6 * static_cast<size_t>(first.dimension)) {}
 
-  // Run examines every pair of pieces.
+  // Run examines every pair of pieces and merges what it found.
   absl::Status Run();
 
-  // Overlaps found, in the first's and second's parameters: s0, s1, t0, t1.
-  const std::vector<std::array<double, 4>>& overlaps() const {
-    return overlaps_;
-  }
-  // Hits, matched and merged.
-  std::vector<Hit> DistinctHits();
-  // PointOf returns the first input's point of a hit.
-  const double* PointOf(const Hit& hit);
+  // The merged candidates, in the order of the first parameter: each is an
+  // overlap (parallel) or gives its point.
+  const std::vector<Candidate>& runs() const { return candidates_; }
+  // PointOf returns the first input's point at an anchor (valid until the
+  // next evaluation).
+  const double* PointOf(const Anchor& at);
 
  private:
   bool Examine(const PartPtr& a, const PartPtr& b);
-  Hit Solve(const Part& a, const Part& b);
-  void Model(size_t first_piece, size_t second_piece, const double* x,
-             LocalModel& model);
-  bool FindOverlap(const Part& a, const Part& b);
-  // Project returns the parameter of the point of curve piece `piece`
-  // (of `pieces`) nearest `point` within [lo, hi], and the distance.
-  std::pair<double, double> Project(bool on_first, size_t piece,
-                                    const double* point, double lo, double hi,
-                                    double guess);
-  double SinAngle(const Part& a, double s, const Part& b, double t);
-  bool SameHit(const Hit& a, const Hit& b);
+  // Solve returns the nearest points of the pair found by Newton from the
+  // middle of its box, with their distance.
+  std::pair<Anchor, double> Solve(const Part& a, const Part& b);
+  // Refine runs Newton on the pair's box from `at`; returns the distance.
+  double Refine(const Part& a, const Part& b, Anchor& at);
+  void Model(const Anchor& at, LocalModel& model);
+  // ProjectOnSecond moves at.x[1..] to the point of the second's piece
+  // at.second_piece nearest the first's point `point` (within [lo, hi] of
+  // that piece, from at.x[1..]); returns the distance.
+  double ProjectOnSecond(const double* point, const double* lo,
+                         const double* hi, Anchor& at);
+  // ProjectOnFirst likewise moves at.x[0] within [lo, hi].
+  double ProjectOnFirst(const double* point, double lo, double hi, Anchor& at);
+  bool Parallel(const Anchor& at);
+  bool FindCurveStretch(const Part& a, const Part& b);
+  bool FindSurfaceStretch(const Part& a, const Part& b);
+  // SampleStretch checks the first input from `start` to `end` (in the
+  // pieces of a and b) against the second at samples and records it.
+  bool SampleStretch(const Part& a, const Part& b, const Anchor& start,
+                     const Anchor& end);
+  void AddPoint(const Anchor& at, double distance);
+  void AddCandidate(Candidate candidate, const Part* b);
+  absl::Status Compact();
+  void Merge();
+  void Finish();
+  void Extend(Anchor& anchor, double direction);
+  bool OnOverlap(Anchor& at);
+  Anchor Walk(Anchor from, double direction, bool on);
+  bool Inside(const Candidate& run, const std::vector<size_t>& overlaps) const;
+  bool Joined(const Candidate& run, const Candidate& next);
+  bool Connected(const Anchor& first, const Anchor& second);
+  bool Near(Anchor& at);
+  double DistanceToSecond(Anchor& at);
+  double Global(const Anchor& at) const;
+  void SecondGlobal(size_t piece, double s, double t, double* uv) const;
 
   const Pieces& first_;
   const Pieces& second_;
   const IntersectionOptions& options_;
-  const CancellationToken* cancel_;
+  const double slack_s_;
+  const double slack_second_[2];
+  const double prune_tolerance_;
+  const double rounding_;
   const double leaf_;
+  const CancellationToken* const cancel_;
+  internal::WorkBudget budget_;
   NetEvaluator evaluator_;
   std::vector<double> scratch_a_;
   std::vector<double> scratch_b_;
+  std::vector<double> partials_;
   std::vector<double> residual_;
   std::vector<double> point_;
-  std::vector<Hit> hits_;
-  std::vector<std::array<double, 4>> overlaps_;
+  std::vector<Candidate> candidates_;
 };
 
-void PairSearch::Model(size_t first_piece, size_t second_piece, const double* x,
-                       LocalModel& model) {
+void Absorb(Candidate& run, const Candidate& next);
+
+// RunLimit returns the most runs a search keeps: those of the answer and a
+// margin for the points that merge at the end.
+size_t RunLimit(size_t max_results) { return max_results + 1024; }
+
+// CompactionSize returns the number of candidates at which they are merged.
+size_t CompactionSize(size_t max_results) {
+  return RunLimit(max_results) + RunLimit(max_results) / 4;
+}
+
+int SecondCount(const Pieces& second) {
+  return second.parameter_count == 1 ? 1 : 2;
+}
+
+double PairSearch::Global(const Anchor& at) const {
+  double s = 0.0;
+  first_.parameters(at.first_piece, at.x[0], 0.0, &s);
+  return s;
+}
+
+void PairSearch::SecondGlobal(size_t piece, double s, double t,
+                              double* uv) const {
+  second_.parameters(piece, s, t, uv);
+  if (second_.parameter_count == 1) uv[1] = 0.0;
+}
+
+void PairSearch::Model(const Anchor& at, LocalModel& model) {
   const int dim = first_.dimension;
   const bool curves = second_.parameter_count == 1;
-  evaluator_.Evaluate(first_.nets[first_piece], x[0], 0.0, scratch_a_.data());
-  evaluator_.Evaluate(second_.nets[second_piece], x[1], curves ? 0.0 : x[2],
-                      scratch_b_.data());
+  const Net& a = first_.nets[at.first_piece];
+  const Net& b = second_.nets[at.second_piece];
+  budget_.Add(EvaluationCost(a) + EvaluationCost(b));
+  evaluator_.Evaluate(a, at.x[0], 0.0, scratch_a_.data());
+  evaluator_.Evaluate(b, at.x[1], curves ? 0.0 : at.x[2], scratch_b_.data());
   // Gauss-Newton on F = A(x0) - B(x1, x2): columns A', -B_u, -B_v.
   const int count = curves ? 2 : 3;
   const double* columns[3] = {scratch_a_.data() + dim, scratch_b_.data() + dim,
@@ -353,129 +456,278 @@ void PairSearch::Model(size_t first_piece, size_t second_piece, const double* x,
   }
 }
 
-Hit PairSearch::Solve(const Part& a, const Part& b) {
-  Hit hit{.first_piece = a.piece, .second_piece = b.piece};
-  const int count = b.curve() ? 2 : 3;
+double PairSearch::Refine(const Part& a, const Part& b, Anchor& at) {
+  const int count = 1 + SecondCount(second_);
   const double lower[3] = {a.lo[0], b.lo[0], b.lo[1]};
   const double upper[3] = {a.hi[0], b.hi[0], b.hi[1]};
-  for (int i = 0; i < count; ++i) hit.x[i] = 0.5 * (lower[i] + upper[i]);
   const double value = internal::MinimizeInBox(
-      count, lower, upper, hit.x, [&](const double* x, LocalModel& model) {
-        Model(a.piece, b.piece, x, model);
+      count, lower, upper, at.x, [&](const double* x, LocalModel& model) {
+        Anchor trial = at;
+        std::copy_n(x, 3, trial.x);
+        Model(trial, model);
       });
-  hit.distance = std::sqrt(2.0 * value);
-  return hit;
+  return std::sqrt(2.0 * value);
 }
 
-std::pair<double, double> PairSearch::Project(bool on_first, size_t piece,
-                                              const double* point, double lo,
-                                              double hi, double guess) {
-  const Net& net = on_first ? first_.nets[piece] : second_.nets[piece];
+std::pair<Anchor, double> PairSearch::Solve(const Part& a, const Part& b) {
+  Anchor at{.first_piece = a.piece, .second_piece = b.piece};
+  at.x[0] = 0.5 * (a.lo[0] + a.hi[0]);
+  at.x[1] = 0.5 * (b.lo[0] + b.hi[0]);
+  at.x[2] = 0.5 * (b.lo[1] + b.hi[1]);
+  const double distance = Refine(a, b, at);
+  return {at, distance};
+}
+
+double PairSearch::ProjectOnSecond(const double* point, const double* lo,
+                                   const double* hi, Anchor& at) {
+  const Net& net = second_.nets[at.second_piece];
+  const int count = SecondCount(second_);
   const std::vector<double> query(point, point + first_.dimension);
-  std::vector<double> partials(6 * static_cast<size_t>(first_.dimension));
-  double x = std::clamp(guess, lo, hi);
+  double x[2] = {std::clamp(at.x[1], lo[0], hi[0]),
+                 count == 2 ? std::clamp(at.x[2], lo[1], hi[1]) : 0.0};
   const double value = internal::MinimizeInBox(
-      1, &lo, &hi, &x, [&](const double* at, LocalModel& model) {
-        internal::DistanceModel(evaluator_, net, 1, query.data(), at,
-                                partials.data(), model);
+      count, lo, hi, x, [&](const double* y, LocalModel& model) {
+        budget_.Add(EvaluationCost(net));
+        internal::DistanceModel(evaluator_, net, count, query.data(), y,
+                                partials_.data(), model);
       });
-  return {x, std::sqrt(2.0 * value)};
+  at.x[1] = x[0];
+  if (count == 2) at.x[2] = x[1];
+  return std::sqrt(2.0 * value);
 }
 
-double PairSearch::SinAngle(const Part& a, double s, const Part& b, double t) {
-  const int dim = first_.dimension;
-  evaluator_.Evaluate(first_.nets[a.piece], s, 0.0, scratch_a_.data());
-  evaluator_.Evaluate(second_.nets[b.piece], t, 0.0, scratch_b_.data());
-  const double* da = scratch_a_.data() + dim;
-  const double* db = scratch_b_.data() + dim;
-  const double la = std::sqrt(Dot(da, da, dim));
-  const double lb = std::sqrt(Dot(db, db, dim));
-  if (!(la > 0.0) || !(lb > 0.0)) return 0.0;
-  double same = 0.0;
-  double opposite = 0.0;
-  for (int x = 0; x < dim; ++x) {
-    same += (da[x] / la - db[x] / lb) * (da[x] / la - db[x] / lb);
-    opposite += (da[x] / la + db[x] / lb) * (da[x] / la + db[x] / lb);
-  }
-  return std::sqrt(std::min(same, opposite));
+double PairSearch::ProjectOnFirst(const double* point, double lo, double hi,
+                                  Anchor& at) {
+  const Net& net = first_.nets[at.first_piece];
+  const std::vector<double> query(point, point + first_.dimension);
+  double x = std::clamp(at.x[0], lo, hi);
+  const double value = internal::MinimizeInBox(
+      1, &lo, &hi, &x, [&](const double* y, LocalModel& model) {
+        budget_.Add(EvaluationCost(net));
+        internal::DistanceModel(evaluator_, net, 1, query.data(), y,
+                                partials_.data(), model);
+      });
+  at.x[0] = x;
+  return std::sqrt(2.0 * value);
 }
 
-// FindOverlap checks whether parts a and b of two curves run along each
-// other between the end points of either that lie on the other, and
-// records the stretch.
-bool PairSearch::FindOverlap(const Part& a, const Part& b) {
+// SinToSpan returns the sine of the angle between `tangent` and the span of
+// the `count` vectors `span` (1 or 2; 0 where a vector vanishes).
+double SinToSpan(const double* tangent, const double* const* span, int count,
+                 int dimension) {
+  std::vector<double> basis[2];
+  int rank = 0;
+  for (int k = 0; k < count; ++k) {
+    std::vector<double> e(span[k], span[k] + dimension);
+    for (int b = 0; b < rank; ++b) {
+      const double along = Dot(e.data(), basis[b].data(), dimension);
+      for (int x = 0; x < dimension; ++x) e[x] -= along * basis[b][x];
+    }
+    const double length = std::sqrt(Dot(e.data(), e.data(), dimension));
+    if (!(length > 0.0)) return 0.0;
+    for (double& v : e) v /= length;
+    basis[rank++] = std::move(e);
+  }
+  const double length = std::sqrt(Dot(tangent, tangent, dimension));
+  if (!(length > 0.0)) return 0.0;
+  std::vector<double> r(tangent, tangent + dimension);
+  for (int b = 0; b < rank; ++b) {
+    const double along = Dot(r.data(), basis[b].data(), dimension);
+    for (int x = 0; x < dimension; ++x) r[x] -= along * basis[b][x];
+  }
+  return std::sqrt(Dot(r.data(), r.data(), dimension)) / length;
+}
+
+// Parallel returns true when the first input's tangent at `at` lies within
+// kOverlapAngle of the second's tangent (line or plane) there.
+bool PairSearch::Parallel(const Anchor& at) {
   const int dim = first_.dimension;
-  const double tolerance = options_.tolerance;
-  struct End {
-    double s;
-    double t;
-  };
-  std::vector<End> ends;
-  const size_t last_a = a.points.size() - static_cast<size_t>(dim);
-  const size_t last_b = b.points.size() - static_cast<size_t>(dim);
-  for (int side = 0; side < 2; ++side) {
-    const double* point = a.points.data() + (side == 0 ? 0 : last_a);
-    const auto [t, d] = Project(false, b.piece, point, b.lo[0], b.hi[0],
-                                0.5 * (b.lo[0] + b.hi[0]));
-    if (d <= tolerance) ends.push_back({side == 0 ? a.lo[0] : a.hi[0], t});
+  const int count = SecondCount(second_);
+  const Net& a = first_.nets[at.first_piece];
+  const Net& b = second_.nets[at.second_piece];
+  budget_.Add(EvaluationCost(a) + EvaluationCost(b));
+  evaluator_.Evaluate(a, at.x[0], 0.0, scratch_a_.data());
+  evaluator_.Evaluate(b, at.x[1], count == 2 ? at.x[2] : 0.0,
+                      scratch_b_.data());
+  const double* span[2] = {scratch_b_.data() + dim,
+                           scratch_b_.data() + 2 * dim};
+  return SinToSpan(scratch_a_.data() + dim, span, count, dim) <= kOverlapAngle;
+}
+
+void PairSearch::AddCandidate(Candidate candidate, const Part* b) {
+  candidate.from = Global(candidate.start);
+  candidate.to = Global(candidate.end);
+  if (candidate.to < candidate.from) {
+    std::swap(candidate.from, candidate.to);
+    std::swap(candidate.start, candidate.end);
   }
-  for (int side = 0; side < 2; ++side) {
-    const double* point = b.points.data() + (side == 0 ? 0 : last_b);
-    const auto [s, d] = Project(true, a.piece, point, a.lo[0], a.hi[0],
-                                0.5 * (a.lo[0] + a.hi[0]));
-    if (d <= tolerance) ends.push_back({s, side == 0 ? b.lo[0] : b.hi[0]});
+  // The second's parameters: the part's box for a stretch, else the point.
+  const size_t piece = candidate.start.second_piece;
+  const double lo[2] = {b != nullptr ? b->lo[0] : candidate.start.x[1],
+                        b != nullptr ? b->lo[1] : candidate.start.x[2]};
+  const double hi[2] = {b != nullptr ? b->hi[0] : candidate.start.x[1],
+                        b != nullptr ? b->hi[1] : candidate.start.x[2]};
+  for (int c = 0; c < 2; ++c) {
+    candidate.low[c] = kInfinity;
+    candidate.high[c] = -kInfinity;
   }
-  if (ends.size() < 2) return false;
-  std::sort(ends.begin(), ends.end(),
-            [](const End& x, const End& y) { return x.s < y.s; });
-  const End start = ends.front();
-  const End end = ends.back();
+  for (const double s : {lo[0], hi[0]}) {
+    for (const double t : {lo[1], hi[1]}) {
+      double uv[2];
+      SecondGlobal(piece, s, t, uv);
+      for (int c = 0; c < 2; ++c) {
+        candidate.low[c] = std::min(candidate.low[c], uv[c]);
+        candidate.high[c] = std::max(candidate.high[c], uv[c]);
+      }
+    }
+  }
+  // Compact keeps the candidates under CompactionSize; one pair adds at most
+  // two more. The capacity grows to that, no more.
+  if (candidates_.size() == candidates_.capacity()) {
+    candidates_.reserve(std::min(2 * candidates_.capacity() + 16,
+                                 CompactionSize(options_.max_results) + 2));
+  }
+  candidates_.push_back(std::move(candidate));
+}
+
+void PairSearch::AddPoint(const Anchor& at, double distance) {
+  AddCandidate(Candidate{.start = at,
+                         .end = at,
+                         .has_point = true,
+                         .point = at,
+                         .distance = distance},
+               nullptr);
+}
+
+bool PairSearch::SampleStretch(const Part& a, const Part& b,
+                               const Anchor& start, const Anchor& end) {
+  const int dim = first_.dimension;
+  const int count = SecondCount(second_);
   std::vector<double> from(static_cast<size_t>(dim));
-  evaluator_.Evaluate(first_.nets[a.piece], start.s, 0.0, scratch_a_.data());
-  std::copy_n(scratch_a_.data(), dim, from.data());
-  evaluator_.Evaluate(first_.nets[a.piece], end.s, 0.0, scratch_a_.data());
-  if (PointDistance(from.data(), scratch_a_.data(), dim) <=
-      std::max(options_.separation, 10.0 * tolerance)) {
+  std::copy_n(PointOf(start), dim, from.data());
+  if (PointDistance(from.data(), PointOf(end), dim) <=
+      std::max(options_.separation, 10.0 * options_.tolerance)) {
     return false;
   }
-  const int samples = 2 * (a.net.count_u + b.net.count_u) + 1;
-  for (int k = 0; k <= samples + 1; ++k) {
+  const int samples =
+      2 * (a.net.count_u + b.net.count_u + (count == 2 ? b.net.count_v : 0)) +
+      1;
+  // Whether the tangents agree at every sample, and at any.
+  bool all = Parallel(start) && Parallel(end);
+  bool any = all;
+  Anchor nearest = start;
+  double nearest_distance = kInfinity;
+  Anchor at = start;
+  for (int k = 1; k <= samples; ++k) {
+    if (budget_.exhausted()) return false;
     const double f = static_cast<double>(k) / (samples + 1);
-    const double s = start.s + f * (end.s - start.s);
-    evaluator_.Evaluate(first_.nets[a.piece], s, 0.0, scratch_a_.data());
-    std::copy_n(scratch_a_.data(), dim, from.data());
-    const auto [t, d] = Project(false, b.piece, from.data(), b.lo[0], b.hi[0],
-                                start.t + f * (end.t - start.t));
-    if (d > tolerance || SinAngle(a, s, b, t) > kOverlapAngle) return false;
+    at.x[0] = start.x[0] + f * (end.x[0] - start.x[0]);
+    for (int c = 1; c <= count; ++c) {
+      at.x[c] = start.x[c] + f * (end.x[c] - start.x[c]);
+    }
+    std::copy_n(PointOf(at), dim, from.data());
+    const double d = ProjectOnSecond(from.data(), b.lo, b.hi, at);
+    if (d > options_.tolerance) return false;
+    const bool parallel = Parallel(at);
+    all = all && parallel;
+    any = any || parallel;
+    if (d < nearest_distance) {
+      nearest = at;
+      nearest_distance = d;
+    }
   }
-  std::array<double, 4> overlap;
-  first_.parameters(a.piece, start.s, 0.0, &overlap[0]);
-  first_.parameters(a.piece, end.s, 0.0, &overlap[1]);
-  second_.parameters(b.piece, start.t, 0.0, &overlap[2]);
-  second_.parameters(b.piece, end.t, 0.0, &overlap[3]);
-  overlaps_.push_back(overlap);
+  // Where the tangents agree somewhere but not everywhere, an overlap may
+  // lie inside: the pair is halved.
+  if (any && !all) return false;
+  Candidate stretch{
+      .start = start, .end = end, .parallel = all, .stretch = true};
+  // A stretch of contact that is not an overlap has its nearest point.
+  if (!all) {
+    const double refined = Refine(a, b, nearest);
+    stretch.has_point = true;
+    stretch.point = nearest;
+    stretch.distance = std::min(nearest_distance, refined);
+  }
+  AddCandidate(std::move(stretch), &b);
   return true;
 }
 
-// Examine returns true when the pair needs no halving: it is pruned, its
-// single point was found, it is a leaf, or it is an overlap.
-bool PairSearch::Examine(const PartPtr& a, const PartPtr& b) {
+// FindCurveStretch checks whether parts a and b of two curves run along
+// each other between the end points of either that lie on the other.
+bool PairSearch::FindCurveStretch(const Part& a, const Part& b) {
+  const int dim = first_.dimension;
   const double tolerance = options_.tolerance;
-  if (Pruned(*a, *b, tolerance)) return true;
+  std::vector<Anchor> ends;
+  const size_t last_a = a.points.size() - static_cast<size_t>(dim);
+  const size_t last_b = b.points.size() - static_cast<size_t>(dim);
+  for (int side = 0; side < 2; ++side) {
+    Anchor at{.first_piece = a.piece, .second_piece = b.piece};
+    at.x[0] = side == 0 ? a.lo[0] : a.hi[0];
+    at.x[1] = 0.5 * (b.lo[0] + b.hi[0]);
+    const double* point = a.points.data() + (side == 0 ? 0 : last_a);
+    if (ProjectOnSecond(point, b.lo, b.hi, at) <= tolerance) {
+      ends.push_back(at);
+    }
+  }
+  for (int side = 0; side < 2; ++side) {
+    Anchor at{.first_piece = a.piece, .second_piece = b.piece};
+    at.x[0] = 0.5 * (a.lo[0] + a.hi[0]);
+    at.x[1] = side == 0 ? b.lo[0] : b.hi[0];
+    const double* point = b.points.data() + (side == 0 ? 0 : last_b);
+    if (ProjectOnFirst(point, a.lo[0], a.hi[0], at) <= tolerance) {
+      ends.push_back(at);
+    }
+  }
+  if (ends.size() < 2) return false;
+  std::sort(ends.begin(), ends.end(),
+            [](const Anchor& x, const Anchor& y) { return x.x[0] < y.x[0]; });
+  return SampleStretch(a, b, ends.front(), ends.back());
+}
+
+// FindSurfaceStretch checks whether curve part a lies along surface part b
+// from end to end.
+bool PairSearch::FindSurfaceStretch(const Part& a, const Part& b) {
+  const int dim = first_.dimension;
+  Anchor ends[2];
+  for (int side = 0; side < 2; ++side) {
+    Anchor& at = ends[side];
+    at = Anchor{.first_piece = a.piece, .second_piece = b.piece};
+    at.x[0] = side == 0 ? a.lo[0] : a.hi[0];
+    at.x[1] = 0.5 * (b.lo[0] + b.hi[0]);
+    at.x[2] = 0.5 * (b.lo[1] + b.hi[1]);
+    const double* point =
+        a.points.data() +
+        (side == 0 ? 0 : a.points.size() - static_cast<size_t>(dim));
+    if (ProjectOnSecond(point, b.lo, b.hi, at) > options_.tolerance) {
+      return false;
+    }
+  }
+  return SampleStretch(a, b, ends[0], ends[1]);
+}
+
+// Examine returns true when the pair needs no halving: it is pruned, its
+// single point was found, it is a leaf, or it is a stretch along which the
+// inputs stay within tolerance.
+bool PairSearch::Examine(const PartPtr& a, const PartPtr& b) {
+  if (Pruned(*a, *b, prune_tolerance_)) return true;
   const bool small = a->diameter <= leaf_ && b->diameter <= leaf_;
   const bool curves = b->curve();
   const bool single = curves && ConesApart(a->cone, b->cone, first_.dimension);
   if (small || single) {
-    const Hit hit = Solve(*a, *b);
-    if (hit.distance <= tolerance) {
-      hits_.push_back(hit);
+    const auto [at, distance] = Solve(*a, *b);
+    if (distance <= options_.tolerance) {
+      AddPoint(at, distance);
       return true;
     }
     if (small) return true;
+    if (single) return false;
   }
-  return curves && !single && a->cone.valid && b->cone.valid &&
-         a->cone.angle < kNarrowCone && b->cone.angle < kNarrowCone &&
-         FindOverlap(*a, *b);
+  if (!a->cone.valid || !(a->cone.angle < kNarrowCone)) return false;
+  if (curves) {
+    return b->cone.valid && b->cone.angle < kNarrowCone &&
+           FindCurveStretch(*a, *b);
+  }
+  return b->hull && FindSurfaceStretch(*a, *b);
 }
 
 absl::Status PairSearch::Run() {
@@ -487,37 +739,31 @@ absl::Status PairSearch::Run() {
   std::vector<PartPtr> second_parts;
   for (size_t j = 0; j < second_.nets.size(); ++j) {
     second_parts.push_back(MakePart(j, zero, one, second_.nets[j]));
+    budget_.Add(SplitCost(*second_parts.back()));
   }
   // Piece i of the first input is searched against the pieces of the second
   // whose boxes it meets, to the end, before piece i + 1: the stack holds
   // one piece's pairs and their halves, never all pairs of pieces.
-  CancellationPoll poll(cancel_);
   std::vector<std::pair<PartPtr, PartPtr>> stack;
-  size_t pairs = 0;
   for (size_t i = 0; i < first_.nets.size(); ++i) {
     const PartPtr a = MakePart(i, zero, one, first_.nets[i]);
+    budget_.Add(SplitCost(*a) +
+                second_parts.size() * static_cast<uint64_t>(first_.dimension));
     for (const PartPtr& b : second_parts) {
-      if (!BoxesApart(*a, *b, options_.tolerance)) stack.emplace_back(a, b);
-    }
-    if (absl::Status status = poll.Done(second_parts.size()); !status.ok()) {
-      return status;
+      if (!BoxesApart(*a, *b, prune_tolerance_)) stack.emplace_back(a, b);
     }
     while (!stack.empty()) {
+      if (absl::Status status = budget_.Check(); !status.ok()) return status;
       auto [a_part, b_part] = std::move(stack.back());
       stack.pop_back();
-      if (++pairs > options_.max_pairs) {
-        return ExhaustedFieldError(
-            "max_pairs",
-            absl::StrCat("more than ", options_.max_pairs,
-                         " pairs of parts lie within tolerance of each other"));
+      budget_.Add(ExamineCost(*a_part, *b_part));
+      if (Examine(a_part, b_part)) {
+        if (absl::Status status = Compact(); !status.ok()) return status;
+        continue;
       }
-      if (absl::Status status = poll.Done(
-              8 * (a_part->net.values.size() + b_part->net.values.size()));
-          !status.ok()) {
-        return status;
-      }
-      if (Examine(a_part, b_part)) continue;
-      if (a_part->diameter >= b_part->diameter) {
+      const bool first_larger = a_part->diameter >= b_part->diameter;
+      budget_.Add(SplitCost(first_larger ? *a_part : *b_part));
+      if (first_larger) {
         auto [low, high] = Split(*a_part);
         stack.emplace_back(std::move(low), b_part);
         stack.emplace_back(std::move(high), b_part);
@@ -528,70 +774,316 @@ absl::Status PairSearch::Run() {
       }
     }
   }
-  return absl::OkStatus();
+  Merge();
+  if (candidates_.size() > RunLimit(options_.max_results)) {
+    return ExhaustedFieldError("max_results",
+                               absl::StrCat("more than ", options_.max_results,
+                                            " separate intersections"));
+  }
+  Finish();
+  return budget_.Check();
 }
 
-const double* PairSearch::PointOf(const Hit& hit) {
-  evaluator_.Evaluate(first_.nets[hit.first_piece], hit.x[0], 0.0,
+// Compact merges the candidates once they reach CompactionSize, so that
+// their memory stays bounded; more runs than RunLimit are
+// RESOURCE_EXHAUSTED naming "max_results".
+absl::Status PairSearch::Compact() {
+  const size_t limit = RunLimit(options_.max_results);
+  if (candidates_.size() < CompactionSize(options_.max_results)) {
+    return absl::OkStatus();
+  }
+  Merge();
+  if (candidates_.size() <= limit) return budget_.Check();
+  return ExhaustedFieldError(
+      "max_results",
+      absl::StrCat("more than ", limit, " separate intersections, more than ",
+                   options_.max_results));
+}
+
+const double* PairSearch::PointOf(const Anchor& at) {
+  budget_.Add(EvaluationCost(first_.nets[at.first_piece]));
+  evaluator_.Evaluate(first_.nets[at.first_piece], at.x[0], 0.0,
                       scratch_a_.data());
   return scratch_a_.data();
 }
 
-// SameHit returns true when two hits are closer than the separation, or
-// lie on the same pieces with the inputs within tolerance half-way between
-// them (a tangential point found from neighbouring pairs).
-bool PairSearch::SameHit(const Hit& a, const Hit& b) {
+// Merge sorts the candidates by the first parameter and joins each into a
+// run before it when Joined: one of the newest kMaxActiveRuns runs it
+// starts within, or one of the kRecentRuns that ended last. The runs take
+// the candidates' place (there are never more of them).
+void PairSearch::Merge() {
+  std::vector<Candidate>& candidates = candidates_;
+  constexpr size_t kMaxActiveRuns = 16;
+  constexpr size_t kRecentRuns = 1;
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& x, const Candidate& y) {
+              return x.from < y.from || (x.from == y.from && x.to > y.to);
+            });
+  size_t runs = 0;  // candidates[0, runs) are the runs
+  std::vector<size_t> active;
+  std::vector<size_t> recent;
+  auto retire = [&](size_t k) {
+    recent.push_back(active[k]);
+    if (recent.size() > kRecentRuns) recent.erase(recent.begin());
+    active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
+  };
+  for (size_t n = 0; n < candidates.size(); ++n) {
+    Candidate& next = candidates[n];
+    for (size_t k = 0; k < active.size();) {
+      if (candidates[active[k]].to + slack_s_ < next.from ||
+          active.size() > kMaxActiveRuns) {
+        retire(k);
+      } else {
+        ++k;
+      }
+    }
+    bool joined = false;
+    for (std::vector<size_t>* runs_of : {&active, &recent}) {
+      for (size_t k = runs_of->size(); k-- > 0 && !joined;) {
+        const size_t index = (*runs_of)[k];
+        if (!Joined(candidates[index], next)) continue;
+        Absorb(candidates[index], next);
+        joined = true;
+        if (runs_of == &recent) {
+          recent.erase(recent.begin() + static_cast<std::ptrdiff_t>(k));
+          active.push_back(index);
+        }
+      }
+    }
+    if (joined) continue;
+    if (runs != n) candidates[runs] = std::move(next);
+    active.push_back(runs++);
+  }
+  candidates.resize(runs);
+}
+
+// Absorb joins candidate `next` into `run`.
+void Absorb(Candidate& run, const Candidate& next) {
+  if (next.to > run.to) {
+    run.to = next.to;
+    run.end = next.end;
+  }
+  for (int c = 0; c < 2; ++c) {
+    run.low[c] = std::min(run.low[c], next.low[c]);
+    run.high[c] = std::max(run.high[c], next.high[c]);
+  }
+  run.stretch = run.stretch || next.stretch;
+  run.parallel = run.parallel || next.parallel;
+  if (next.has_point && next.distance < run.distance) {
+    run.has_point = true;
+    run.point = next.point;
+    run.distance = next.distance;
+  }
+}
+
+// Finish drops the point runs that lie inside an overlap (in the first's
+// parameter and the second's, as points at a curve's seam do) and merges
+// those within max(separation, tolerance) of each other, keeping the
+// nearest point.
+void PairSearch::Finish() {
+  const size_t dim = static_cast<size_t>(first_.dimension);
+  std::vector<size_t> overlaps;  // indices of the overlap runs
+  std::vector<size_t> points;    // and of the point runs
+  std::vector<double> coordinates(candidates_.size() * dim);
+  for (size_t k = 0; k < candidates_.size(); ++k) {
+    Candidate& run = candidates_[k];
+    if (!run.parallel) continue;
+    Extend(run.start, -1.0);
+    Extend(run.end, 1.0);
+    run.from = Global(run.start);
+    run.to = Global(run.end);
+    overlaps.push_back(k);
+  }
+  for (size_t k = 0; k < candidates_.size(); ++k) {
+    const Candidate& run = candidates_[k];
+    if (run.parallel || !run.has_point || Inside(run, overlaps)) continue;
+    std::copy_n(PointOf(run.point), dim, coordinates.begin() + k * dim);
+    points.push_back(k);
+  }
+  auto at = [&](size_t k) { return coordinates.data() + k * dim; };
+  std::sort(points.begin(), points.end(),
+            [&](size_t a, size_t b) { return at(a)[0] < at(b)[0]; });
+  // A point joins the last kept point within `near` among those whose first
+  // coordinate is within `near` of its own.
+  const double near = std::max(options_.separation, options_.tolerance);
+  std::vector<bool> keep(candidates_.size(), false);
+  for (size_t k = 0; k < candidates_.size(); ++k) {
+    keep[k] = candidates_[k].parallel;
+  }
+  std::vector<size_t> kept;
+  for (const size_t k : points) {
+    size_t into = SIZE_MAX;
+    for (size_t m = kept.size(); m-- > 0;) {
+      if (at(kept[m])[0] < at(k)[0] - near) break;
+      if (PointDistance(at(kept[m]), at(k), dim) <= near) {
+        into = kept[m];
+        break;
+      }
+    }
+    if (into == SIZE_MAX) {
+      kept.push_back(k);
+      keep[k] = true;
+    } else if (candidates_[k].distance < candidates_[into].distance) {
+      candidates_[into].point = candidates_[k].point;
+      candidates_[into].distance = candidates_[k].distance;
+    }
+  }
+  size_t runs = 0;
+  for (size_t k = 0; k < candidates_.size(); ++k) {
+    if (!keep[k]) continue;
+    if (runs != k) candidates_[runs] = std::move(candidates_[k]);
+    ++runs;
+  }
+  candidates_.resize(runs);
+}
+
+// Extend moves the end `anchor` of an overlap (direction -1: its start, 1:
+// its end, within its piece of the first) to where the first input leaves
+// the tolerance of the second, or passes the end of the second's piece
+// (OnOverlap): outwards while it is on the overlap, else inwards.
+void PairSearch::Extend(Anchor& anchor, double direction) {
+  Anchor at = anchor;
+  if (OnOverlap(at)) {
+    anchor = Walk(at, direction, true);
+  } else {
+    anchor = Walk(anchor, -direction, false);
+  }
+}
+
+// OnOverlap projects the first's point at `at` onto the second (Near) and
+// returns true when it is within tolerance there, and not beyond the end
+// of the second's piece: nearest to a point of its boundary, off it by
+// more than rounding (a fringe where the first runs on past the second's
+// end).
+bool PairSearch::OnOverlap(Anchor& at) {
+  const double distance = DistanceToSecond(at);
+  if (distance > options_.tolerance) return false;
+  for (int c = 1; c <= SecondCount(second_); ++c) {
+    const bool end = at.x[c] == 0.0 || at.x[c] == 1.0;
+    if (end && distance > rounding_) return false;
+  }
+  return true;
+}
+
+// Walk returns the last point from `from` along the first's parameter in
+// `direction` (within its piece) where OnOverlap is `on`, as it is at
+// `from`: steps doubling from 2^-40 of the piece, then bisection, each point
+// projected onto the second from the last one where it held.
+Anchor PairSearch::Walk(Anchor from, double direction, bool on) {
+  Anchor last = from;
+  Anchor beyond;
+  bool found = false;
+  for (double step = 0x1p-40; !found && !budget_.exhausted(); step *= 2) {
+    Anchor probe = last;
+    probe.x[0] = std::clamp(last.x[0] + direction * step, 0.0, 1.0);
+    if (probe.x[0] == last.x[0]) break;  // the piece's end
+    found = OnOverlap(probe) != on;
+    (found ? beyond : last) = probe;
+  }
+  for (int k = 0; found && k < 64 && !budget_.exhausted(); ++k) {
+    Anchor middle = last;
+    middle.x[0] = 0.5 * (last.x[0] + beyond.x[0]);
+    if (middle.x[0] == last.x[0] || middle.x[0] == beyond.x[0]) break;
+    (OnOverlap(middle) == on ? last : beyond) = middle;
+  }
+  return last;
+}
+
+// Inside returns true when the point of `run` lies inside one of the
+// overlaps (the first's parameter in its interval, the second's in its box).
+bool PairSearch::Inside(const Candidate& run,
+                        const std::vector<size_t>& overlaps) const {
+  double x[2];
+  SecondGlobal(run.point.second_piece, run.point.x[1], run.point.x[2], x);
+  const double s = Global(run.point);
+  for (const size_t k : overlaps) {
+    const Candidate& overlap = candidates_[k];
+    bool inside = s >= overlap.from - slack_s_ && s <= overlap.to + slack_s_;
+    for (int c = 0; c < SecondCount(second_); ++c) {
+      inside = inside && x[c] >= overlap.low[c] - slack_second_[c] &&
+               x[c] <= overlap.high[c] + slack_second_[c];
+    }
+    if (inside) return true;
+  }
+  return false;
+}
+
+// Joined returns true when `next` (starting at or after `run` starts) is
+// part of `run`: it starts inside a stretch of it where the second's
+// parameters meet too, or its point is within the separation of the run's
+// end, or the inputs stay within tolerance between the two.
+bool PairSearch::Joined(const Candidate& run, const Candidate& next) {
+  if ((run.stretch || next.stretch) && next.from <= run.to + slack_s_) {
+    bool meet = true;
+    for (int c = 0; c < SecondCount(second_); ++c) {
+      meet = meet && next.low[c] <= run.high[c] + slack_second_[c] &&
+             run.low[c] <= next.high[c] + slack_second_[c];
+    }
+    if (meet) return true;
+  }
   const int dim = first_.dimension;
-  point_.assign(PointOf(a), PointOf(a) + dim);
-  if (PointDistance(point_.data(), PointOf(b), dim) <=
+  const double* end = PointOf(run.end);
+  point_.assign(end, end + dim);
+  if (PointDistance(point_.data(), PointOf(next.start), dim) <=
       std::max(options_.separation, options_.tolerance)) {
     return true;
   }
-  if (a.first_piece != b.first_piece || a.second_piece != b.second_piece) {
-    return false;
-  }
-  double middle[3];
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(a.x[i] - b.x[i]) > 1e-3) return false;
-    middle[i] = 0.5 * (a.x[i] + b.x[i]);
-  }
-  LocalModel model;
-  Model(a.first_piece, a.second_piece, middle, model);
-  return std::sqrt(2.0 * model.value) <= options_.tolerance;
+  return Connected(run.end, next.start);
 }
 
-std::vector<Hit> PairSearch::DistinctHits() {
-  std::sort(hits_.begin(), hits_.end(),
-            [](const Hit& a, const Hit& b) { return a.distance < b.distance; });
-  // A hit is compared with the kept hits whose first coordinate is within
-  // the separation of its own (SameHit's first test) and with those of the
-  // same pair of pieces (its second), not with every kept hit.
-  const double near = std::max(options_.separation, options_.tolerance);
-  std::multimap<double, size_t> by_coordinate;
-  std::map<std::pair<size_t, size_t>, std::vector<size_t>> by_pieces;
-  std::vector<Hit> kept;
-  for (const Hit& hit : hits_) {
-    const double x = PointOf(hit)[0];
-    bool seen = false;
-    for (auto it = by_coordinate.lower_bound(x - near);
-         it != by_coordinate.end() && it->first <= x + near && !seen; ++it) {
-      seen = SameHit(hit, kept[it->second]);
+// Connected returns true when the inputs stay within tolerance of each
+// other between two anchors, along one sheet of the second: the first
+// input is sampled between them (on one piece, or two neighbouring ones),
+// each sample projected onto the second from the projection of the
+// sample before, from `left` onwards and from `right` backwards; the two
+// tracks must meet in the middle, at the same parameters of the second.
+bool PairSearch::Connected(const Anchor& first, const Anchor& second) {
+  const bool ordered = Global(first) <= Global(second);
+  const Anchor& left = ordered ? first : second;
+  const Anchor& right = ordered ? second : first;
+  const bool same = left.first_piece == right.first_piece;
+  if (!same && right.first_piece != left.first_piece + 1) return false;
+  constexpr int kSteps = 4;  // samples per side, the middle included
+  Anchor tracks[2] = {left, right};
+  for (int side = 0; side < 2; ++side) {
+    Anchor& at = tracks[side];
+    const Anchor& from = side == 0 ? left : right;
+    // The first's parameter runs from the anchor to the middle of the two,
+    // or to the end of its piece that meets the other's.
+    const double middle =
+        same ? 0.5 * (left.x[0] + right.x[0]) : (side == 0 ? 1.0 : 0.0);
+    for (int k = 1; k <= kSteps; ++k) {
+      at.x[0] = from.x[0] + (middle - from.x[0]) * k / kSteps;
+      if (!Near(at)) return false;
     }
-    const std::pair<size_t, size_t> pieces = {hit.first_piece,
-                                              hit.second_piece};
-    auto same = by_pieces.find(pieces);
-    if (same != by_pieces.end()) {
-      for (size_t k : same->second) {
-        if (seen) break;
-        seen = SameHit(hit, kept[k]);
-      }
-    }
-    if (seen) continue;
-    by_coordinate.emplace(x, kept.size());
-    by_pieces[pieces].push_back(kept.size());
-    kept.push_back(hit);
   }
-  return kept;
+  double meet[2][2];
+  for (int side = 0; side < 2; ++side) {
+    SecondGlobal(tracks[side].second_piece, tracks[side].x[1],
+                 tracks[side].x[2], meet[side]);
+  }
+  for (int c = 0; c < SecondCount(second_); ++c) {
+    if (std::abs(meet[0][c] - meet[1][c]) > slack_second_[c]) return false;
+  }
+  return true;
+}
+
+// DistanceToSecond projects the first input's point at `at` onto the
+// second's piece at.second_piece from at.x[1..] (updating them) and returns
+// the distance.
+double PairSearch::DistanceToSecond(Anchor& at) {
+  const int dim = first_.dimension;
+  const double lo[2] = {0.0, 0.0};
+  const double hi[2] = {1.0, 1.0};
+  const double* sample = PointOf(at);
+  point_.assign(sample, sample + dim);
+  return ProjectOnSecond(point_.data(), lo, hi, at);
+}
+
+// Near returns true when the first input at `at` is within tolerance of
+// the second's piece (DistanceToSecond).
+bool PairSearch::Near(Anchor& at) {
+  return DistanceToSecond(at) <= options_.tolerance;
 }
 
 absl::Status CheckOptions(const IntersectionOptions& options) {
@@ -609,55 +1101,35 @@ double Width(const ParameterDomain& domain) {
   return domain.end - domain.start;
 }
 
-// MergeOverlaps joins overlaps whose intervals meet on both curves.
-std::vector<std::array<double, 4>> MergeOverlaps(
-    std::vector<std::array<double, 4>> overlaps, double slack_s,
-    double slack_t) {
-  std::sort(overlaps.begin(), overlaps.end());
-  std::vector<std::array<double, 4>> merged;
-  for (const std::array<double, 4>& o : overlaps) {
-    if (!merged.empty()) {
-      std::array<double, 4>& m = merged.back();
-      const bool meet_s = o[0] <= m[1] + slack_s;
-      const bool meet_t =
-          std::min(o[2], o[3]) <= std::max(m[2], m[3]) + slack_t &&
-          std::min(m[2], m[3]) <= std::max(o[2], o[3]) + slack_t;
-      if (meet_s && meet_t) {
-        if (o[1] > m[1]) {
-          m[1] = o[1];
-          m[3] = o[3];
-        }
-        continue;
-      }
-    }
-    merged.push_back(o);
-  }
-  return merged;
-}
+// A finished search: the pieces, in units of 2^exponent, and the runs.
+struct Found {
+  const Pieces& first;
+  const Pieces& second;
+  int exponent;
+  PairSearch& search;
 
-bool InsideOverlap(double s, double t,
-                   const std::vector<std::array<double, 4>>& overlaps,
-                   double slack_s, double slack_t) {
-  for (const std::array<double, 4>& o : overlaps) {
-    if (s >= o[0] - slack_s && s <= o[1] + slack_s &&
-        t >= std::min(o[2], o[3]) - slack_t &&
-        t <= std::max(o[2], o[3]) + slack_t) {
-      return true;
+  // AppendPoint appends the first input's point at `at`, in the inputs'
+  // units.
+  void AppendPoint(const Anchor& at, std::vector<double>& points) const {
+    const double* point = search.PointOf(at);
+    for (int x = 0; x < first.dimension; ++x) {
+      points.push_back(std::ldexp(point[x], exponent));
     }
   }
-  return false;
-}
+};
 
 // Intersect checks the inputs, runs the pair search of `first` against
-// `second` (a curve or a surface; `field` names its dimension) and returns
-// finish(first's pieces, second's pieces, the search).
+// `second` (a curve or a surface; `field` names its dimension, `names` the
+// two inputs) and returns finish(the finished search). The pieces are
+// divided by a power of two (exact) to coordinates of about 1, so that no
+// squared distance overflows or underflows, and the tolerance is checked
+// against what double precision resolves on them (CheckResolvableAt).
 template <typename Second, typename Finish>
 auto Intersect(const Curve& first, const Second& second,
                absl::string_view field, const IntersectionOptions& options,
+               double slack_s, const double* slack_second,
                const CancellationToken* cancel, Finish finish)
-    -> decltype(finish(std::declval<const Pieces&>(),
-                       std::declval<const Pieces&>(),
-                       std::declval<PairSearch&>())) {
+    -> decltype(finish(std::declval<const Found&>())) {
   if (absl::Status status = CheckOptions(options); !status.ok()) return status;
   if (DimensionOf(second) != DimensionOf(first)) {
     return InvalidFieldError(
@@ -668,99 +1140,119 @@ auto Intersect(const Curve& first, const Second& second,
   if (!a.ok()) return a.status();
   absl::StatusOr<Pieces> b = internal::LiftPieces(second, cancel);
   if (!b.ok()) return b.status();
-  PairSearch search(*a, *b, options, cancel);
-  if (absl::Status status = search.Run(); !status.ok()) return status;
-  return finish(*a, *b, search);
-}
-
-// CurveAnswer returns the distinct points and merged overlaps of two curves.
-absl::StatusOr<CurveIntersections> CurveAnswer(
-    const Curve& first, const Curve& second, const IntersectionOptions& options,
-    const Pieces& a, const Pieces& b, PairSearch& search) {
-  const double slack_s = kParameterSlack * Width(DomainOf(first));
-  const double slack_t = kParameterSlack * Width(DomainOf(second));
-  CurveIntersections result{.dimension = a.dimension};
-  std::vector<std::array<double, 4>> overlaps =
-      MergeOverlaps(search.overlaps(), slack_s, slack_t);
-  std::vector<std::pair<double, std::vector<double>>> points;
-  for (const Hit& hit : search.DistinctHits()) {
-    double s = 0.0;
-    double t = 0.0;
-    a.parameters(hit.first_piece, hit.x[0], 0.0, &s);
-    b.parameters(hit.second_piece, hit.x[1], 0.0, &t);
-    if (InsideOverlap(s, t, overlaps, slack_s, slack_t)) continue;
-    const double* point = search.PointOf(hit);
-    std::vector<double> entry = {s, t};
-    entry.insert(entry.end(), point, point + a.dimension);
-    points.emplace_back(s, std::move(entry));
-  }
+  const Pieces* both[] = {&*a, &*b};
+  const double largest = internal::LargestCoordinate(both);
   if (absl::Status status =
-          CheckResults(points.size() + overlaps.size(), options);
+          internal::CheckResolvableAt(options.tolerance, largest);
       !status.ok()) {
     return status;
   }
-  std::sort(points.begin(), points.end(),
-            [](const auto& x, const auto& y) { return x.first < y.first; });
-  for (const auto& [s, entry] : points) {
-    result.first_parameters.push_back(entry[0]);
-    result.second_parameters.push_back(entry[1]);
-    result.points.insert(result.points.end(), entry.begin() + 2, entry.end());
+  const int exponent = internal::ScaleExponent(largest);
+  internal::ScalePieces(exponent, *a);
+  internal::ScalePieces(exponent, *b);
+  IntersectionOptions scaled = options;
+  scaled.tolerance = std::ldexp(options.tolerance, -exponent);
+  scaled.separation = std::ldexp(options.separation, -exponent);
+  const double prune_tolerance =
+      scaled.tolerance + kPruneSlack * internal::LargestCoordinate(both);
+  PairSearch search(*a, *b, scaled, slack_s, slack_second, prune_tolerance,
+                    cancel);
+  if (absl::Status status = search.Run(); !status.ok()) return status;
+  return finish(Found{*a, *b, exponent, search});
+}
+
+// CurveAnswer returns the points and overlaps of two curves.
+absl::StatusOr<CurveIntersections> CurveAnswer(
+    const IntersectionOptions& options, const Found& found) {
+  const std::vector<Candidate>& runs = found.search.runs();
+  if (absl::Status status = CheckResults(runs.size(), options); !status.ok()) {
+    return status;
   }
-  for (const std::array<double, 4>& o : overlaps) {
-    result.first_intervals.insert(result.first_intervals.end(), {o[0], o[1]});
-    result.second_intervals.insert(result.second_intervals.end(), {o[2], o[3]});
+  CurveIntersections result{.dimension = found.first.dimension};
+  for (const Candidate& run : runs) {
+    auto second_at = [&](const Anchor& at) {
+      double t = 0.0;
+      found.second.parameters(at.second_piece, at.x[1], 0.0, &t);
+      return t;
+    };
+    if (run.parallel) {
+      result.first_intervals.insert(result.first_intervals.end(),
+                                    {run.from, run.to});
+      result.second_intervals.insert(
+          result.second_intervals.end(),
+          {second_at(run.start), second_at(run.end)});
+      continue;
+    }
+    double s = 0.0;
+    found.first.parameters(run.point.first_piece, run.point.x[0], 0.0, &s);
+    result.first_parameters.push_back(s);
+    result.second_parameters.push_back(second_at(run.point));
+    found.AppendPoint(run.point, result.points);
   }
   return result;
 }
 
-// SurfaceAnswer returns the distinct points of a curve and a surface in the
-// order of the curve's parameter.
+// SurfaceAnswer returns the points and overlaps of a curve and a surface
+// in the order of the curve's parameter.
 absl::StatusOr<CurveSurfaceIntersections> SurfaceAnswer(
-    const IntersectionOptions& options, const Pieces& a, const Pieces& b,
-    PairSearch& search) {
-  const std::vector<Hit> hits = search.DistinctHits();
-  if (absl::Status status = CheckResults(hits.size(), options); !status.ok()) {
+    const IntersectionOptions& options, const Found& found) {
+  const std::vector<Candidate>& runs = found.search.runs();
+  if (absl::Status status = CheckResults(runs.size(), options); !status.ok()) {
     return status;
   }
-  std::vector<std::array<double, 3>> order;
-  for (size_t k = 0; k < hits.size(); ++k) {
+  CurveSurfaceIntersections result{.dimension = found.first.dimension};
+  for (const Candidate& run : runs) {
+    if (run.parallel) {
+      result.curve_intervals.insert(result.curve_intervals.end(),
+                                    {run.from, run.to});
+      continue;
+    }
     double t = 0.0;
-    a.parameters(hits[k].first_piece, hits[k].x[0], 0.0, &t);
-    order.push_back({t, static_cast<double>(k), 0.0});
-  }
-  std::sort(order.begin(), order.end());
-  CurveSurfaceIntersections result{.dimension = a.dimension};
-  for (const std::array<double, 3>& entry : order) {
-    const Hit& hit = hits[static_cast<size_t>(entry[1])];
+    found.first.parameters(run.point.first_piece, run.point.x[0], 0.0, &t);
     double uv[2];
-    b.parameters(hit.second_piece, hit.x[1], hit.x[2], uv);
-    result.curve_parameters.push_back(entry[0]);
+    found.second.parameters(run.point.second_piece, run.point.x[1],
+                            run.point.x[2], uv);
+    result.curve_parameters.push_back(t);
     result.surface_parameters.insert(result.surface_parameters.end(),
                                      {uv[0], uv[1]});
-    const double* point = search.PointOf(hit);
-    result.points.insert(result.points.end(), point, point + a.dimension);
+    found.AppendPoint(run.point, result.points);
   }
   return result;
 }
 
 }  // namespace
 
+uint64_t IntersectionCandidateBytes(size_t max_results, int dimension) {
+  // The candidates' capacity (AddCandidate), and Finish's points'
+  // coordinates, indices of the overlaps, of the points and of those kept,
+  // and a flag per run.
+  const uint64_t runs = RunLimit(max_results);
+  return (CompactionSize(max_results) + 2) * sizeof(Candidate) +
+         runs * (8 * static_cast<uint64_t>(dimension) + 3 * sizeof(size_t) + 1);
+}
+
 absl::StatusOr<CurveIntersections> IntersectCurves(
     const Curve& first, const Curve& second, const IntersectionOptions& options,
     const CancellationToken* cancel) {
-  return Intersect(first, second, "second.dimension", options, cancel,
-                   [&](const Pieces& a, const Pieces& b, PairSearch& search) {
-                     return CurveAnswer(first, second, options, a, b, search);
-                   });
+  const double slack_second[2] = {kParameterSlack * Width(DomainOf(second)),
+                                  0.0};
+  return Intersect(
+      first, second, "second.dimension", options,
+      kParameterSlack * Width(DomainOf(first)), slack_second, cancel,
+      [&](const Found& found) { return CurveAnswer(options, found); });
 }
 
 absl::StatusOr<CurveSurfaceIntersections> IntersectCurveSurface(
     const Curve& curve, const Surface& surface,
     const IntersectionOptions& options, const CancellationToken* cancel) {
-  return Intersect(curve, surface, "surface.dimension", options, cancel,
-                   [&](const Pieces& a, const Pieces& b, PairSearch& search) {
-                     return SurfaceAnswer(options, a, b, search);
-                   });
+  const SurfaceDomain domain = DomainOf(surface);
+  const double slack_second[2] = {
+      kParameterSlack * (domain.u_end - domain.u_start),
+      kParameterSlack * (domain.v_end - domain.v_start)};
+  return Intersect(
+      curve, surface, "surface.dimension", options,
+      kParameterSlack * Width(DomainOf(curve)), slack_second, cancel,
+      [&](const Found& found) { return SurfaceAnswer(options, found); });
 }
 
 }  // namespace freeform

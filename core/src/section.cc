@@ -1,16 +1,21 @@
 #include "freeform/core/section.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <set>
 #include <utility>
 #include <vector>
 
+#include "absl/functional/function_ref.h"
 #include "absl/strings/str_cat.h"
 #include "bezier_net.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
+#include "tessellation_checks.h"
 
 namespace freeform {
 namespace {
@@ -18,6 +23,12 @@ namespace {
 using internal::Net;
 using internal::NetEvaluator;
 using internal::Pieces;
+
+// Coefficients of g within this many rounding errors of the magnitude of
+// their terms (RoundingOf) are zero: the surface lies in the plane there.
+constexpr double kZeroRounding = 64 * std::numeric_limits<double>::epsilon();
+// The most evaluations of g one root takes (Slicer::Root).
+constexpr int kRootSteps = 200;
 
 // The sign convention of the quadtree: 0 counts as positive, so a root is
 // where the sign flips and neighbouring cells agree on it.
@@ -40,6 +51,25 @@ Net ScalarNet(const Net& net, absl::Span<const double> normal, double offset) {
     }
   }
   return scalar;
+}
+
+// RoundingOf returns kZeroRounding times the largest sum of the magnitudes
+// of the terms of a coefficient of g: coefficients below it are zero within
+// rounding (they are computed from such terms, and halving only averages
+// them).
+double RoundingOf(const Net& net, absl::Span<const double> normal,
+                  double offset) {
+  double largest = 0.0;
+  for (int i = 0; i < net.count_u; ++i) {
+    for (int j = 0; j < net.count_v; ++j) {
+      const double* p = net.at(i, j);
+      const double w = net.rational ? p[net.dimension] : 1.0;
+      double sum = std::abs(offset * w);
+      for (int x = 0; x < net.dimension; ++x) sum += std::abs(normal[x] * p[x]);
+      largest = std::max(largest, sum);
+    }
+  }
+  return kZeroRounding * largest;
 }
 
 // Monotone returns true when the coefficients strictly rise or strictly
@@ -69,6 +99,10 @@ int SignChanges(const std::vector<double>& values) {
   return changes;
 }
 
+// The edges of a piece's parameter square: u = 0, u = 1, v = 0, v = 1.
+// Edge e fixes axis e / 2 at e % 2.
+constexpr int kEdges = 4;
+
 // A vertex of a section: piece, (s, t) in it, point.
 struct Vertex {
   size_t piece = 0;
@@ -84,81 +118,197 @@ struct Cell {
   int depth = 0;
 };
 
+// An edge of a piece by the surface parameters of its ends (in order), so
+// that the edge two pieces share has one key.
+using EdgeKey = std::array<double, 4>;
+
+// The work (SectionOptions::max_work) charged for a cell and for an
+// evaluation of g.
+uint64_t CellCost(const Net& net) { return 8 * net.values.size() + 16; }
+uint64_t ValueCost(const Net& net) {
+  return 2 * net.values.size() + static_cast<uint64_t>(net.count_u) +
+         static_cast<uint64_t>(net.count_v) + 16;
+}
+
+// Slicer traces the section of the (scaled) pieces by the plane
+// n . x = offset (n a unit vector) to `tolerance` (in the pieces' units).
 class Slicer {
  public:
   Slicer(const Pieces& pieces, absl::Span<const double> normal, double offset,
-         const SectionOptions& options, const CancellationToken* cancel)
+         double tolerance, const SectionOptions& options,
+         const CancellationToken* cancel)
       : pieces_(pieces),
+        normal_(normal.begin(), normal.end()),
+        offset_(offset),
+        tolerance_(tolerance),
         options_(options),
-        poll_(cancel),
         cancel_(cancel),
-        partials_(6 * static_cast<size_t>(pieces.dimension)),
-        scalar_partials_(6) {
+        budget_(options.max_work, "max_work", "the section's quadtree", cancel),
+        partials_(6 * static_cast<size_t>(pieces.dimension)) {
     for (const Net& net : pieces.nets) {
       scalars_.push_back(ScalarNet(net, normal, offset));
+      zeros_.push_back(RoundingOf(net, normal, offset));
     }
   }
 
   absl::Status Run();
   std::vector<std::vector<Vertex>>& arcs() { return arcs_; }
+  // The pieces that lie in the plane, in order.
+  const std::vector<size_t>& regions() const { return regions_; }
 
  private:
+  bool InPlane(size_t piece) const;
+  bool EdgeInPlane(size_t piece, int edge) const;
+  // Key returns the key of edge `edge` of `piece`, or nullopt for an edge
+  // collapsed to a point.
+  std::optional<EdgeKey> Key(size_t piece, int edge) const;
   absl::Status Piece(size_t piece);
-  double G(size_t piece, double s, double t);
+  absl::Status Edges(size_t piece);
+  // OneSign returns true when the coefficients of `cell` have one sign (0
+  // positive), those on its sides that are edges of the piece in the plane
+  // left out.
+  bool OneSign(size_t piece, const Cell& cell) const;
+  // G returns g at (s, t) of a piece, and in `magnitude` the sum its
+  // rounding is relative to (NetEvaluator::Value), charging the work to
+  // max_work when `quadtree` (a vertex's work is bounded by max_points
+  // instead).
+  double G(size_t piece, double s, double t, bool quadtree, double& magnitude);
   // Root returns where g changes sign on the line where coordinate
   // `fixed_axis` is `fixed`, between lo and hi of the other coordinate.
-  double Root(size_t piece, int fixed_axis, double fixed, double lo, double hi);
+  double Root(size_t piece, int fixed_axis, double fixed, double lo, double hi,
+              bool quadtree);
   void EdgeRoots(size_t piece, int fixed_axis, double fixed,
                  std::vector<double> coefficients, double lo, double hi,
                  int depth, std::vector<double>& roots);
   absl::Status Leaf(size_t piece, const Cell& cell, int along);
-  absl::Status Arc(size_t piece, int along, double c0, double a0, double c1,
-                   double a1, const Cell& cell);
-  Vertex MakeVertex(size_t piece, int along, double c, double a);
+  absl::Status Arc(size_t piece, int along, double c0, double c1,
+                   absl::FunctionRef<double(double)> locate);
+  absl::StatusOr<Vertex> MakeVertex(size_t piece, int along, double c,
+                                    double a);
+  absl::Status CountVertex();
 
   const Pieces& pieces_;
+  const std::vector<double> normal_;
+  const double offset_;
+  const double tolerance_;
   const SectionOptions& options_;
-  CancellationPoll poll_;
   const CancellationToken* cancel_;
+  internal::WorkBudget budget_;
+  CancellationPoll poll_{cancel_};
   std::vector<Net> scalars_;
+  std::vector<double> zeros_;
   NetEvaluator evaluator_;
   std::vector<double> partials_;
-  std::vector<double> scalar_partials_;
   std::vector<std::vector<Vertex>> arcs_;
-  size_t cells_ = 0;
+  std::vector<size_t> regions_;
+  std::vector<bool> in_plane_;
+  // The edges in the plane traced already, or bounding a region.
+  std::set<EdgeKey> edges_;
   size_t vertices_ = 0;
 };
 
-double Slicer::G(size_t piece, double s, double t) {
-  evaluator_.Evaluate(scalars_[piece], s, t, scalar_partials_.data());
-  return scalar_partials_[0];
+bool Slicer::InPlane(size_t piece) const {
+  for (const double g : scalars_[piece].values) {
+    if (std::abs(g) > zeros_[piece]) return false;
+  }
+  return true;
 }
 
+bool Slicer::EdgeInPlane(size_t piece, int edge) const {
+  const Net& net = scalars_[piece];
+  const int axis = edge / 2;
+  const int count = axis == 0 ? net.count_v : net.count_u;
+  const int row =
+      edge % 2 == 0 ? 0 : (axis == 0 ? net.count_u : net.count_v) - 1;
+  for (int k = 0; k < count; ++k) {
+    const double g = axis == 0 ? net.at(row, k)[0] : net.at(k, row)[0];
+    if (std::abs(g) > zeros_[piece]) return false;
+  }
+  return true;
+}
+
+std::optional<EdgeKey> Slicer::Key(size_t piece, int edge) const {
+  const int axis = edge / 2;
+  const double fixed = edge % 2;
+  double ends[2][2];
+  for (int end = 0; end < 2; ++end) {
+    const double s = axis == 0 ? fixed : end;
+    const double t = axis == 0 ? end : fixed;
+    pieces_.parameters(piece, s, t, ends[end]);
+  }
+  if (ends[0][0] == ends[1][0] && ends[0][1] == ends[1][1]) {
+    return std::nullopt;
+  }
+  const bool ordered = std::make_pair(ends[0][0], ends[0][1]) <
+                       std::make_pair(ends[1][0], ends[1][1]);
+  const double(&a)[2] = ordered ? ends[0] : ends[1];
+  const double(&b)[2] = ordered ? ends[1] : ends[0];
+  return EdgeKey{a[0], a[1], b[0], b[1]};
+}
+
+double Slicer::G(size_t piece, double s, double t, bool quadtree,
+                 double& magnitude) {
+  if (quadtree) budget_.Add(ValueCost(scalars_[piece]));
+  return evaluator_.Value(scalars_[piece], s, t, magnitude);
+}
+
+// Root runs false position with the Illinois modification, bisecting where
+// two steps did not halve the bracket, on the bracket [lo, hi] (g of different
+// signs at its ends) until g is within one rounding error of the magnitude of
+// its terms there or the bracket is two neighbouring doubles, at most
+// kRootSteps evaluations.
 double Slicer::Root(size_t piece, int fixed_axis, double fixed, double lo,
-                    double hi) {
+                    double hi, bool quadtree) {
+  double magnitude = 0.0;
   auto at = [&](double x) {
-    return fixed_axis == 0 ? G(piece, fixed, x) : G(piece, x, fixed);
+    return fixed_axis == 0 ? G(piece, fixed, x, quadtree, magnitude)
+                           : G(piece, x, fixed, quadtree, magnitude);
   };
-  const bool negative_lo = Negative(at(lo));
-  for (int k = 0; k < 64; ++k) {
-    const double middle = 0.5 * (lo + hi);
-    if (middle <= lo || middle >= hi) break;
-    (Negative(at(middle)) == negative_lo ? lo : hi) = middle;
+  double g_lo = at(lo);
+  double g_hi = at(hi);
+  const bool negative_lo = Negative(g_lo);
+  int kept = 0;  // the side kept by the last step: -1 lo, 1 hi
+  double width = hi - lo;
+  for (int k = 0; k < kRootSteps; ++k) {
+    double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+    // Bisect when the last two steps did not halve the bracket.
+    if (k % 2 == 1) {
+      if (hi - lo > 0.5 * width) x = 0.5 * (lo + hi);
+      width = hi - lo;
+    }
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    if (x <= lo || x >= hi) break;
+    const double g = at(x);
+    if (std::abs(g) <= std::numeric_limits<double>::epsilon() * magnitude) {
+      return x;
+    }
+    if (Negative(g) == negative_lo) {
+      lo = x;
+      g_lo = g;
+      if (kept == 1) g_hi *= 0.5;
+      kept = 1;
+    } else {
+      hi = x;
+      g_hi = g;
+      if (kept == -1) g_lo *= 0.5;
+      kept = -1;
+    }
   }
   return 0.5 * (lo + hi);
 }
 
 // EdgeRoots isolates the sign changes of the 1D Bezier `coefficients` of g
 // on [lo, hi] of the edge (coordinate fixed_axis = fixed) by halving until
-// each part has one variation, then bisects on the piece's function.
+// each part has one variation, then finds the root on the piece's function.
 void Slicer::EdgeRoots(size_t piece, int fixed_axis, double fixed,
                        std::vector<double> coefficients, double lo, double hi,
                        int depth, std::vector<double>& roots) {
+  budget_.Add(4 * coefficients.size() * coefficients.size() + 16);
   const int changes = SignChanges(coefficients);
   if (changes == 0) return;
   if (changes == 1 || depth >= kMaxSectionDepth) {
     if (Negative(coefficients.front()) != Negative(coefficients.back())) {
-      roots.push_back(Root(piece, fixed_axis, fixed, lo, hi));
+      roots.push_back(Root(piece, fixed_axis, fixed, lo, hi, true));
     }
     return;
   }
@@ -174,55 +324,83 @@ void Slicer::EdgeRoots(size_t piece, int fixed_axis, double fixed,
             depth + 1, roots);
 }
 
-Vertex Slicer::MakeVertex(size_t piece, int along, double c, double a) {
+// CountVertex counts one more vertex against options.max_points (a bound
+// of those returned: Chain drops one where two arcs meet, at most one per
+// arc but the first) and polls the token.
+absl::Status Slicer::CountVertex() {
+  ++vertices_;
+  if (vertices_ > options_.max_points + arcs_.size()) {
+    return ExhaustedFieldError("max_points",
+                               absl::StrCat("the sections need more than ",
+                                            options_.max_points, " points"));
+  }
+  return poll_.Done(64 * 16);
+}
+
+// MakeVertex returns the vertex at (c across, a along) of a piece, once it
+// is checked to lie within the tolerance of the plane (double precision
+// cannot place it so where the surface moves by more than the tolerance
+// between neighbouring parameters, as extreme weights make it).
+absl::StatusOr<Vertex> Slicer::MakeVertex(size_t piece, int along, double c,
+                                          double a) {
+  if (absl::Status status = CountVertex(); !status.ok()) return status;
   Vertex vertex{.piece = piece};
   vertex.x[along] = a;
   vertex.x[1 - along] = c;
   evaluator_.Evaluate(pieces_.nets[piece], vertex.x[0], vertex.x[1],
                       partials_.data());
   vertex.point.assign(partials_.begin(), partials_.begin() + pieces_.dimension);
+  double distance = -offset_;
+  for (int x = 0; x < pieces_.dimension; ++x) {
+    distance += normal_[x] * vertex.point[x];
+  }
+  if (!(std::abs(distance) <= tolerance_)) {
+    double uv[2];
+    pieces_.parameters(piece, vertex.x[0], vertex.x[1], uv);
+    return InvalidFieldError(
+        "surface",
+        absl::StrCat("double precision cannot place a section vertex within "
+                     "the tolerance of the plane near (u, v) = (",
+                     uv[0], ", ", uv[1],
+                     "): the surface moves farther than that between "
+                     "neighbouring parameter values there (weights too far "
+                     "apart)"));
+  }
   return vertex;
 }
 
-// Arc adds the arc from (c0, a0) to (c1, a1) (c across, a along) with
-// vertices inserted at midpoints of c until each middle vertex is within
-// tolerance of its chord.
-absl::Status Slicer::Arc(size_t piece, int along, double c0, double a0,
-                         double c1, double a1, const Cell& cell) {
+// Arc adds the arc from c0 to c1 (c across; `locate` gives the coordinate
+// along at each c) with vertices inserted at midpoints of c until each
+// middle vertex is within tolerance of its chord.
+absl::Status Slicer::Arc(size_t piece, int along, double c0, double c1,
+                         absl::FunctionRef<double(double)> locate) {
   const int dim = pieces_.dimension;
-  std::vector<Vertex> done = {MakeVertex(piece, along, c0, a0)};
-  std::vector<std::pair<Vertex, int>> pending = {
-      {MakeVertex(piece, along, c1, a1), 0}};
+  absl::StatusOr<Vertex> first = MakeVertex(piece, along, c0, locate(c0));
+  if (!first.ok()) return first.status();
+  absl::StatusOr<Vertex> last = MakeVertex(piece, along, c1, locate(c1));
+  if (!last.ok()) return last.status();
+  std::vector<Vertex> done = {*std::move(first)};
+  std::vector<std::pair<Vertex, int>> pending = {{*std::move(last), 0}};
   while (!pending.empty()) {
-    if (++vertices_ > options_.max_points) {
-      return ExhaustedFieldError("max_points",
-                                 absl::StrCat("the sections need more than ",
-                                              options_.max_points, " points"));
-    }
-    if (absl::Status status = poll_.Done(64 * scalars_[piece].values.size());
-        !status.ok()) {
-      return status;
-    }
     const Vertex& from = done.back();
     const Vertex& to = pending.back().first;
     const int depth = pending.back().second;
     const double c = 0.5 * (from.x[1 - along] + to.x[1 - along]);
-    const double a = Root(piece, 1 - along, c, cell.lo[along], cell.hi[along]);
-    Vertex middle = MakeVertex(piece, along, c, a);
+    absl::StatusOr<Vertex> middle = MakeVertex(piece, along, c, locate(c));
+    if (!middle.ok()) return middle.status();
     double deviation = 0.0;
     for (int x = 0; x < dim; ++x) {
-      const double d = middle.point[x] - 0.5 * (from.point[x] + to.point[x]);
+      const double d = middle->point[x] - 0.5 * (from.point[x] + to.point[x]);
       deviation += d * d;
     }
-    if (std::sqrt(deviation) <= options_.tolerance ||
-        depth >= kMaxSectionDepth) {
-      done.push_back(std::move(middle));
+    if (std::sqrt(deviation) <= tolerance_ || depth >= kMaxSectionDepth) {
+      done.push_back(*std::move(middle));
       done.push_back(std::move(pending.back().first));
       pending.pop_back();
       continue;
     }
     pending.back().second = depth + 1;
-    pending.emplace_back(std::move(middle), depth + 1);
+    pending.emplace_back(*std::move(middle), depth + 1);
   }
   arcs_.push_back(std::move(done));
   return absl::OkStatus();
@@ -254,42 +432,56 @@ absl::Status Slicer::Leaf(size_t piece, const Cell& cell, int along) {
     const int m = side == 0 ? 0 : n_across - 1;
     const double c = side == 0 ? cell.lo[across] : cell.hi[across];
     if (Negative(coefficient(0, m)) != Negative(coefficient(n_along - 1, m))) {
-      ends.emplace_back(c,
-                        Root(piece, across, c, cell.lo[along], cell.hi[along]));
+      ends.emplace_back(
+          c, Root(piece, across, c, cell.lo[along], cell.hi[along], true));
     }
   }
   std::sort(ends.begin(), ends.end());
   for (size_t k = 0; k + 1 < ends.size(); k += 2) {
-    if (absl::Status status = Arc(piece, along, ends[k].first, ends[k].second,
-                                  ends[k + 1].first, ends[k + 1].second, cell);
-        !status.ok()) {
+    const auto [c0, a0] = ends[k];
+    const auto [c1, a1] = ends[k + 1];
+    auto locate = [&](double c) {
+      if (c == c0) return a0;
+      if (c == c1) return a1;
+      return Root(piece, across, c, cell.lo[along], cell.hi[along], false);
+    };
+    if (absl::Status status = Arc(piece, along, c0, c1, locate); !status.ok()) {
       return status;
     }
   }
   return absl::OkStatus();
 }
 
+bool Slicer::OneSign(size_t piece, const Cell& cell) const {
+  const Net& net = cell.net;
+  // Rows (axis 0) and columns (axis 1) on an edge of the piece in the
+  // plane: Edges traces those.
+  bool skip[kEdges];
+  for (int edge = 0; edge < kEdges; ++edge) {
+    const int axis = edge / 2;
+    const bool on = edge % 2 == 0 ? cell.lo[axis] == 0.0 : cell.hi[axis] == 1.0;
+    skip[edge] = on && EdgeInPlane(piece, edge);
+  }
+  bool negative = false;
+  bool positive = false;
+  for (int i = 0; i < net.count_u; ++i) {
+    if ((i == 0 && skip[0]) || (i == net.count_u - 1 && skip[1])) continue;
+    for (int j = 0; j < net.count_v; ++j) {
+      if ((j == 0 && skip[2]) || (j == net.count_v - 1 && skip[3])) continue;
+      (Negative(net.at(i, j)[0]) ? negative : positive) = true;
+    }
+  }
+  return !(negative && positive);
+}
+
 absl::Status Slicer::Piece(size_t piece) {
-  double scale = 0.0;
-  for (double g : scalars_[piece].values) scale = std::max(scale, std::abs(g));
-  const double zero = 64.0 * std::numeric_limits<double>::epsilon() * scale;
   std::vector<Cell> stack = {Cell{.net = scalars_[piece]}};
   while (!stack.empty()) {
     Cell cell = std::move(stack.back());
     stack.pop_back();
-    if (++cells_ > options_.max_cells) {
-      return ExhaustedFieldError("max_cells",
-                                 absl::StrCat("the sections need more than ",
-                                              options_.max_cells, " cells"));
-    }
-    if (absl::Status status = poll_.Done(8 * cell.net.values.size());
-        !status.ok()) {
-      return status;
-    }
-    const auto [lo, hi] =
-        std::minmax_element(cell.net.values.begin(), cell.net.values.end());
-    if (*lo >= 0.0 || *hi < 0.0) continue;      // one sign (0 positive)
-    if (*hi <= zero && -*lo <= zero) continue;  // in the plane
+    budget_.Add(CellCost(cell.net));
+    if (absl::Status status = budget_.Check(); !status.ok()) return status;
+    if (OneSign(piece, cell)) continue;
     const int along =
         Monotone(cell.net, 0) ? 0 : (Monotone(cell.net, 1) ? 1 : -1);
     if (along >= 0) {
@@ -318,14 +510,44 @@ absl::Status Slicer::Piece(size_t piece) {
   return absl::OkStatus();
 }
 
+// Edges traces the edges of a piece that lie in the plane, each once: not
+// those of a region, nor one a neighbouring piece traced.
+absl::Status Slicer::Edges(size_t piece) {
+  for (int edge = 0; edge < kEdges; ++edge) {
+    if (!EdgeInPlane(piece, edge)) continue;
+    const std::optional<EdgeKey> key = Key(piece, edge);
+    if (!key.has_value() || !edges_.insert(*key).second) continue;
+    const int axis = edge / 2;
+    const double fixed = edge % 2;
+    if (absl::Status status =
+            Arc(piece, axis, 0.0, 1.0, [fixed](double) { return fixed; });
+        !status.ok()) {
+      return status;
+    }
+  }
+  return absl::OkStatus();
+}
+
 absl::Status Slicer::Run() {
   if (absl::Status status = CheckCancelled(cancel_); !status.ok()) {
     return status;
   }
+  // Regions first, so that their edges are not traced.
   for (size_t piece = 0; piece < scalars_.size(); ++piece) {
+    if (!InPlane(piece)) continue;
+    regions_.push_back(piece);
+    for (int edge = 0; edge < kEdges; ++edge) {
+      if (const std::optional<EdgeKey> key = Key(piece, edge)) {
+        edges_.insert(*key);
+      }
+    }
+  }
+  for (size_t piece = 0; piece < scalars_.size(); ++piece) {
+    if (InPlane(piece)) continue;
+    if (absl::Status status = Edges(piece); !status.ok()) return status;
     if (absl::Status status = Piece(piece); !status.ok()) return status;
   }
-  return absl::OkStatus();
+  return budget_.Check();
 }
 
 // Chain joins arcs whose end points coincide into polylines.
@@ -440,12 +662,64 @@ absl::Status CheckPlane(absl::Span<const double> point,
       return status;
     }
   }
-  double length = 0.0;
-  for (double n : normal) length += n * n;
-  if (!(length > 0.0)) {
+  if (std::all_of(normal.begin(), normal.end(),
+                  [](double n) { return n == 0.0; })) {
     return InvalidFieldError("plane_normal", "must not be the zero vector");
   }
   return absl::OkStatus();
+}
+
+// UnitNormal returns the normal divided by its length, computed after
+// dividing by its largest magnitude, so that neither huge nor tiny normals
+// overflow or underflow.
+std::vector<double> UnitNormal(absl::Span<const double> normal) {
+  double largest = 0.0;
+  for (const double n : normal) largest = std::max(largest, std::abs(n));
+  std::vector<double> unit(normal.begin(), normal.end());
+  double length = 0.0;
+  for (double& n : unit) {
+    n /= largest;
+    length += n * n;
+  }
+  length = std::sqrt(length);
+  for (double& n : unit) n /= length;
+  return unit;
+}
+
+// ScaledOffset returns n . point in units of 2^exponent, computed without
+// overflow: infinite when it lies beyond the range of doubles there.
+double ScaledOffset(absl::Span<const double> unit,
+                    absl::Span<const double> point, int exponent) {
+  double largest = 0.0;
+  for (const double p : point) largest = std::max(largest, std::abs(p));
+  if (largest == 0.0) return 0.0;
+  double sum = 0.0;
+  for (size_t x = 0; x < point.size(); ++x)
+    sum += unit[x] * (point[x] / largest);
+  if (sum == 0.0) return 0.0;
+  // largest * 2^-exponent, by exponents, so that it saturates to infinity.
+  const int e = std::ilogb(largest);
+  return sum * std::ldexp(std::ldexp(largest, -e), e - exponent);
+}
+
+// Regions writes the parameter corners of the pieces lying in the plane.
+void WriteRegions(const std::vector<size_t>& regions, const Pieces& pieces,
+                  Sections& sections) {
+  for (const size_t piece : regions) {
+    const double corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::vector<double> uv;
+    for (const auto& corner : corners) {
+      double p[2];
+      pieces.parameters(piece, corner[0], corner[1], p);
+      const size_t n = uv.size();
+      if (n >= 2 && uv[n - 2] == p[0] && uv[n - 1] == p[1]) continue;
+      if (n >= 2 && uv[0] == p[0] && uv[1] == p[1]) continue;
+      uv.insert(uv.end(), {p[0], p[1]});
+    }
+    sections.region_corners.insert(sections.region_corners.end(), uv.begin(),
+                                   uv.end());
+    sections.region_offsets.push_back(sections.region_corners.size() / 2);
+  }
 }
 
 // FitPolyline returns the B-spline of polyline k within `tolerance` of its
@@ -504,30 +778,35 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   }
   absl::StatusOr<Pieces> pieces = internal::LiftPieces(surface, cancel);
   if (!pieces.ok()) return pieces.status();
-  std::vector<double> normal(plane_normal.begin(), plane_normal.end());
-  double length = 0.0;
-  for (double n : normal) length += n * n;
-  length = std::sqrt(length);
-  double offset = 0.0;
-  for (int x = 0; x < dimension; ++x) {
-    normal[x] /= length;
-    offset += normal[x] * plane_point[x];
+  const Pieces* all[] = {&*pieces};
+  const double largest = internal::LargestCoordinate(all);
+  if (absl::Status status =
+          internal::CheckResolvableAt(options.tolerance, largest);
+      !status.ok()) {
+    return status;
   }
-  Slicer slicer(*pieces, normal, offset, options, cancel);
-  if (absl::Status status = slicer.Run(); !status.ok()) return status;
-  double extent = 0.0;
-  std::vector<double> point(static_cast<size_t>(dimension));
-  for (const Net& net : pieces->nets) {
-    for (int i = 0; i < net.count_u; ++i) {
-      for (int j = 0; j < net.count_v; ++j) {
-        if (!internal::Point(net, i, j, point.data())) continue;
-        for (double x : point) extent = std::max(extent, std::abs(x));
-      }
-    }
-  }
+  // In units of 2^exponent the coordinates are about 1 (exact).
+  const int exponent = internal::ScaleExponent(largest);
+  internal::ScalePieces(exponent, *pieces);
+  const std::vector<double> normal = UnitNormal(plane_normal);
+  const double offset = ScaledOffset(normal, plane_point, exponent);
   Sections sections{.dimension = dimension};
-  Chain chain(slicer.arcs(), dimension, 1e-9 * std::max(extent, 1e-300));
+  if (!std::isfinite(offset)) return sections;  // far beyond the surface
+  Slicer slicer(*pieces, normal, offset,
+                std::ldexp(options.tolerance, -exponent), options, cancel);
+  if (absl::Status status = slicer.Run(); !status.ok()) return status;
+  Chain chain(slicer.arcs(), dimension,
+              1e-9 * internal::LargestCoordinate(all));
   chain.Write(*pieces, sections);
+  for (double& x : sections.points) x = std::ldexp(x, exponent);
+  WriteRegions(slicer.regions(), *pieces, sections);
+  const size_t count = sections.points.size() / static_cast<size_t>(dimension) +
+                       sections.region_corners.size() / 2;
+  if (count > options.max_points) {
+    return ExhaustedFieldError(
+        "max_points", absl::StrCat("the sections need ", count,
+                                   " points, more than ", options.max_points));
+  }
   if (options.fit_tolerance > 0.0) {
     for (size_t k = 0; k + 1 < sections.offsets.size(); ++k) {
       absl::StatusOr<BSplineCurveData> curve =

@@ -168,7 +168,9 @@ absl::Status ValidateCurveRequest(const absl::Status& validation,
   if (absl::Status status = ValidateTolerance(tolerance); !status.ok()) {
     return status;
   }
-  if (max_points < 2) return TessellationTooLarge("tolerance", "points", max_points);
+  if (max_points < 2) {
+    return TessellationTooLarge("tolerance", "points", max_points);
+  }
   return absl::OkStatus();
 }
 

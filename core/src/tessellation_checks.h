@@ -1,7 +1,8 @@
-// The checks that curve tessellation and surface meshing share: the
-// tolerance is positive, finite and resolvable in double precision on the
-// geometry, and a result over its size limit is refused naming the
-// tolerance, which is what makes a tessellation large.
+// The checks that curve tessellation, surface meshing and the subdivision
+// queries (intersections, sections) share: the tolerance is positive, finite
+// and resolvable in double precision on the geometry, and a result over its
+// size limit is refused naming the tolerance, which is what makes a
+// tessellation large.
 #ifndef FREEFORM_CORE_SRC_TESSELLATION_CHECKS_H_
 #define FREEFORM_CORE_SRC_TESSELLATION_CHECKS_H_
 
@@ -29,22 +30,28 @@ inline absl::Status ValidateTolerance(double tolerance) {
 // is then near the resolution of a double); the size bounds count on it.
 inline constexpr int kMaxSubdivisionDepth = 50;
 
-// CheckResolvable refuses a tolerance below what double precision resolves
-// on geometry of the size of `coordinates`: no subdivision could meet it,
-// and trying would only end at the size limit. Lines (degree < 2) are flat
-// at any tolerance.
-inline absl::Status CheckResolvable(double tolerance,
-                                    absl::Span<const double> coordinates,
-                                    int degree) {
-  if (degree < 2) return absl::OkStatus();
-  double size = 0.0;
-  for (const double c : coordinates) size = std::max(size, std::abs(c));
+// CheckResolvableAt refuses, naming "tolerance", a tolerance below
+// kResolution times `size`, the largest magnitude of a coordinate of the
+// geometry: double precision does not resolve it there, so no subdivision
+// could meet it, and trying would only end at a work or size limit.
+inline absl::Status CheckResolvableAt(double tolerance, double size) {
   if (tolerance >= kResolution * size) return absl::OkStatus();
   return InvalidFieldError(
       "tolerance", absl::StrCat(tolerance,
                                 " is below what double precision resolves on "
                                 "geometry of size ",
                                 size, " (about ", kResolution * size, ")"));
+}
+
+// CheckResolvable is CheckResolvableAt for geometry of the size of
+// `coordinates`. Lines (degree < 2) are flat at any tolerance.
+inline absl::Status CheckResolvable(double tolerance,
+                                    absl::Span<const double> coordinates,
+                                    int degree) {
+  if (degree < 2) return absl::OkStatus();
+  double size = 0.0;
+  for (const double c : coordinates) size = std::max(size, std::abs(c));
+  return CheckResolvableAt(tolerance, size);
 }
 
 // TessellationTooLarge is RESOURCE_EXHAUSTED naming `field`, the option

@@ -238,6 +238,253 @@ TEST(IntersectionTest, CurveSurfaceTriplesLandOnBoth) {
   }
 }
 
+// The unit square of the plane z = 0 as a bilinear patch: S(u, v) =
+// (u, v, 0).
+absl::StatusOr<Surface> UnitSquare() {
+  static const std::vector<double> net = {0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0};
+  return BezierSurface::Create({{3, 2, 2, net}, {}});
+}
+
+// ExpectCommonPoints checks that every point reported is on both curves:
+// A(s) and B(t) within the tolerance, and A(s) the point listed.
+void ExpectCommonPoints(const Curve& a, const Curve& b,
+                        const CurveIntersections& found, double tolerance) {
+  const size_t dim = static_cast<size_t>(found.dimension);
+  for (size_t k = 0; k < found.first_parameters.size(); ++k) {
+    const std::vector<double> on_a = CurvePoint(a, found.first_parameters[k]);
+    const std::vector<double> on_b = CurvePoint(b, found.second_parameters[k]);
+    EXPECT_LE(Distance(on_a, on_b), tolerance) << "point " << k;
+    const std::vector<double> listed(found.points.begin() + k * dim,
+                                     found.points.begin() + (k + 1) * dim);
+    EXPECT_LE(Distance(on_a, listed), 1e-12 * (1 + testing_util::MaxAbs(on_a)));
+  }
+}
+
+// ExpectOneInterval checks that `intervals` is [start, end] to 1e-9.
+void ExpectOneInterval(const std::vector<double>& intervals, double start,
+                       double end) {
+  ASSERT_EQ(intervals.size(), 2u);
+  EXPECT_NEAR(intervals[0], start, 1e-9);
+  EXPECT_NEAR(intervals[1], end, 1e-9);
+}
+
+// A tangency where two Bezier pieces meet is one point: the parabola
+// B-spline on knots 0, 0, 0, 1/2, 1, 1, 1 through (-1, 1), (-1/2, 0),
+// (1/2, 0), (1, 1) touches the x axis at (0, 0), its parameter 1/2. Near
+// there it is (x, x^2) on either piece (x = 2 s - 1 for s >= 1/2), so the
+// inputs are within the tolerance e only where |x| <= sqrt(e): the point
+// returned is common within e and lies there.
+TEST(IntersectionTest, TangencyOnAKnotIsOnePoint) {
+  const std::vector<double> net = {-1, 1, -0.5, 0, 0.5, 0, 1, 1};
+  const std::vector<double> knots = {0, 0, 0, 0.5, 1, 1, 1};
+  const absl::StatusOr<Curve> parabola =
+      BSplineCurve::Create({2, {2, net}, knots, {}});
+  ASSERT_TRUE(parabola.ok()) << parabola.status();
+  for (const double shift : {0.0, 0.3, -0.7}) {
+    // The line y = 0 from x = -2 to 2, and one shifted along itself.
+    const std::vector<double> line = {-2 + shift, 0, 2 + shift, 0};
+    const absl::StatusOr<Curve> axis = BezierCurve::Create({{2, line}, {}});
+    for (const double tolerance : {1e-6, 1e-9, 1e-12}) {
+      for (const bool swap : {false, true}) {
+        const Curve& a = swap ? *axis : *parabola;
+        const Curve& b = swap ? *parabola : *axis;
+        const absl::StatusOr<CurveIntersections> found =
+            IntersectCurves(a, b, {.tolerance = tolerance});
+        ASSERT_TRUE(found.ok()) << found.status();
+        ASSERT_EQ(found->first_parameters.size(), 1u)
+            << "tolerance " << tolerance << " shift " << shift;
+        EXPECT_TRUE(found->first_intervals.empty());
+        ExpectCommonPoints(a, b, *found, tolerance);
+        EXPECT_LE(std::abs(found->points[0]), std::sqrt(tolerance) * 1.01);
+      }
+    }
+  }
+  // The same tangency against a surface: the parabola lifted to z = y - 0
+  // in the plane y = 1/2 would be a crossing; instead the plane curve
+  // (x, 1/2, x^2) over the unit square's plane z = 0, its knot at x = 1/2.
+  const std::vector<double> lifted = {0,    0.5, 1, 0.25, 0.5, 0,
+                                      0.75, 0.5, 0, 1,    0.5, 1};
+  const absl::StatusOr<Curve> touching =
+      BSplineCurve::Create({2, {3, lifted}, knots, {}});
+  const absl::StatusOr<Surface> square = UnitSquare();
+  const absl::StatusOr<CurveSurfaceIntersections> touch =
+      IntersectCurveSurface(*touching, *square, {.tolerance = 1e-9});
+  ASSERT_TRUE(touch.ok()) << touch.status();
+  ASSERT_EQ(touch->curve_parameters.size(), 1u);
+  EXPECT_TRUE(touch->curve_intervals.empty());
+  const std::vector<double> on_curve =
+      CurvePoint(*touching, touch->curve_parameters[0]);
+  EXPECT_LE(
+      Distance(on_curve, SurfacePoint(*square, touch->surface_parameters[0],
+                                      touch->surface_parameters[1])),
+      1e-9);
+}
+
+// A tolerance below 2^-48 of the largest coordinate is refused at once,
+// naming it; one just above that still finds a crossing exactly: the
+// vertical line through (1/4, 1/2) meets the unit square at its parameter
+// 1/2, and the circle crosses the x axis at (+-1, 0).
+TEST(IntersectionTest, ToleranceBelowTheResolutionIsRefused) {
+  const BSplineCurveData circle_data = testing_util::NurbsCircle(1.0);
+  const absl::StatusOr<Curve> circle = BSplineCurve::Create(circle_data.view());
+  for (const double tolerance : {5e-324, 1e-17, 3e-15}) {
+    const absl::Status status =
+        IntersectCurves(*circle, *circle, {.tolerance = tolerance}).status();
+    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << status;
+    EXPECT_EQ(FieldPathOf(status), "tolerance");
+  }
+  const std::vector<double> vertical = {0.25, 0.5, -1, 0.25, 0.5, 1};
+  const absl::StatusOr<Curve> line = BezierCurve::Create({{3, vertical}, {}});
+  const absl::StatusOr<Surface> square = UnitSquare();
+  const absl::Status fine =
+      IntersectCurveSurface(*line, *square, {.tolerance = 1e-17}).status();
+  EXPECT_EQ(fine.code(), absl::StatusCode::kInvalidArgument) << fine;
+  EXPECT_EQ(FieldPathOf(fine), "tolerance");
+  const double floor = std::ldexp(1.0, -47);  // twice the resolution at 1
+  const absl::StatusOr<CurveSurfaceIntersections> hit =
+      IntersectCurveSurface(*line, *square, {.tolerance = floor});
+  ASSERT_TRUE(hit.ok()) << hit.status();
+  ASSERT_EQ(hit->curve_parameters.size(), 1u);
+  EXPECT_NEAR(hit->curve_parameters[0], 0.5, 4 * floor);
+  EXPECT_NEAR(hit->surface_parameters[0], 0.25, 4 * floor);
+  EXPECT_NEAR(hit->surface_parameters[1], 0.5, 4 * floor);
+  const std::vector<double> axis_points = {-2, 0, 2, 0};
+  const absl::StatusOr<Curve> axis =
+      BezierCurve::Create({{2, axis_points}, {}});
+  const absl::StatusOr<CurveIntersections> crossings =
+      IntersectCurves(*circle, *axis, {.tolerance = floor});
+  ASSERT_TRUE(crossings.ok()) << crossings.status();
+  ASSERT_EQ(crossings->first_parameters.size(), 2u);
+  ExpectCommonPoints(*circle, *axis, *crossings, floor);
+}
+
+// Scaling every coordinate and the tolerance by 2^k changes no parameter:
+// the circle of radius 2^k crosses the line y = 0.3 2^k where the unit
+// circle crosses y = 0.3, for k far past where squared lengths overflow or
+// underflow.
+TEST(IntersectionTest, AnswersDoNotDependOnTheScale) {
+  for (const int k : {0, 600, -600, 1000, -1000}) {
+    const double scale = std::ldexp(1.0, k);
+    const BSplineCurveData circle_data = testing_util::NurbsCircle(scale);
+    const absl::StatusOr<Curve> circle =
+        BSplineCurve::Create(circle_data.view());
+    const std::vector<double> line = {-2 * scale, 0.3 * scale, 2 * scale,
+                                      0.3 * scale};
+    const absl::StatusOr<Curve> chord = BezierCurve::Create({{2, line}, {}});
+    const absl::StatusOr<CurveIntersections> found = IntersectCurves(
+        *circle, *chord,
+        {.tolerance = 1e-9 * scale, .separation = 1e-7 * scale});
+    ASSERT_TRUE(found.ok()) << "2^" << k << ": " << found.status();
+    ASSERT_EQ(found->first_parameters.size(), 2u) << "2^" << k;
+    const double x = std::sqrt(1 - 0.09) * scale;
+    EXPECT_NEAR(found->points[0] / scale, x / scale, 1e-12);
+    EXPECT_NEAR(found->points[2] / scale, -x / scale, 1e-12);
+    EXPECT_NEAR(found->points[1] / scale, 0.3, 1e-12);
+    // The line through the unit square's middle, vertically, scaled.
+    const std::vector<double> square_net = {0,     0, 0, 0,     scale, 0,
+                                            scale, 0, 0, scale, scale, 0};
+    const absl::StatusOr<Surface> square =
+        BezierSurface::Create({{3, 2, 2, square_net}, {}});
+    const std::vector<double> vertical = {0.25 * scale, 0.5 * scale, -scale,
+                                          0.25 * scale, 0.5 * scale, scale};
+    const absl::StatusOr<Curve> through =
+        BezierCurve::Create({{3, vertical}, {}});
+    const absl::StatusOr<CurveSurfaceIntersections> hit =
+        IntersectCurveSurface(*through, *square, {.tolerance = 1e-9 * scale});
+    ASSERT_TRUE(hit.ok()) << "2^" << k << ": " << hit.status();
+    ASSERT_EQ(hit->curve_parameters.size(), 1u) << "2^" << k;
+    EXPECT_NEAR(hit->curve_parameters[0], 0.5, 1e-12);
+  }
+}
+
+// A segment lying in the unit square is an overlap: the whole of it, or the
+// part over the square, [1/4, 3/4], of one reaching past both sides (an
+// overlap ends where one input does).
+TEST(IntersectionTest, CurveLyingInASurfaceIsAnOverlap) {
+  const absl::StatusOr<Surface> square = UnitSquare();
+  struct Case {
+    std::vector<double> points;
+    double start, end;
+  };
+  const Case cases[] = {{{0.1, 0.2, 0, 0.8, 0.7, 0}, 0.0, 1.0},
+                        {{-0.5, 0.5, 0, 1.5, 0.5, 0}, 0.25, 0.75}};
+  for (const double tolerance : {1e-3, 1e-9}) {
+    for (size_t c = 0; c < 2; ++c) {
+      const absl::StatusOr<Curve> segment =
+          BezierCurve::Create({{3, cases[c].points}, {}});
+      const absl::StatusOr<CurveSurfaceIntersections> found =
+          IntersectCurveSurface(*segment, *square, {.tolerance = tolerance});
+      ASSERT_TRUE(found.ok()) << found.status();
+      EXPECT_TRUE(found->curve_parameters.empty())
+          << found->curve_parameters.size() << " points, case " << c;
+      ExpectOneInterval(found->curve_intervals, cases[c].start, cases[c].end);
+    }
+  }
+}
+
+// A contact of high order: the Bezier curve with control points
+// (i / n, 1/2, (-1)^i), i = 0..n, is (t, 1/2, (1 - 2t)^n), within e of the
+// plane z = 0 where |1 - 2t| <= e^(1/n), tangent to it there within 1e-8
+// rad along a long stretch: an overlap over that interval, found with
+// bounded work. The same against the x axis in the plane.
+TEST(IntersectionTest, HighOrderContactIsOneOverlap) {
+  const absl::StatusOr<Surface> square = UnitSquare();
+  for (const int n : {16, 48}) {
+    std::vector<double> net3, net2;
+    for (int i = 0; i <= n; ++i) {
+      const double z = i % 2 == 0 ? 1.0 : -1.0;
+      net3.insert(net3.end(), {static_cast<double>(i) / n, 0.5, z});
+      net2.insert(net2.end(), {static_cast<double>(i) / n, z});
+    }
+    const double tolerance = 1e-9;
+    const double half = 0.5 * std::pow(tolerance, 1.0 / n);
+    const absl::StatusOr<Curve> curve = BezierCurve::Create({{3, net3}, {}});
+    const absl::StatusOr<CurveSurfaceIntersections> found =
+        IntersectCurveSurface(*curve, *square, {.tolerance = tolerance});
+    ASSERT_TRUE(found.ok()) << "degree " << n << ": " << found.status();
+    EXPECT_TRUE(found->curve_parameters.empty());
+    ExpectOneInterval(found->curve_intervals, 0.5 - half, 0.5 + half);
+    const absl::StatusOr<Curve> graph = BezierCurve::Create({{2, net2}, {}});
+    const std::vector<double> axis_points = {-1, 0, 2, 0};
+    const absl::StatusOr<Curve> axis =
+        BezierCurve::Create({{2, axis_points}, {}});
+    const absl::StatusOr<CurveIntersections> along =
+        IntersectCurves(*graph, *axis, {.tolerance = tolerance});
+    ASSERT_TRUE(along.ok()) << "degree " << n << ": " << along.status();
+    EXPECT_TRUE(along->first_parameters.empty());
+    ExpectOneInterval(along->first_intervals, 0.5 - half, 0.5 + half);
+    // x = t on the graph is -1 + 3 t' on the axis.
+    ExpectOneInterval(along->second_intervals, (1.5 - half) / 3,
+                      (1.5 + half) / 3);
+  }
+}
+
+// The work is bounded by max_work, named when it runs out.
+TEST(IntersectionTest, WorkStopsAtItsLimit) {
+  std::vector<double> a_net, b_net;
+  for (int i = 0; i < 200; ++i) {
+    a_net.insert(a_net.end(), {std::sin(i * 0.37), 2 * std::sin(i * 0.74)});
+    b_net.insert(b_net.end(), {std::cos(i * 0.41), 2 * std::sin(i * 0.53)});
+  }
+  std::vector<double> knots;
+  for (int k = 0; k < 204; ++k) knots.push_back(std::clamp(k - 3, 0, 197));
+  const absl::StatusOr<Curve> a =
+      BSplineCurve::Create({3, {2, a_net}, knots, {}});
+  const absl::StatusOr<Curve> b =
+      BSplineCurve::Create({3, {2, b_net}, knots, {}});
+  ASSERT_TRUE(a.ok() && b.ok());
+  const absl::StatusOr<CurveIntersections> all = IntersectCurves(
+      *a, *b, {.max_results = 1 << 16, .max_work = uint64_t{1} << 40});
+  ASSERT_TRUE(all.ok()) << all.status();
+  EXPECT_GT(all->first_parameters.size(), 100u);
+  ExpectCommonPoints(*a, *b, *all, 1e-9);
+  const absl::Status short_of_work =
+      IntersectCurves(*a, *b, {.max_results = 1 << 16, .max_work = 100'000})
+          .status();
+  EXPECT_EQ(short_of_work.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_EQ(FieldPathOf(short_of_work), "max_work");
+}
+
 TEST(IntersectionTest, ErrorsNameTheirField) {
   const std::vector<double> line2 = {0, 0, 1, 1};
   const std::vector<double> line3 = {0, 0, 0, 1, 1, 1};

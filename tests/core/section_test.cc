@@ -164,6 +164,277 @@ TEST(SectionTest, FittedSectionOfTheSphereIsOnItsCircle) {
   EXPECT_TRUE(plain->curves.empty());
 }
 
+// The unit square of the plane z = 0 as a bilinear patch: S(u, v) =
+// (u, v, 0).
+absl::StatusOr<Surface> UnitSquare() {
+  static const std::vector<double> net = {0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0};
+  return BezierSurface::Create({{3, 2, 2, net}, {}});
+}
+
+// VertexCount returns the polyline vertices and region corners of an
+// answer, what max_points caps.
+size_t VertexCount(const Sections& sections) {
+  return sections.points.size() / 3 + sections.region_corners.size() / 2;
+}
+
+// CheckOnPlane checks that every vertex, evaluated at its parameters, lies
+// within `tolerance` of the plane n . x = n . p (n of length 1).
+void CheckOnPlane(const Surface& surface, const Sections& sections,
+                  const std::vector<double>& p, const std::vector<double>& n,
+                  double tolerance) {
+  for (size_t r = 0; r < sections.parameters.size() / 2; ++r) {
+    const std::vector<double> point = testing_util::SurfacePoints(
+        surface, SurfaceSamples::Pairs(absl::MakeConstSpan(
+                     sections.parameters.data() + 2 * r, 2)));
+    double distance = 0.0;
+    for (int x = 0; x < 3; ++x) distance += n[x] * (point[x] - p[x]);
+    ASSERT_LE(std::abs(distance), tolerance) << "vertex " << r;
+  }
+}
+
+// A plane holding the whole square is one region, its parameter square; a
+// bicubic B-spline on knots 0^4, 1/7, ..., 6/7, 1^4 of 10 x 10 points on
+// z = 0 but the middle 2 x 2 raised is z = 0 exactly where a raised
+// point's basis function vanishes: u or v outside (1/7, 6/7), the 24 span
+// rectangles around the border.
+TEST(SectionTest, PartsInThePlaneAreRegions) {
+  const absl::StatusOr<Surface> square = UnitSquare();
+  const std::vector<double> origin = {0, 0, 0};
+  const std::vector<double> up = {0, 0, 1};
+  const absl::StatusOr<Sections> whole =
+      IntersectSurfacePlane(*square, origin, up);
+  ASSERT_TRUE(whole.ok()) << whole.status();
+  EXPECT_EQ(whole->offsets.size(), 1u);  // no polyline
+  ASSERT_EQ(whole->region_offsets.size(), 2u);
+  EXPECT_EQ(whole->region_corners,
+            (std::vector<double>{0, 0, 1, 0, 1, 1, 0, 1}));
+
+  std::vector<double> net;
+  for (int i = 0; i < 10; ++i) {
+    for (int j = 0; j < 10; ++j) {
+      const bool raised = (i == 4 || i == 5) && (j == 4 || j == 5);
+      net.insert(net.end(), {i / 9.0, j / 9.0, raised ? 1.0 : 0.0});
+    }
+  }
+  std::vector<double> knots = {0, 0, 0, 0};
+  for (int k = 1; k <= 6; ++k) knots.push_back(k / 7.0);
+  knots.insert(knots.end(), {1, 1, 1, 1});
+  const absl::StatusOr<Surface> bump =
+      BSplineSurface::Create({3, 3, {3, 10, 10, net}, knots, knots, {}});
+  ASSERT_TRUE(bump.ok()) << bump.status();
+  const absl::StatusOr<Sections> border =
+      IntersectSurfacePlane(*bump, origin, up);
+  ASSERT_TRUE(border.ok()) << border.status();
+  EXPECT_EQ(border->offsets.size(), 1u);
+  ASSERT_EQ(border->region_offsets.size(), 25u);
+  for (size_t k = 0; k + 1 < border->region_offsets.size(); ++k) {
+    ASSERT_EQ(border->region_offsets[k + 1] - border->region_offsets[k], 4u);
+    const double* corners =
+        border->region_corners.data() + 2 * border->region_offsets[k];
+    const double u0 = corners[0], v0 = corners[1], u1 = corners[4],
+                 v1 = corners[5];
+    EXPECT_NEAR((u1 - u0) * 7, 1.0, 1e-12);
+    EXPECT_NEAR((v1 - v0) * 7, 1.0, 1e-12);
+    const bool outside = u1 <= 1 / 7.0 + 1e-12 || u0 >= 6 / 7.0 - 1e-12 ||
+                         v1 <= 1 / 7.0 + 1e-12 || v0 >= 6 / 7.0 - 1e-12;
+    EXPECT_TRUE(outside) << "region at (" << u0 << ", " << v0 << ")";
+  }
+}
+
+// A plane holding a boundary edge gives that edge as one polyline, on every
+// side, with the patch on either side of the plane; a knot line the
+// surface crosses the plane along is traced once (not once per piece).
+TEST(SectionTest, EdgesInThePlaneAreFoundOnEverySide) {
+  const absl::StatusOr<Surface> square = UnitSquare();
+  struct Side {
+    std::vector<double> point, normal;
+  };
+  const Side sides[] = {{{0, 0, 0}, {1, 0, 0}}, {{0, 5, 3}, {-2, 0, 0}},
+                        {{1, 0, 0}, {1, 0, 0}}, {{1, 0, 0}, {-1, 0, 0}},
+                        {{0, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {0, -3, 0}},
+                        {{0, 1, 0}, {0, 1, 0}}, {{7, 1, 0}, {0, -1, 0}}};
+  for (const Side& side : sides) {
+    const absl::StatusOr<Sections> edge =
+        IntersectSurfacePlane(*square, side.point, side.normal);
+    ASSERT_TRUE(edge.ok()) << edge.status();
+    ASSERT_EQ(edge->offsets.size(), 2u)
+        << "plane through (" << side.point[0] << ", " << side.point[1]
+        << ") normal (" << side.normal[0] << ", " << side.normal[1] << ")";
+    EXPECT_FALSE(edge->closed[0]);
+    const int axis = side.normal[0] != 0 ? 0 : 1;
+    const size_t count = edge->offsets[1];
+    for (size_t r = 0; r < count; ++r) {
+      EXPECT_EQ(edge->points[3 * r + axis], side.point[axis]);
+    }
+    // From one corner to the other.
+    EXPECT_EQ(std::abs(edge->points[1 - axis] -
+                       edge->points[3 * (count - 1) + 1 - axis]),
+              1.0);
+  }
+  // z = u - 1/2 as a bilinear B-spline with a knot at u = 1/2: z = 0 on the
+  // knot line, the edge of both pieces.
+  const std::vector<double> net = {0,   0, -0.5, 0, 1, -0.5, 0.5, 0, 0,
+                                   0.5, 1, 0,    1, 0, 0.5,  1,   1, 0.5};
+  const std::vector<double> knots_u = {0, 0, 0.5, 1, 1};
+  const std::vector<double> knots_v = {0, 0, 1, 1};
+  const absl::StatusOr<Surface> ramp =
+      BSplineSurface::Create({1, 1, {3, 3, 2, net}, knots_u, knots_v, {}});
+  ASSERT_TRUE(ramp.ok()) << ramp.status();
+  const std::vector<double> origin = {0, 0, 0};
+  const std::vector<double> up = {0, 0, 1};
+  const absl::StatusOr<Sections> knot =
+      IntersectSurfacePlane(*ramp, origin, up);
+  ASSERT_TRUE(knot.ok()) << knot.status();
+  ASSERT_EQ(knot->offsets.size(), 2u);
+  EXPECT_FALSE(knot->closed[0]);
+  for (size_t r = 0; r < knot->offsets[1]; ++r) {
+    EXPECT_EQ(knot->points[3 * r], 0.5);
+    EXPECT_EQ(knot->parameters[2 * r], 0.5);
+  }
+}
+
+// The plane through (1/2, 0, 0) with normal (1, 1, 0) times any scale cuts
+// the square along x + y = 1/2, from (1/2, 0) to (0, 1/2).
+TEST(SectionTest, NormalsOfAnyScaleCutTheSame) {
+  const absl::StatusOr<Surface> square = UnitSquare();
+  const std::vector<double> point = {0.5, 0, 0};
+  for (const double scale : {1.0, 1e155, 1e300, 1e-160, 1e-310}) {
+    const std::vector<double> normal = {scale, scale, 0};
+    const absl::StatusOr<Sections> cut =
+        IntersectSurfacePlane(*square, point, normal);
+    ASSERT_TRUE(cut.ok()) << scale << ": " << cut.status();
+    ASSERT_EQ(cut->offsets.size(), 2u) << scale;
+    const double unit = std::sqrt(0.5);
+    CheckOnPlane(*square, *cut, point, {unit, unit, 0}, 1e-15);
+    const size_t last = cut->offsets[1] - 1;
+    const double ends[2] = {cut->points[0], cut->points[3 * last]};
+    EXPECT_EQ(std::min(ends[0], ends[1]), 0.0);
+    EXPECT_EQ(std::max(ends[0], ends[1]), 0.5);
+  }
+}
+
+// A geometry scaled by 2^k is cut where the unscaled one is, scaled: the
+// sphere patch of radius 2^k by z = 2^k / 2, far past where squared
+// lengths overflow or underflow.
+TEST(SectionTest, SectionsDoNotDependOnTheScale) {
+  for (const int k : {0, 600, -600, 1000, -1000}) {
+    const double radius = std::ldexp(1.0, k);
+    const SurfaceData data = testing_util::SpherePatch(radius);
+    const absl::StatusOr<Surface> sphere =
+        BezierSurface::Create(data.bezier_view());
+    const std::vector<double> point = {0, 0, radius / 2};
+    const std::vector<double> up = {0, 0, 1};
+    const absl::StatusOr<Sections> cut =
+        IntersectSurfacePlane(*sphere, point, up, {.tolerance = 1e-6 * radius});
+    ASSERT_TRUE(cut.ok()) << "2^" << k << ": " << cut.status();
+    ASSERT_EQ(cut->offsets.size(), 2u) << "2^" << k;
+    for (size_t r = 0; r < cut->offsets[1]; ++r) {
+      const double* p = cut->points.data() + 3 * r;
+      EXPECT_NEAR(p[2] / radius, 0.5, 1e-12);
+      EXPECT_NEAR(std::hypot(p[0] / radius, p[1] / radius), std::sqrt(0.75),
+                  1e-12);
+    }
+  }
+}
+
+// A rational patch of 3 x 3 points on z = 0 but the middle one at z = 1,
+// of weight w: cut by z = 1/2, every vertex lies within the tolerance of
+// the plane (evaluated at its parameters), or the call is refused naming
+// the surface where double precision cannot place one so (near the edges
+// the surface climbs from 0 to 1 over about 1/w of the parameters).
+TEST(SectionTest, ExtremeWeightsAreCutCorrectlyOrRefused) {
+  const std::vector<double> net = {0,   0, 0, 0,   0.5, 0, 0,   1, 0,
+                                   0.5, 0, 0, 0.5, 0.5, 1, 0.5, 1, 0,
+                                   1,   0, 0, 1,   0.5, 0, 1,   1, 0};
+  const std::vector<double> point = {0, 0, 0.5};
+  const std::vector<double> up = {0, 0, 1};
+  int refused = 0;
+  for (const double w : {1e5, 1e10, 1e15, 1e20, 1e50, 1e100}) {
+    const std::vector<double> weights = {1, 1, 1, 1, w, 1, 1, 1, 1};
+    const absl::StatusOr<Surface> patch =
+        BezierSurface::Create({{3, 3, 3, net}, weights});
+    ASSERT_TRUE(patch.ok()) << patch.status();
+    const double tolerance = 1e-6;
+    const absl::StatusOr<Sections> cut =
+        IntersectSurfacePlane(*patch, point, up, {.tolerance = tolerance});
+    if (!cut.ok()) {
+      EXPECT_EQ(cut.status().code(), absl::StatusCode::kInvalidArgument);
+      EXPECT_EQ(FieldPathOf(cut.status()), "surface") << cut.status();
+      ++refused;
+      continue;
+    }
+    EXPECT_EQ(cut->offsets.size(), 2u) << "weight " << w;
+    CheckOnPlane(*patch, *cut, point, up, tolerance);
+  }
+  // 1e20 and beyond cannot be resolved near u = 1 (1 - 1e-20 is 1).
+  EXPECT_GE(refused, 3);
+}
+
+// max_points caps the vertices returned exactly: the cut x = 1/2 of the
+// square is a segment of 3 vertices, the section z = 1 of the sphere patch
+// N of them, the square in z = 0 a region of 4 corners.
+TEST(SectionTest, MaxPointsIsExact) {
+  const absl::StatusOr<Surface> square = UnitSquare();
+  const SurfaceData data = testing_util::SpherePatch(2.0);
+  const absl::StatusOr<Surface> sphere =
+      BezierSurface::Create(data.bezier_view());
+  struct Case {
+    const Surface* surface;
+    std::vector<double> point, normal;
+    double tolerance;
+  };
+  const Case cases[] = {{&*square, {0.5, 0, 0}, {1, 0, 0}, 1e-6},
+                        {&*sphere, {0, 0, 1}, {0, 0, 1}, 1e-9},
+                        {&*square, {0, 0, 0}, {0, 0, 1}, 1e-6}};
+  const size_t expected[] = {3, 0, 4};
+  for (size_t c = 0; c < 3; ++c) {
+    const Case& each = cases[c];
+    const absl::StatusOr<Sections> all = IntersectSurfacePlane(
+        *each.surface, each.point, each.normal, {.tolerance = each.tolerance});
+    ASSERT_TRUE(all.ok()) << all.status();
+    const size_t n = VertexCount(*all);
+    if (expected[c] > 0) {
+      EXPECT_EQ(n, expected[c]);
+    }
+    const absl::StatusOr<Sections> exact =
+        IntersectSurfacePlane(*each.surface, each.point, each.normal,
+                              {.tolerance = each.tolerance, .max_points = n});
+    ASSERT_TRUE(exact.ok()) << exact.status();
+    EXPECT_EQ(VertexCount(*exact), n);
+    for (const size_t cap : {n - 1, size_t{1}}) {
+      const absl::Status over =
+          IntersectSurfacePlane(
+              *each.surface, each.point, each.normal,
+              {.tolerance = each.tolerance, .max_points = cap})
+              .status();
+      EXPECT_EQ(over.code(), absl::StatusCode::kResourceExhausted)
+          << "case " << c << " cap " << cap << " of " << n;
+      EXPECT_EQ(FieldPathOf(over), "max_points");
+    }
+  }
+}
+
+// A tolerance below 2^-48 of the largest coordinate (2 for the sphere patch
+// of radius 2) is refused at once; the quadtree's work is bounded.
+TEST(SectionTest, ToleranceAndWorkAreBounded) {
+  const SurfaceData data = testing_util::SpherePatch(2.0);
+  const absl::StatusOr<Surface> sphere =
+      BezierSurface::Create(data.bezier_view());
+  const std::vector<double> point = {0, 0, 1};
+  const std::vector<double> up = {0, 0, 1};
+  for (const double tolerance : {5e-324, 1e-15, 7e-15}) {
+    const absl::Status status =
+        IntersectSurfacePlane(*sphere, point, up, {.tolerance = tolerance})
+            .status();
+    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << tolerance;
+    EXPECT_EQ(FieldPathOf(status), "tolerance");
+  }
+  const absl::Status short_of_work =
+      IntersectSurfacePlane(*sphere, point, up, {.max_work = 100}).status();
+  EXPECT_EQ(short_of_work.code(), absl::StatusCode::kResourceExhausted);
+  EXPECT_EQ(FieldPathOf(short_of_work), "max_work");
+}
+
 TEST(SectionTest, ErrorsNameTheirField) {
   const SurfaceData data = testing_util::SpherePatch(1.0);
   const absl::StatusOr<Surface> sphere =

@@ -263,6 +263,96 @@ TEST_F(QueryServiceTest, LineThroughAPlaneAndASphere) {
   ExpectInvalid(call().status(), "surface");
 }
 
+// A tolerance below what double precision resolves on the inputs (2^-48 of
+// their largest coordinate) is refused at once, naming it.
+TEST_F(QueryServiceTest, IntersectionToleranceBelowTheResolutionIsRefused) {
+  v1::IntersectCurvesRequest curves;
+  *curves.mutable_first() = CircleMessage(1.0, 0.0, 0.0);
+  *curves.mutable_second() = CircleMessage(1.0, 0.0, 0.0);
+  curves.mutable_options()->set_tolerance(5e-324);
+  ExpectInvalid(
+      client_
+          ->Unary(client_->curves(), &v1::CurveService::Stub::Intersect, curves)
+          .status(),
+      "options.tolerance");
+  v1::IntersectCurveSurfaceRequest surface;
+  *surface.mutable_curve() = BezierMessage(3, {0.25, 0.5, -1, 0.25, 0.5, 1});
+  *surface.mutable_surface() = UnitSquareMessage();
+  surface.mutable_options()->set_tolerance(1e-17);
+  auto call = [&] {
+    return client_->Unary(client_->surfaces(),
+                          &v1::SurfaceService::Stub::IntersectCurve, surface);
+  };
+  ExpectInvalid(call().status(), "options.tolerance");
+  // Twice the resolution finds the crossing at the curve's middle.
+  surface.mutable_options()->set_tolerance(std::ldexp(1.0, -47));
+  absl::StatusOr<v1::IntersectCurveSurfaceResponse> answer = call();
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  EXPECT_THAT(answer->curve_parameters(), ElementsAre(DoubleNear(0.5, 1e-14)));
+  EXPECT_THAT(answer->surface_parameters(),
+              ElementsAre(DoubleNear(0.25, 1e-14), DoubleNear(0.5, 1e-14)));
+}
+
+// The parabola B-spline of degree 2 on knots 0, 0, 0, 1/2, 1, 1, 1 through
+// (-1, 1), (-1/2, 0), (1/2, 0), (1, 1) is (2s - 1, (2s - 1)^2) on both
+// pieces; it touches the line (-2 + 4t, 0) at its knot. One point comes
+// back, where the two are within the tolerance.
+TEST_F(QueryServiceTest, TangencyOnAKnotIsOnePoint) {
+  v1::IntersectCurvesRequest request;
+  v1::BSplineCurve& parabola = *request.mutable_first()->mutable_bspline();
+  parabola.set_degree(2);
+  parabola.mutable_control_points()->set_dimension(2);
+  Append(parabola.mutable_control_points()->mutable_coordinates(),
+         {-1, 1, -0.5, 0, 0.5, 0, 1, 1});
+  Append(parabola.mutable_knots(), {0, 0, 0, 0.5, 1, 1, 1});
+  *request.mutable_second() = BezierMessage(2, {-2, 0, 2, 0});
+  for (const double tolerance : {1e-6, 1e-9, 1e-12}) {
+    request.mutable_options()->set_tolerance(tolerance);
+    absl::StatusOr<v1::IntersectCurvesResponse> answer = client_->Unary(
+        client_->curves(), &v1::CurveService::Stub::Intersect, request);
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    ASSERT_EQ(answer->first_parameters_size(), 1) << tolerance;
+    EXPECT_TRUE(answer->first_intervals().empty());
+    const double x = 2 * answer->first_parameters(0) - 1;
+    const double line_x = -2 + 4 * answer->second_parameters(0);
+    EXPECT_LE(std::hypot(x - line_x, x * x), tolerance);
+  }
+}
+
+// A stretch of a curve lying in the surface is an overlap: a segment in the
+// unit square, and (t, 1/2, (1 - 2t)^16), the Bezier curve of control
+// points (i / 16, 1/2, (-1)^i), along [1/2 - r, 1/2 + r] with
+// (2r)^16 = 1e-9, where it is within 1e-9 of the square.
+TEST_F(QueryServiceTest, CurveLyingInASurfaceIsAnOverlap) {
+  v1::IntersectCurveSurfaceRequest request;
+  *request.mutable_curve() = BezierMessage(3, {0.1, 0.2, 0, 0.8, 0.7, 0});
+  *request.mutable_surface() = UnitSquareMessage();
+  request.mutable_options()->set_tolerance(1e-3);
+  auto call = [&] {
+    return client_->Unary(client_->surfaces(),
+                          &v1::SurfaceService::Stub::IntersectCurve, request);
+  };
+  absl::StatusOr<v1::IntersectCurveSurfaceResponse> answer = call();
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  EXPECT_TRUE(answer->curve_parameters().empty());
+  EXPECT_THAT(answer->curve_intervals(),
+              ElementsAre(DoubleNear(0, 1e-12), DoubleNear(1, 1e-12)));
+  v1::Points& zigzag =
+      *request.mutable_curve()->mutable_bezier()->mutable_control_points();
+  zigzag.clear_coordinates();
+  for (int i = 0; i <= 16; ++i) {
+    Append(zigzag.mutable_coordinates(), {i / 16.0, 0.5, i % 2 ? -1.0 : 1.0});
+  }
+  request.mutable_options()->set_tolerance(1e-9);
+  answer = call();
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  EXPECT_TRUE(answer->curve_parameters().empty());
+  const double r = 0.5 * std::pow(1e-9, 1.0 / 16);
+  EXPECT_THAT(
+      answer->curve_intervals(),
+      ElementsAre(DoubleNear(0.5 - r, 1e-9), DoubleNear(0.5 + r, 1e-9)));
+}
+
 // Planes z = h cut the sphere patch of radius 2 in quarter circles of radius
 // sqrt(4 - h^2).
 TEST_F(QueryServiceTest, PlaneSectionsOfASpherePatchAreCircles) {
@@ -316,6 +406,134 @@ TEST_F(QueryServiceTest, PlaneSectionsOfASpherePatchAreCircles) {
                             &v1::SurfaceService::Stub::Section, request)
                     .status(),
                 "plane_normal");
+}
+
+// A plane holding the unit square is one region, its parameter square; one
+// holding a boundary edge gives that edge, on every side; a normal of any
+// scale cuts the same line x + y = 1/2.
+TEST_F(QueryServiceTest, SectionsInThePlaneAndAtAnyScale) {
+  v1::SectionSurfaceRequest request;
+  *request.mutable_surface() = UnitSquareMessage();
+  auto cut = [&](std::initializer_list<double> point,
+                 std::initializer_list<double> normal) {
+    request.clear_plane_point();
+    request.clear_plane_normal();
+    Append(request.mutable_plane_point(), point);
+    Append(request.mutable_plane_normal(), normal);
+    return client_->Unary(client_->surfaces(),
+                          &v1::SurfaceService::Stub::Section, request);
+  };
+  absl::StatusOr<v1::SectionSurfaceResponse> answer = cut({0, 0, 0}, {0, 0, 1});
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  EXPECT_EQ(answer->polylines_size(), 0);
+  ASSERT_EQ(answer->regions_size(), 1);
+  EXPECT_THAT(answer->regions(0).parameters(),
+              ElementsAre(0, 0, 1, 0, 1, 1, 0, 1));
+  for (const double x : {0.0, 1.0}) {
+    for (const double sign : {1.0, -1.0}) {
+      answer = cut({x, 0, 0}, {sign, 0, 0});
+      ASSERT_TRUE(answer.ok()) << answer.status();
+      ASSERT_EQ(answer->polylines_size(), 1) << "x = " << x;
+      EXPECT_EQ(answer->regions_size(), 0);
+      const auto& points = answer->polylines(0).points().coordinates();
+      for (int k = 0; k < points.size(); k += 3) EXPECT_EQ(points[k], x);
+    }
+  }
+  for (const double scale : {1e155, 1e-160}) {
+    answer = cut({0.5, 0, 0}, {scale, scale, 0});
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    ASSERT_EQ(answer->polylines_size(), 1) << scale;
+    const auto& points = answer->polylines(0).points().coordinates();
+    for (int k = 0; k < points.size(); k += 3) {
+      EXPECT_NEAR(points[k] + points[k + 1], 0.5, 1e-15);
+    }
+  }
+}
+
+// Weights of 1e20 make the surface jump between neighbouring parameters:
+// refused naming the surface, not vertices 0.5 off the plane; a tolerance
+// below the resolution is refused naming it.
+TEST_F(QueryServiceTest, SectionsThatDoublesCannotResolveAreRefused) {
+  v1::SectionSurfaceRequest request;
+  v1::BezierSurface& bezier = *request.mutable_surface()->mutable_bezier();
+  v1::ControlNet& net = *bezier.mutable_control_net();
+  net.set_dimension(3);
+  net.set_count_u(3);
+  net.set_count_v(3);
+  Append(net.mutable_coordinates(),
+         {0, 0,   0, 0, 0.5, 0, 0, 1, 0,   0.5, 0, 0, 0.5, 0.5,
+          1, 0.5, 1, 0, 1,   0, 0, 1, 0.5, 0,   1, 1, 0});
+  Append(bezier.mutable_weights(), {1, 1, 1, 1, 1e20, 1, 1, 1, 1});
+  Append(request.mutable_plane_point(), {0, 0, 0.5});
+  Append(request.mutable_plane_normal(), {0, 0, 1});
+  auto call = [&] {
+    return client_
+        ->Unary(client_->surfaces(), &v1::SurfaceService::Stub::Section,
+                request)
+        .status();
+  };
+  ExpectInvalid(call(), "surface");
+  bezier.mutable_weights()->Set(4, 2.0);
+  EXPECT_TRUE(call().ok());
+  request.set_tolerance(1e-20);
+  ExpectInvalid(call(), "tolerance");
+}
+
+// Every query cap holds exactly: max_points of a section (the cut x = 1/2
+// of the square is 3 vertices: its ends and its middle), max_results of an
+// intersection (the zigzag crosses the axis 5 times) and max_minima of a
+// closest point (from the circle's centre every point is nearest).
+TEST_F(QueryServiceTest, QueryCapsAreExact) {
+  v1::SectionSurfaceRequest section;
+  *section.mutable_surface() = UnitSquareMessage();
+  Append(section.mutable_plane_point(), {0.5, 0, 0});
+  Append(section.mutable_plane_normal(), {1, 0, 0});
+  for (const uint32_t cap : {1u, 2u, 3u}) {
+    section.set_max_points(cap);
+    absl::StatusOr<v1::SectionSurfaceResponse> answer = client_->Unary(
+        client_->surfaces(), &v1::SurfaceService::Stub::Section, section);
+    if (cap < 3) {
+      ASSERT_EQ(answer.status().code(), absl::StatusCode::kResourceExhausted)
+          << cap;
+      EXPECT_EQ(FieldViolationsOf(answer.status()).at(0).field, "max_points");
+    } else {
+      ASSERT_TRUE(answer.ok()) << answer.status();
+      EXPECT_EQ(answer->polylines(0).points().coordinates_size(), 3 * 3);
+    }
+  }
+  v1::IntersectCurvesRequest intersect;
+  v1::BSplineCurve& zigzag = *intersect.mutable_first()->mutable_bspline();
+  zigzag.set_degree(1);
+  zigzag.mutable_control_points()->set_dimension(2);
+  Append(zigzag.mutable_control_points()->mutable_coordinates(),
+         {0, -1, 1, 1, 2, -1, 3, 1, 4, -1, 5, 1});
+  Append(zigzag.mutable_knots(), {0, 0, 1, 2, 3, 4, 5, 5});
+  *intersect.mutable_second() = BezierMessage(2, {-1, 0, 6, 0});
+  for (const uint32_t cap : {4u, 5u}) {
+    intersect.mutable_options()->set_max_results(cap);
+    absl::StatusOr<v1::IntersectCurvesResponse> answer = client_->Unary(
+        client_->curves(), &v1::CurveService::Stub::Intersect, intersect);
+    if (cap < 5) {
+      ASSERT_EQ(answer.status().code(), absl::StatusCode::kResourceExhausted);
+      EXPECT_EQ(FieldViolationsOf(answer.status()).at(0).field,
+                "options.max_results");
+    } else {
+      ASSERT_TRUE(answer.ok()) << answer.status();
+      EXPECT_EQ(answer->first_parameters_size(), 5);
+    }
+  }
+  v1::CurveClosestPointRequest closest;
+  *closest.mutable_curve() = CircleMessage(2.0, 1.0, -1.0);
+  closest.mutable_queries()->set_dimension(2);
+  Append(closest.mutable_queries()->mutable_coordinates(), {1, -1});
+  for (const uint32_t cap : {1u, 2u, 3u}) {
+    closest.mutable_options()->set_max_minima(cap);
+    absl::StatusOr<v1::ClosestPointResponse> answer = client_->Unary(
+        client_->curves(), &v1::CurveService::Stub::ClosestPoint, closest);
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    EXPECT_THAT(answer->minima_counts(), ElementsAre(cap));
+    EXPECT_EQ(answer->points().coordinates_size(), static_cast<int>(2 * cap));
+  }
 }
 
 TEST_F(QueryServiceTest, ArcLengthsOfTheCircle) {
