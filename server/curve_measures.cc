@@ -84,6 +84,19 @@ uint64_t ParameterAndPointValues(const Curve& curve) {
   return 1 + static_cast<uint64_t>(DimensionOf(curve));
 }
 
+// ArcLengthPlan returns the plan of an arc-length query of `curve` whose
+// answer holds `values` doubles and whose work takes `work_bytes` besides
+// its length table: heavy whatever its size.
+CallPlan ArcLengthPlan(const Curve& curve, uint64_t values, uint64_t work_bytes,
+                       const ServiceLimits& limits) {
+  return {.memory_bytes = AnswerPlan(values,
+                                     work_bytes + DecomposedCurvePieces(curve) *
+                                                      kArcLengthPieceBytes,
+                                     limits)
+                              .memory_bytes,
+          .heavy = true};
+}
+
 absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
                                         const ServiceLimits& limits,
                                         v1::ArcLengthResponse& response) {
@@ -107,9 +120,7 @@ absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
   }
   if (intervals.empty()) intervals = {domain.start, domain.end};
   return UnaryWork{
-      .plan = {.memory_bytes =
-                   AnswerPlan(count, 16 * count, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, count, 16 * count, limits),
       .run = [curve = *std::move(curve), intervals = std::move(intervals),
               tolerance = *tolerance,
               &response](const ExecutionContext& execution) {
@@ -143,8 +154,7 @@ absl::StatusOr<UnaryWork> PlanParametersAtArcLength(
   const double start =
       request.has_start() ? request.start() : DomainOf(*curve).start;
   return UnaryWork{
-      .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, values, 0, limits),
       .run = [curve = *std::move(curve), start,
               lengths = SpanOf(request.lengths()), tolerance = *tolerance,
               &response](const ExecutionContext& execution) -> absl::Status {
@@ -184,8 +194,7 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
       EndsOf(request.interval(), DomainOf(*curve));
   const double start = ends.first, end = ends.second;
   return UnaryWork{
-      .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, values, 0, limits),
       .run = [curve = *std::move(curve), start, end, count,
               tolerance = *tolerance,
               &response](const ExecutionContext& execution) -> absl::Status {

@@ -23,8 +23,9 @@ absl::StatusOr<UnaryWork> PlanClosestPoint(
     v1::ClosestPointResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+  absl::StatusOr<uint64_t> work = PieceWorkBytes(
+      DecomposedCurveValues(*curve), DecomposedCurvePieces(*curve),
+      kPieceRecordBytes, limits, "curve");
   if (!work.ok()) return work.status();
   return PlanClosestPoints(
       DimensionOf(*curve), 1, *work, request.queries(), request.options(),
@@ -61,11 +62,13 @@ absl::StatusOr<UnaryWork> PlanIntersect(
   absl::StatusOr<Curve> second =
       PrepareCurve(request.second(), limits, "second");
   if (!second.ok()) return second.status();
-  absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(DecomposedCurveValues(*first), limits, "first");
+  absl::StatusOr<uint64_t> work = PieceWorkBytes(
+      DecomposedCurveValues(*first), DecomposedCurvePieces(*first),
+      kPartRecordBytes, limits, "first");
   if (!work.ok()) return work.status();
-  absl::StatusOr<uint64_t> second_work =
-      PieceWorkBytes(DecomposedCurveValues(*second), limits, "second");
+  absl::StatusOr<uint64_t> second_work = PieceWorkBytes(
+      DecomposedCurveValues(*second), DecomposedCurvePieces(*second),
+      kPartRecordBytes, limits, "second");
   if (!second_work.ok()) return second_work.status();
   const int dimension = DimensionOf(*first);
   if (DimensionOf(*second) != dimension) {
@@ -82,7 +85,8 @@ absl::StatusOr<UnaryWork> PlanIntersect(
   const uint64_t values = options->max_results * per_result;
   return UnaryWork{
       .plan = {.memory_bytes =
-                   AnswerPlan(values, 8 * values, limits).memory_bytes,
+                   AnswerPlan(values, 8 * values + *work + *second_work, limits)
+                       .memory_bytes,
                .heavy = true},
       .run = [first = *std::move(first), second = *std::move(second),
               options = *options,
@@ -103,7 +107,7 @@ absl::StatusOr<UnaryWork> PlanBoundingBox(
   absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+      CheckWorkBytes(CurveBoundingBoxBytes(*curve), limits, "curve");
   if (!work.ok()) return work.status();
   return PlanBoundingBox(
       DimensionOf(*curve), *work, *tolerance,

@@ -166,9 +166,9 @@ struct MeshInput {
   // or its mesh copied into the answer, or the answer and its serialized
   // copy (the mesh is gone by then).
   uint64_t UnaryBytes() const {
-    return memory.plan + std::max({memory.tessellation,
-                                   memory.mesh + AnswerBytes(),
-                                   2 * AnswerBytes()});
+    return memory.plan +
+           std::max({memory.tessellation, memory.mesh + AnswerBytes(),
+                     2 * AnswerBytes()});
   }
   // Bytes of a stream's call: the plan, and the mesher at its peak, or
   // its mesh and the chunk messages the stream holds (`chunk_bytes`).
@@ -350,9 +350,8 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Tessellate(
             .plan = {.memory_bytes = input->UnaryBytes(), .heavy = true},
             .run = [input = *std::move(input), request, response](
                        const ExecutionContext& execution) -> absl::Status {
-              absl::StatusOr<Mesh> mesh =
-                  TessellatePlanned(*input.plan, execution.cancellation,
-                                    CornerAttributes::kSkip);
+              absl::StatusOr<Mesh> mesh = TessellatePlanned(
+                  *input.plan, execution.cancellation, CornerAttributes::kSkip);
               if (!mesh.ok()) return mesh.status();
               FillMesh(*mesh, request->normals(), 0, mesh->vertices.size() / 3,
                        0, mesh->triangles.size() / 3, *response);

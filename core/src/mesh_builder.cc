@@ -324,8 +324,8 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
       if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
         return status;
       }
-      const size_t end = std::min<size_t>(first[piece + 1],
-                                          start + kEvaluationBatch);
+      const size_t end =
+          std::min<size_t>(first[piece + 1], start + kEvaluationBatch);
       uv.clear();
       for (size_t k = start; k < end; ++k) {
         uv.push_back(sources_[order[k]].u);
@@ -384,7 +384,8 @@ std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
   // The slot of `cell`: the one holding its first vertex, or the empty one
   // where it goes.
   auto slot_of = [&](const Cell& cell) -> uint32_t& {
-    size_t at = absl::Hash<Cell>{}(cell) & mask;
+    const size_t hash = absl::Hash<Cell>{}(cell);
+    size_t at = hash & mask;
     while (slots[at] != kNone && cell_of(slots[at]) != cell) {
       at = (at + 1) & mask;
     }
@@ -559,17 +560,17 @@ MeshMemory PlannedMeshMemory(const MeshPlan& plan,
   for (const PiecePlan& piece : plan.pieces) {
     uint64_t ring = 0;
     for (int side = 0; side < 4; ++side) {
-      ring += static_cast<uint64_t>(internal::SideSegments(
-                  piece, plan.edges[static_cast<size_t>(piece.edge[side])],
-                  side)) +
-              1;
+      ring +=
+          static_cast<uint64_t>(internal::SideSegments(
+              piece, plan.edges[static_cast<size_t>(piece.edge[side])], side)) +
+          1;
     }
     const uint64_t grid_u = static_cast<uint64_t>(piece.grid_u);
     const uint64_t grid_v = static_cast<uint64_t>(piece.grid_v);
-    largest_piece = std::max(
-        largest_piece, (grid_u - 1) * (grid_v - 1) * sizeof(uint32_t) +
-                           ring * (sizeof(Sample) + sizeof(OuterPlace)) +
-                           2 * (grid_u + grid_v) * sizeof(InnerPlace));
+    largest_piece = std::max(largest_piece,
+                             (grid_u - 1) * (grid_v - 1) * sizeof(uint32_t) +
+                                 ring * (sizeof(Sample) + sizeof(OuterPlace)) +
+                                 2 * (grid_u + grid_v) * sizeof(InnerPlace));
   }
   build += largest_piece;
   // Evaluate: positions and normals, the vertices sorted by piece, and
@@ -583,9 +584,9 @@ MeshMemory PlannedMeshMemory(const MeshPlan& plan,
   // the mesh's surfaces and (u, v).
   const uint64_t finish =
       positions + vertices * sizeof(uint32_t) +
-      std::max<uint64_t>(vertices * sizeof(uint32_t) +
-                             WeldSlots(vertices) * sizeof(uint32_t),
-                         vertices * (sizeof(uint32_t) + 2 * sizeof(double)));
+      std::max<uint64_t>(
+          vertices * sizeof(uint32_t) + WeldSlots(vertices) * sizeof(uint32_t),
+          vertices * (sizeof(uint32_t) + 2 * sizeof(double)));
   const uint64_t building = held + std::max({build, evaluate, finish});
   // Every large array ends in a partly used page.
   constexpr uint64_t kLargeArrays = 24;
@@ -594,9 +595,8 @@ MeshMemory PlannedMeshMemory(const MeshPlan& plan,
   // u, then in v): at most three times the pieces.
   memory.tessellation =
       kLargeArrays * 4096 +
-      (plan_holds_pieces
-           ? building
-           : std::max(3 * piece_bytes, piece_bytes + building));
+      (plan_holds_pieces ? building
+                         : std::max(3 * piece_bytes, piece_bytes + building));
   return memory;
 }
 

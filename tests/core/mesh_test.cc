@@ -1000,9 +1000,9 @@ TEST(MeshTest, SkippingCornerAttributesKeepsTheMesh) {
     EXPECT_EQ(with.mesh, without.mesh + attributes);
     EXPECT_GE(with.tessellation, without.tessellation + attributes);
     // The mesh's own arrays are within what the plan says it takes.
-    const uint64_t made = 8 * (lean->vertices.size() + lean->normals.size() +
-                               lean->uv.size()) +
-                          4 * (lean->patch.size() + lean->triangles.size());
+    const uint64_t made =
+        8 * (lean->vertices.size() + lean->normals.size() + lean->uv.size()) +
+        4 * (lean->patch.size() + lean->triangles.size());
     EXPECT_LE(made, without.mesh);
     EXPECT_LE(without.mesh, without.tessellation);
   }

@@ -35,8 +35,8 @@ void Count(int64_t bytes) {
   const int64_t now =
       allocated.fetch_add(bytes, std::memory_order_relaxed) + bytes;
   int64_t highest = peak.load(std::memory_order_relaxed);
-  while (now > highest && !peak.compare_exchange_weak(
-                              highest, now, std::memory_order_relaxed)) {
+  while (now > highest &&
+         !peak.compare_exchange_weak(highest, now, std::memory_order_relaxed)) {
   }
 }
 
@@ -225,9 +225,7 @@ void ResetPeakAllocatedBytes() {
              std::memory_order_relaxed);
 }
 
-int64_t LostMappings() {
-  return lost_mappings.load(std::memory_order_relaxed);
-}
+int64_t LostMappings() { return lost_mappings.load(std::memory_order_relaxed); }
 
 }  // namespace freeform::testing
 
