@@ -112,6 +112,20 @@ uint64_t ParameterAndPointValues(const Curve& curve) {
   return 1 + static_cast<uint64_t>(DimensionOf(curve));
 }
 
+// ArcLengthPlan returns the plan of an arc-length query of `curve` whose
+// answer holds `values` doubles and whose work takes `work_bytes` (its
+// length tables, ArcLengthWork) besides the records of its pieces: heavy
+// whatever its size.
+CallPlan ArcLengthPlan(const Curve& curve, uint64_t values, uint64_t work_bytes,
+                       const ServiceLimits& limits) {
+  return {.memory_bytes = AnswerPlan(values,
+                                     work_bytes + DecomposedCurvePieces(curve) *
+                                                      kArcLengthPieceBytes,
+                                     limits)
+                              .memory_bytes,
+          .heavy = true};
+}
+
 absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
                                         const ServiceLimits& limits,
                                         v1::ArcLengthResponse& response) {
@@ -139,9 +153,7 @@ absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
       ArcLengthWork(*curve, 1 + DefaultMaxHelpers(), limits);
   if (!work.ok()) return work.status();
   return UnaryWork{
-      .plan = {.memory_bytes =
-                   AnswerPlan(count, 16 * count + *work, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, count, 16 * count + *work, limits),
       .run = [curve = *std::move(curve), intervals = std::move(intervals),
               tolerance = *tolerance, &request,
               &response](const ExecutionContext& execution) -> absl::Status {
@@ -179,8 +191,7 @@ absl::StatusOr<UnaryWork> PlanParametersAtArcLength(
   absl::StatusOr<uint64_t> work = ArcLengthWork(*curve, 1, limits);
   if (!work.ok()) return work.status();
   return UnaryWork{
-      .plan = {.memory_bytes = AnswerPlan(values, *work, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, values, *work, limits),
       .run = [curve = *std::move(curve), start,
               lengths = SpanOf(request.lengths()), tolerance = *tolerance,
               &request,
@@ -223,8 +234,7 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
   absl::StatusOr<uint64_t> work = ArcLengthWork(*curve, 1, limits);
   if (!work.ok()) return work.status();
   return UnaryWork{
-      .plan = {.memory_bytes = AnswerPlan(values, *work, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, values, *work, limits),
       .run = [curve = *std::move(curve), start, end, count,
               tolerance = *tolerance, &request,
               &response](const ExecutionContext& execution) -> absl::Status {

@@ -74,7 +74,23 @@ void WriteClosestPoints(const ClosestPoints& minima,
 absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values,
                                         const ServiceLimits& limits,
                                         absl::string_view field) {
-  const uint64_t bytes = SaturatingProduct(piece_values, 3 * 8);
+  return CheckWorkBytes(SaturatingProduct(piece_values, 3 * 8), limits, field);
+}
+
+absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values, uint64_t pieces,
+                                        uint64_t records,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field) {
+  const uint64_t values = SaturatingProduct(piece_values, 3 * 8);
+  const uint64_t bookkeeping = SaturatingProduct(pieces, records);
+  return CheckWorkBytes(
+      values > UINT64_MAX - bookkeeping ? UINT64_MAX : values + bookkeeping,
+      limits, field);
+}
+
+absl::StatusOr<uint64_t> CheckWorkBytes(uint64_t bytes,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field) {
   if (bytes <= limits.memory_budget_bytes) return bytes;
   return ExhaustedFieldError(
       field, absl::StrCat("its Bezier pieces would take ", bytes >> 20,

@@ -29,10 +29,50 @@ inline constexpr uint64_t kDefaultMaxResults = 1 << 16;
 
 // PieceWorkBytes returns the working memory of a query that cuts geometry
 // into Bezier pieces of `piece_values` doubles (DecomposedCurveValues,
-// SurfacePieceValues; the queries keep them in homogeneous form and a
-// subdivided copy), or RESOURCE_EXHAUSTED naming `field` when that is over
-// the server's memory budget.
+// SurfacePieceValues), three times their values (cutting holds the
+// knot-refined control points beside the pieces; the queries then keep them
+// in homogeneous form and a copy, projected or subdivided), or
+// RESOURCE_EXHAUSTED naming `field` when that is over the server's memory
+// budget.
 absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field);
+
+// Bytes of records per piece besides its values: its data and lifted net
+// with their blocks, and the query's box, ball and flags of it
+// (closest points, sections).
+inline constexpr uint64_t kPieceRecordBytes = 256;
+// The same for the intersections, which also hold every piece of their
+// second input as a part (a shared block with its projected points and
+// box) while the first input's pieces are searched against them.
+inline constexpr uint64_t kPartRecordBytes = 512;
+
+// Bytes per curve piece of the arc-length queries: the breakpoints and the
+// cuts between them, and the length table's ends and sums, grown by
+// doubling, for four kept intervals per piece. A smooth piece's quadrature
+// halves agree to rounding within a few halvings (a piece whose speed
+// vanishes somewhere measures the same); the core's own cap is
+// kMaxArcLengthIntervals per piece.
+inline constexpr uint64_t kArcLengthPieceBytes = 256;
+
+// Bytes of a curve-surface intersection's search besides the pieces: its
+// hits (48 bytes each, at most one per leaf pair, and the leaves are at
+// most half of the 2^20 pairs it examines, queries.cc) in a vector grown by
+// doubling, whose old and new arrays both exist while it grows. A segment
+// lying in a flat patch at tolerance 1e-6 reaches 38 MB.
+inline constexpr uint64_t kCurveSurfaceSearchBytes = 3 * 48 * (1 << 19);
+
+// PieceWorkBytes with `pieces` pieces (DecomposedCurvePieces,
+// SurfacePieceCount) of `records` bytes of records each besides.
+absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values, uint64_t pieces,
+                                        uint64_t records,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field);
+
+// CheckWorkBytes returns `bytes`, a query's working memory, or
+// RESOURCE_EXHAUSTED naming `field` when that is over the server's memory
+// budget.
+absl::StatusOr<uint64_t> CheckWorkBytes(uint64_t bytes,
                                         const ServiceLimits& limits,
                                         absl::string_view field);
 

@@ -234,9 +234,11 @@ ExecutionContext CallRecord::chunk_execution() const {
 }
 
 absl::Status CallRecord::Reserve(const CallPlan& plan) {
-  // The request stays in memory for the whole call too.
+  // The request stays in memory for the whole call too, as parsed: its
+  // arrays' capacity (parsing grows them by doubling) and its submessages.
   absl::StatusOr<MemoryBudget::Reservation> reservation =
-      frame_->budget().Reserve(plan.memory_bytes + request_bytes_, method_);
+      frame_->budget().Reserve(plan.memory_bytes + request_->SpaceUsedLong(),
+                               method_);
   if (!reservation.ok()) {
     Refuse(Refusal::kMemoryBudget);
     return reservation.status();

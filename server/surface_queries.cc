@@ -50,7 +50,8 @@ absl::StatusOr<UnaryWork> PlanClosestPoint(
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
   absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+      PieceWorkBytes(SurfacePieceValues(*surface), SurfacePieceCount(*surface),
+                     kPieceRecordBytes, limits, "surface");
   if (!work.ok()) return work.status();
   return PlanClosestPoints(
       GeometryFieldOf(request), DimensionOf(*surface), 2, *work,
@@ -70,11 +71,13 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
   if (!curve.ok()) return curve.status();
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
-  absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+  absl::StatusOr<uint64_t> work = PieceWorkBytes(
+      DecomposedCurveValues(*curve), DecomposedCurvePieces(*curve),
+      kPartRecordBytes, limits, "curve");
   if (!work.ok()) return work.status();
   absl::StatusOr<uint64_t> surface_work =
-      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+      PieceWorkBytes(SurfacePieceValues(*surface), SurfacePieceCount(*surface),
+                     kPartRecordBytes, limits, "surface");
   if (!surface_work.ok()) return surface_work.status();
   const int dimension = DimensionOf(*curve);
   if (DimensionOf(*surface) != dimension) {
@@ -95,7 +98,8 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
   return UnaryWork{
       .plan = {.memory_bytes =
                    AnswerPlan(values,
-                              8 * values + *work + *surface_work + candidates,
+                              8 * values + *work + *surface_work + candidates +
+                                  kCurveSurfaceSearchBytes,
                               limits)
                        .memory_bytes,
                .heavy = true},
@@ -157,7 +161,8 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
                 "fit_tolerance");
   if (!fit_tolerance.ok()) return fit_tolerance.status();
   absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+      PieceWorkBytes(SurfacePieceValues(*surface), SurfacePieceCount(*surface),
+                     kPieceRecordBytes, limits, "surface");
   if (!work.ok()) return work.status();
   const int dimension = DimensionOf(*surface);
   // A vertex holds its point and (u, v), and with a fit at most one
@@ -272,7 +277,7 @@ absl::StatusOr<UnaryWork> PlanBoundingBox(
   absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+      CheckWorkBytes(SurfaceBoundingBoxBytes(*surface), limits, "surface");
   if (!work.ok()) return work.status();
   return PlanBoundingBox(
       DimensionOf(*surface), *work, *tolerance,
