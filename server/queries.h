@@ -55,13 +55,6 @@ inline constexpr uint64_t kPartRecordBytes = 512;
 // kMaxArcLengthIntervals per piece.
 inline constexpr uint64_t kArcLengthPieceBytes = 256;
 
-// Bytes of a curve-surface intersection's search besides the pieces: its
-// hits (48 bytes each, at most one per leaf pair, and the leaves are at
-// most half of the 2^20 pairs it examines, queries.cc) in a vector grown by
-// doubling, whose old and new arrays both exist while it grows. A segment
-// lying in a flat patch at tolerance 1e-6 reaches 38 MB.
-inline constexpr uint64_t kCurveSurfaceSearchBytes = 3 * 48 * (1 << 19);
-
 // PieceWorkBytes with `pieces` pieces (DecomposedCurvePieces,
 // SurfacePieceCount) of `records` bytes of records each besides.
 absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values, uint64_t pieces,

@@ -98,8 +98,7 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
   return UnaryWork{
       .plan = {.memory_bytes =
                    AnswerPlan(values,
-                              8 * values + *work + *surface_work + candidates +
-                                  kCurveSurfaceSearchBytes,
+                              8 * values + *work + *surface_work + candidates,
                               limits)
                        .memory_bytes,
                .heavy = true},

@@ -438,8 +438,10 @@ absl::Status Slicer::Leaf(size_t piece, const Cell& cell, int along) {
   }
   std::sort(ends.begin(), ends.end());
   for (size_t k = 0; k + 1 < ends.size(); k += 2) {
-    const auto [c0, a0] = ends[k];
-    const auto [c1, a1] = ends[k + 1];
+    // Named copies, not structured bindings: a lambda may not capture
+    // those before C++20's P1091 (clang 14).
+    const double c0 = ends[k].first, a0 = ends[k].second;
+    const double c1 = ends[k + 1].first, a1 = ends[k + 1].second;
     auto locate = [&](double c) {
       if (c == c0) return a0;
       if (c == c1) return a1;
