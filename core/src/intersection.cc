@@ -13,7 +13,6 @@
 #include "bezier_net.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
-#include "tessellation_checks.h"
 
 namespace freeform {
 namespace {
@@ -1140,21 +1139,16 @@ auto Intersect(const Curve& first, const Second& second,
   if (!a.ok()) return a.status();
   absl::StatusOr<Pieces> b = internal::LiftPieces(second, cancel);
   if (!b.ok()) return b.status();
-  const Pieces* both[] = {&*a, &*b};
-  const double largest = internal::LargestCoordinate(both);
-  if (absl::Status status =
-          internal::CheckResolvableAt(options.tolerance, largest);
-      !status.ok()) {
-    return status;
-  }
-  const int exponent = internal::ScaleExponent(largest);
-  internal::ScalePieces(exponent, *a);
-  internal::ScalePieces(exponent, *b);
+  Pieces* const both[] = {&*a, &*b};
+  const absl::StatusOr<internal::QueryScale> scale =
+      internal::ScaleForQuery(options.tolerance, both);
+  if (!scale.ok()) return scale.status();
+  const int exponent = scale->exponent;
   IntersectionOptions scaled = options;
   scaled.tolerance = std::ldexp(options.tolerance, -exponent);
   scaled.separation = std::ldexp(options.separation, -exponent);
   const double prune_tolerance =
-      scaled.tolerance + kPruneSlack * internal::LargestCoordinate(both);
+      scaled.tolerance + kPruneSlack * scale->largest;
   PairSearch search(*a, *b, scaled, slack_s, slack_second, prune_tolerance,
                     cancel);
   if (absl::Status status = search.Run(); !status.ok()) return status;

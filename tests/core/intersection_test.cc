@@ -363,8 +363,7 @@ TEST(IntersectionTest, ToleranceBelowTheResolutionIsRefused) {
 // circle crosses y = 0.3, for k far past where squared lengths overflow or
 // underflow.
 TEST(IntersectionTest, AnswersDoNotDependOnTheScale) {
-  for (const int k : {0, 600, -600, 1000, -1000}) {
-    const double scale = std::ldexp(1.0, k);
+  for (const double scale : {1.0, 0x1p600, 0x1p-600, 0x1p1000, 0x1p-1000}) {
     const BSplineCurveData circle_data = testing_util::NurbsCircle(scale);
     const absl::StatusOr<Curve> circle =
         BSplineCurve::Create(circle_data.view());
@@ -374,8 +373,8 @@ TEST(IntersectionTest, AnswersDoNotDependOnTheScale) {
     const absl::StatusOr<CurveIntersections> found = IntersectCurves(
         *circle, *chord,
         {.tolerance = 1e-9 * scale, .separation = 1e-7 * scale});
-    ASSERT_TRUE(found.ok()) << "2^" << k << ": " << found.status();
-    ASSERT_EQ(found->first_parameters.size(), 2u) << "2^" << k;
+    ASSERT_TRUE(found.ok()) << scale << ": " << found.status();
+    ASSERT_EQ(found->first_parameters.size(), 2u) << scale;
     const double x = std::sqrt(1 - 0.09) * scale;
     EXPECT_NEAR(found->points[0] / scale, x / scale, 1e-12);
     EXPECT_NEAR(found->points[2] / scale, -x / scale, 1e-12);
@@ -391,8 +390,8 @@ TEST(IntersectionTest, AnswersDoNotDependOnTheScale) {
         BezierCurve::Create({{3, vertical}, {}});
     const absl::StatusOr<CurveSurfaceIntersections> hit =
         IntersectCurveSurface(*through, *square, {.tolerance = 1e-9 * scale});
-    ASSERT_TRUE(hit.ok()) << "2^" << k << ": " << hit.status();
-    ASSERT_EQ(hit->curve_parameters.size(), 1u) << "2^" << k;
+    ASSERT_TRUE(hit.ok()) << scale << ": " << hit.status();
+    ASSERT_EQ(hit->curve_parameters.size(), 1u) << scale;
     EXPECT_NEAR(hit->curve_parameters[0], 0.5, 1e-12);
   }
 }
