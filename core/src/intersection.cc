@@ -29,6 +29,9 @@ constexpr double kNarrowCone = 0.5;
 // A parameter difference below this fraction of a domain is no difference
 // when stretches are merged and points matched against them.
 constexpr double kParameterSlack = 1e-6;
+// The most Newton steps refining the nearest sample of a stretch of
+// contact.
+constexpr int kRefineContactSteps = 8;
 // Halving rounds control points by about one unit in the last place of the
 // coordinates per level: pairs are pruned only when they are apart by more
 // than the tolerance plus this fraction of the largest coordinate, so that
@@ -349,8 +352,10 @@ class PairSearch {
   // Solve returns the nearest points of the pair found by Newton from the
   // middle of its box, with their distance.
   std::pair<Anchor, double> Solve(const Part& a, const Part& b);
-  // Refine runs Newton on the pair's box from `at`; returns the distance.
-  double Refine(const Part& a, const Part& b, Anchor& at);
+  // Refine runs Newton (at most `max_iterations` steps) from `at` on the box
+  // of part a times [lo, hi] of the second's piece; returns the distance.
+  double Refine(const Part& a, const double* lo, const double* hi, Anchor& at,
+                int max_iterations = 60);
   void Model(const Anchor& at, LocalModel& model);
   // ProjectOnSecond moves at.x[1..] to the point of the second's piece
   // at.second_piece nearest the first's point `point` (within [lo, hi] of
@@ -363,11 +368,14 @@ class PairSearch {
   bool FindCurveStretch(const Part& a, const Part& b);
   bool FindSurfaceStretch(const Part& a, const Part& b);
   // SampleStretch checks the first input from `start` to `end` (in the
-  // pieces of a and b) against the second at samples and records it.
+  // pieces of a and b) against [lo, hi] of the second's piece at samples
+  // and records it.
   bool SampleStretch(const Part& a, const Part& b, const Anchor& start,
-                     const Anchor& end);
+                     const Anchor& end, const double* lo, const double* hi);
   void AddPoint(const Anchor& at, double distance);
-  void AddCandidate(Candidate candidate, const Part* b);
+  // AddCandidate records a candidate whose second's parameters lie in
+  // [lo, hi] of its piece (at its point when lo is null).
+  void AddCandidate(Candidate candidate, const double* lo, const double* hi);
   absl::Status Compact();
   void Merge();
   void Finish();
@@ -455,16 +463,19 @@ void PairSearch::Model(const Anchor& at, LocalModel& model) {
   }
 }
 
-double PairSearch::Refine(const Part& a, const Part& b, Anchor& at) {
+double PairSearch::Refine(const Part& a, const double* lo, const double* hi,
+                          Anchor& at, int max_iterations) {
   const int count = 1 + SecondCount(second_);
-  const double lower[3] = {a.lo[0], b.lo[0], b.lo[1]};
-  const double upper[3] = {a.hi[0], b.hi[0], b.hi[1]};
+  const double lower[3] = {a.lo[0], lo[0], lo[1]};
+  const double upper[3] = {a.hi[0], hi[0], hi[1]};
   const double value = internal::MinimizeInBox(
-      count, lower, upper, at.x, [&](const double* x, LocalModel& model) {
+      count, lower, upper, at.x,
+      [&](const double* x, LocalModel& model) {
         Anchor trial = at;
         std::copy_n(x, 3, trial.x);
         Model(trial, model);
-      });
+      },
+      max_iterations);
   return std::sqrt(2.0 * value);
 }
 
@@ -473,7 +484,7 @@ std::pair<Anchor, double> PairSearch::Solve(const Part& a, const Part& b) {
   at.x[0] = 0.5 * (a.lo[0] + a.hi[0]);
   at.x[1] = 0.5 * (b.lo[0] + b.hi[0]);
   at.x[2] = 0.5 * (b.lo[1] + b.hi[1]);
-  const double distance = Refine(a, b, at);
+  const double distance = Refine(a, b.lo, b.hi, at);
   return {at, distance};
 }
 
@@ -553,25 +564,25 @@ bool PairSearch::Parallel(const Anchor& at) {
   return SinToSpan(scratch_a_.data() + dim, span, count, dim) <= kOverlapAngle;
 }
 
-void PairSearch::AddCandidate(Candidate candidate, const Part* b) {
+void PairSearch::AddCandidate(Candidate candidate, const double* lo,
+                              const double* hi) {
   candidate.from = Global(candidate.start);
   candidate.to = Global(candidate.end);
   if (candidate.to < candidate.from) {
     std::swap(candidate.from, candidate.to);
     std::swap(candidate.start, candidate.end);
   }
-  // The second's parameters: the part's box for a stretch, else the point.
+  // The second's parameters: the box given, else the point's.
   const size_t piece = candidate.start.second_piece;
-  const double lo[2] = {b != nullptr ? b->lo[0] : candidate.start.x[1],
-                        b != nullptr ? b->lo[1] : candidate.start.x[2]};
-  const double hi[2] = {b != nullptr ? b->hi[0] : candidate.start.x[1],
-                        b != nullptr ? b->hi[1] : candidate.start.x[2]};
+  const double* point = candidate.start.x + 1;
+  const double* box_lo = lo != nullptr ? lo : point;
+  const double* box_hi = hi != nullptr ? hi : point;
   for (int c = 0; c < 2; ++c) {
     candidate.low[c] = kInfinity;
     candidate.high[c] = -kInfinity;
   }
-  for (const double s : {lo[0], hi[0]}) {
-    for (const double t : {lo[1], hi[1]}) {
+  for (const double s : {box_lo[0], box_hi[0]}) {
+    for (const double t : {box_lo[1], box_hi[1]}) {
       double uv[2];
       SecondGlobal(piece, s, t, uv);
       for (int c = 0; c < 2; ++c) {
@@ -595,11 +606,12 @@ void PairSearch::AddPoint(const Anchor& at, double distance) {
                          .has_point = true,
                          .point = at,
                          .distance = distance},
-               nullptr);
+               nullptr, nullptr);
 }
 
 bool PairSearch::SampleStretch(const Part& a, const Part& b,
-                               const Anchor& start, const Anchor& end) {
+                               const Anchor& start, const Anchor& end,
+                               const double* lo, const double* hi) {
   const int dim = first_.dimension;
   const int count = SecondCount(second_);
   std::vector<double> from(static_cast<size_t>(dim));
@@ -611,43 +623,61 @@ bool PairSearch::SampleStretch(const Part& a, const Part& b,
   const int samples =
       2 * (a.net.count_u + b.net.count_u + (count == 2 ? b.net.count_v : 0)) +
       1;
-  // Whether the tangents agree at every sample, and at any.
-  bool all = Parallel(start) && Parallel(end);
+  // Whether the tangents agree at every sample, and at any: where they agree
+  // somewhere but not everywhere, an overlap may lie inside and the pair is
+  // halved (as soon as that shows: the ends, then the middle, then the
+  // rest).
+  bool all = Parallel(start);
   bool any = all;
+  const bool end_parallel = Parallel(end);
+  all = all && end_parallel;
+  any = any || end_parallel;
+  if (any && !all) return false;
   Anchor nearest = start;
   double nearest_distance = kInfinity;
-  Anchor at = start;
-  for (int k = 1; k <= samples; ++k) {
+  // The box of the second's parameters along the stretch.
+  double low[2], high[2];
+  for (int c = 0; c < 2; ++c) {
+    low[c] = std::min(start.x[c + 1], end.x[c + 1]);
+    high[c] = std::max(start.x[c + 1], end.x[c + 1]);
+  }
+  const int middle = (samples + 1) / 2;
+  for (int step = 0; step < samples; ++step) {
     if (budget_.exhausted()) return false;
+    const int k = step == 0 ? middle : (step <= middle - 1 ? step : step + 1);
     const double f = static_cast<double>(k) / (samples + 1);
+    Anchor at = start;
     at.x[0] = start.x[0] + f * (end.x[0] - start.x[0]);
     for (int c = 1; c <= count; ++c) {
       at.x[c] = start.x[c] + f * (end.x[c] - start.x[c]);
     }
     std::copy_n(PointOf(at), dim, from.data());
-    const double d = ProjectOnSecond(from.data(), b.lo, b.hi, at);
+    const double d = ProjectOnSecond(from.data(), lo, hi, at);
     if (d > options_.tolerance) return false;
+    for (int c = 0; c < 2; ++c) {
+      low[c] = std::min(low[c], at.x[c + 1]);
+      high[c] = std::max(high[c], at.x[c + 1]);
+    }
     const bool parallel = Parallel(at);
     all = all && parallel;
     any = any || parallel;
+    if (any && !all) return false;
     if (d < nearest_distance) {
       nearest = at;
       nearest_distance = d;
     }
   }
-  // Where the tangents agree somewhere but not everywhere, an overlap may
-  // lie inside: the pair is halved.
-  if (any && !all) return false;
   Candidate stretch{
       .start = start, .end = end, .parallel = all, .stretch = true};
   // A stretch of contact that is not an overlap has its nearest point.
   if (!all) {
-    const double refined = Refine(a, b, nearest);
     stretch.has_point = true;
     stretch.point = nearest;
-    stretch.distance = std::min(nearest_distance, refined);
+    // From within tolerance already: a crossing converges in a few steps,
+    // and a flat contact does not improve much with more.
+    stretch.distance = Refine(a, lo, hi, stretch.point, kRefineContactSteps);
   }
-  AddCandidate(std::move(stretch), &b);
+  AddCandidate(std::move(stretch), low, high);
   return true;
 }
 
@@ -680,13 +710,16 @@ bool PairSearch::FindCurveStretch(const Part& a, const Part& b) {
   if (ends.size() < 2) return false;
   std::sort(ends.begin(), ends.end(),
             [](const Anchor& x, const Anchor& y) { return x.x[0] < y.x[0]; });
-  return SampleStretch(a, b, ends.front(), ends.back());
+  return SampleStretch(a, b, ends.front(), ends.back(), b.lo, b.hi);
 }
 
-// FindSurfaceStretch checks whether curve part a lies along surface part b
-// from end to end.
+// FindSurfaceStretch checks whether curve part a lies along the surface
+// piece of part b from end to end (projected onto the whole piece, from b's
+// middle: a curve part seldom lies within one part's box).
 bool PairSearch::FindSurfaceStretch(const Part& a, const Part& b) {
   const int dim = first_.dimension;
+  const double lo[2] = {0.0, 0.0};
+  const double hi[2] = {1.0, 1.0};
   Anchor ends[2];
   for (int side = 0; side < 2; ++side) {
     Anchor& at = ends[side];
@@ -697,11 +730,11 @@ bool PairSearch::FindSurfaceStretch(const Part& a, const Part& b) {
     const double* point =
         a.points.data() +
         (side == 0 ? 0 : a.points.size() - static_cast<size_t>(dim));
-    if (ProjectOnSecond(point, b.lo, b.hi, at) > options_.tolerance) {
+    if (ProjectOnSecond(point, lo, hi, at) > options_.tolerance) {
       return false;
     }
   }
-  return SampleStretch(a, b, ends[0], ends[1]);
+  return SampleStretch(a, b, ends[0], ends[1], lo, hi);
 }
 
 // Examine returns true when the pair needs no halving: it is pruned, its

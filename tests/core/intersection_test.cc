@@ -398,7 +398,7 @@ TEST(IntersectionTest, AnswersDoNotDependOnTheScale) {
 
 // A segment lying in the unit square is an overlap: the whole of it, or the
 // part over the square, [1/4, 3/4], of one reaching past both sides (an
-// overlap ends where one input does).
+// overlap ends where one input does); and so is an arc lying in a sphere.
 TEST(IntersectionTest, CurveLyingInASurfaceIsAnOverlap) {
   const absl::StatusOr<Surface> square = UnitSquare();
   struct Case {
@@ -417,6 +417,27 @@ TEST(IntersectionTest, CurveLyingInASurfaceIsAnOverlap) {
       EXPECT_TRUE(found->curve_parameters.empty())
           << found->curve_parameters.size() << " points, case " << c;
       ExpectOneInterval(found->curve_intervals, cases[c].start, cases[c].end);
+    }
+  }
+  // On the sphere patch of radius 2: its equator (a boundary edge), a
+  // meridian and the circle of latitude z = 1, as rational quadratic arcs.
+  const SurfaceData sphere_data = testing_util::SpherePatch(2.0);
+  const absl::StatusOr<Surface> sphere =
+      BezierSurface::Create(sphere_data.bezier_view());
+  const double r = std::sqrt(3.0);
+  const std::vector<double> weights = {1, std::sqrt(0.5), 1};
+  const std::vector<double> arcs[] = {{2, 0, 0, 2, 2, 0, 0, 2, 0},
+                                      {2, 0, 0, 2, 0, 2, 0, 0, 2},
+                                      {r, 0, 1, r, r, 1, 0, r, 1}};
+  for (const std::vector<double>& arc : arcs) {
+    const absl::StatusOr<Curve> curve =
+        BezierCurve::Create({{3, arc}, weights});
+    for (const double tolerance : {1e-6, 1e-12}) {
+      const absl::StatusOr<CurveSurfaceIntersections> found =
+          IntersectCurveSurface(*curve, *sphere, {.tolerance = tolerance});
+      ASSERT_TRUE(found.ok()) << found.status();
+      EXPECT_TRUE(found->curve_parameters.empty());
+      ExpectOneInterval(found->curve_intervals, 0.0, 1.0);
     }
   }
 }
