@@ -377,12 +377,16 @@ class PairSearch {
   // [lo, hi] of its piece (at its point when lo is null).
   void AddCandidate(Candidate candidate, const double* lo, const double* hi);
   absl::Status Compact();
-  void Merge();
-  void Finish();
+  absl::Status Merge();
+  absl::Status Finish();
   void Extend(Anchor& anchor, double direction);
   bool OnOverlap(Anchor& at);
   Anchor Walk(Anchor from, double direction, bool on);
-  bool Inside(const Candidate& run, const std::vector<size_t>& overlaps) const;
+  // Inside returns true when the point of `run` lies inside one of the
+  // overlaps (sorted by their start, reach[i] the farthest end of the
+  // first i + 1).
+  bool Inside(const Candidate& run, const std::vector<size_t>& overlaps,
+              const std::vector<double>& reach) const;
   bool Joined(const Candidate& run, const Candidate& next);
   bool Connected(const Anchor& first, const Anchor& second);
   bool Near(Anchor& at);
@@ -806,13 +810,13 @@ absl::Status PairSearch::Run() {
       }
     }
   }
-  Merge();
+  if (absl::Status status = Merge(); !status.ok()) return status;
   if (candidates_.size() > RunLimit(options_.max_results)) {
     return ExhaustedFieldError("max_results",
                                absl::StrCat("more than ", options_.max_results,
                                             " separate intersections"));
   }
-  Finish();
+  if (absl::Status status = Finish(); !status.ok()) return status;
   return budget_.Check();
 }
 
@@ -824,7 +828,7 @@ absl::Status PairSearch::Compact() {
   if (candidates_.size() < CompactionSize(options_.max_results)) {
     return absl::OkStatus();
   }
-  Merge();
+  if (absl::Status status = Merge(); !status.ok()) return status;
   if (candidates_.size() <= limit) return budget_.Check();
   return ExhaustedFieldError(
       "max_results",
@@ -843,7 +847,7 @@ const double* PairSearch::PointOf(const Anchor& at) {
 // run before it when Joined: one of the newest kMaxActiveRuns runs it
 // starts within, or one of the kRecentRuns that ended last. The runs take
 // the candidates' place (there are never more of them).
-void PairSearch::Merge() {
+absl::Status PairSearch::Merge() {
   std::vector<Candidate>& candidates = candidates_;
   constexpr size_t kMaxActiveRuns = 16;
   constexpr size_t kRecentRuns = 1;
@@ -860,6 +864,7 @@ void PairSearch::Merge() {
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
   };
   for (size_t n = 0; n < candidates.size(); ++n) {
+    if (absl::Status status = budget_.Check(); !status.ok()) return status;
     Candidate& next = candidates[n];
     for (size_t k = 0; k < active.size();) {
       if (candidates[active[k]].to + slack_s_ < next.from ||
@@ -887,6 +892,7 @@ void PairSearch::Merge() {
     active.push_back(runs++);
   }
   candidates.resize(runs);
+  return absl::OkStatus();
 }
 
 // Absorb joins candidate `next` into `run`.
@@ -912,7 +918,7 @@ void Absorb(Candidate& run, const Candidate& next) {
 // parameter and the second's, as points at a curve's seam do) and merges
 // those within max(separation, tolerance) of each other, keeping the
 // nearest point.
-void PairSearch::Finish() {
+absl::Status PairSearch::Finish() {
   const size_t dim = static_cast<size_t>(first_.dimension);
   std::vector<size_t> overlaps;  // indices of the overlap runs
   std::vector<size_t> points;    // and of the point runs
@@ -920,15 +926,29 @@ void PairSearch::Finish() {
   for (size_t k = 0; k < candidates_.size(); ++k) {
     Candidate& run = candidates_[k];
     if (!run.parallel) continue;
+    if (absl::Status status = budget_.Check(); !status.ok()) return status;
     Extend(run.start, -1.0);
     Extend(run.end, 1.0);
     run.from = Global(run.start);
     run.to = Global(run.end);
     overlaps.push_back(k);
   }
+  // The overlaps in the order of their start, and the farthest end of those
+  // up to each (Inside).
+  std::sort(overlaps.begin(), overlaps.end(), [&](size_t a, size_t b) {
+    return candidates_[a].from < candidates_[b].from;
+  });
+  std::vector<double> reach(overlaps.size());
+  for (size_t i = 0; i < overlaps.size(); ++i) {
+    reach[i] = std::max(i > 0 ? reach[i - 1] : -kInfinity,
+                        candidates_[overlaps[i]].to);
+  }
   for (size_t k = 0; k < candidates_.size(); ++k) {
     const Candidate& run = candidates_[k];
-    if (run.parallel || !run.has_point || Inside(run, overlaps)) continue;
+    if (run.parallel || !run.has_point || Inside(run, overlaps, reach)) {
+      continue;
+    }
+    if (absl::Status status = budget_.Check(); !status.ok()) return status;
     std::copy_n(PointOf(run.point), dim, coordinates.begin() + k * dim);
     points.push_back(k);
   }
@@ -967,6 +987,7 @@ void PairSearch::Finish() {
     ++runs;
   }
   candidates_.resize(runs);
+  return absl::OkStatus();
 }
 
 // Extend moves the end `anchor` of an overlap (direction -1: its start, 1:
@@ -1024,13 +1045,21 @@ Anchor PairSearch::Walk(Anchor from, double direction, bool on) {
 // Inside returns true when the point of `run` lies inside one of the
 // overlaps (the first's parameter in its interval, the second's in its box).
 bool PairSearch::Inside(const Candidate& run,
-                        const std::vector<size_t>& overlaps) const {
+                        const std::vector<size_t>& overlaps,
+                        const std::vector<double>& reach) const {
   double x[2];
   SecondGlobal(run.point.second_piece, run.point.x[1], run.point.x[2], x);
   const double s = Global(run.point);
-  for (const size_t k : overlaps) {
-    const Candidate& overlap = candidates_[k];
-    bool inside = s >= overlap.from - slack_s_ && s <= overlap.to + slack_s_;
+  // The overlaps starting before s, latest first, while one of them reaches
+  // it.
+  size_t i = static_cast<size_t>(
+      std::upper_bound(
+          overlaps.begin(), overlaps.end(), s + slack_s_,
+          [&](double value, size_t k) { return value < candidates_[k].from; }) -
+      overlaps.begin());
+  while (i-- > 0 && reach[i] + slack_s_ >= s) {
+    const Candidate& overlap = candidates_[overlaps[i]];
+    bool inside = s <= overlap.to + slack_s_;
     for (int c = 0; c < SecondCount(second_); ++c) {
       inside = inside && x[c] >= overlap.low[c] - slack_second_[c] &&
                x[c] <= overlap.high[c] + slack_second_[c];
