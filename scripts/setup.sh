@@ -23,8 +23,11 @@ packages=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libabsl-dev libhwy-dev libspdlog-dev libcli11-dev nlohmann-json3-dev
   # freeformd's Prometheus metrics (--metrics_listen): prometheus-cpp core
-  # and pull (its HTTP exposer, on civetweb).
-  prometheus-cpp-dev
+  # and pull (its HTTP exposer), on civetweb, whose options and request
+  # hook freeformd sets.
+  prometheus-cpp-dev libcivetweb-dev
+  # freeformd checks its TLS key against its certificate with libcrypto.
+  libssl-dev
   # grpc/health/v1/health.proto for the client's health check.
   grpc-proto
 )
@@ -33,6 +36,11 @@ test_packages=(
   # The Python client example and its test (examples/python, docs/clients.md):
   # stubs come from protoc's grpc_python_plugin (protobuf-compiler-grpc).
   python3-grpcio python3-protobuf
+  # The Python package (clients/python) and its test: numpy arrays, built
+  # by python3-build with setuptools and wheel, installed into a venv, its
+  # type hints checked by mypy.
+  python3-numpy python3-build python3-setuptools python3-wheel python3-venv
+  mypy
   # Certificates for the TLS tests.
   openssl
   # The fuzz preset: clang with libFuzzer, ASan and UBSan, linked by lld

@@ -33,6 +33,34 @@ absl::Status CheckCount(uint64_t count, const ServiceLimits& limits,
                           limits.max_parameters, " (--max_parameters)"));
 }
 
+// ArcLengthWork returns the working memory of an arc-length call on
+// `curve` that builds `tables` length tables at once (ArcLengthWorkValues),
+// or RESOURCE_EXHAUSTED naming "curve" when it is over the memory budget.
+absl::StatusOr<uint64_t> ArcLengthWork(const Curve& curve, size_t tables,
+                                       const ServiceLimits& limits) {
+  const uint64_t bytes =
+      SaturatingProduct(ArcLengthWorkValues(curve, tables), 8);
+  if (bytes <= limits.memory_budget_bytes) return bytes;
+  return ExhaustedFieldError(
+      "curve", absl::StrCat("its arc-length tables would take ", bytes >> 20,
+                            " MiB, over the server's memory budget of ",
+                            limits.memory_budget_bytes >> 20, " MiB"));
+}
+
+// LengthError names the request's fields for the core's errors of an
+// arc-length call: "weights" is the curve's (a length no double parameter
+// reaches within the tolerance), and with `interval` the ends "start" and
+// "end" are the request's interval's.
+absl::Status LengthError(const absl::Status& status,
+                         const google::protobuf::Message& request,
+                         bool interval = false) {
+  const std::optional<std::string> field = FieldPathOf(status);
+  if (interval && (field == "start" || field == "end")) {
+    return PrefixFieldPath(status, "interval");
+  }
+  return QueryError(status, GeometryFieldOf(request), "tolerance");
+}
+
 // The ends of an interval, omitted ends taken from the domain.
 std::pair<double, double> EndsOf(const v1::ParameterInterval& interval,
                                  const ParameterDomain& domain) {
@@ -84,6 +112,20 @@ uint64_t ParameterAndPointValues(const Curve& curve) {
   return 1 + static_cast<uint64_t>(DimensionOf(curve));
 }
 
+// ArcLengthPlan returns the plan of an arc-length query of `curve` whose
+// answer holds `values` doubles and whose work takes `work_bytes` (its
+// length tables, ArcLengthWork) besides the records of its pieces: heavy
+// whatever its size.
+CallPlan ArcLengthPlan(const Curve& curve, uint64_t values, uint64_t work_bytes,
+                       const ServiceLimits& limits) {
+  return {.memory_bytes = AnswerPlan(values,
+                                     work_bytes + DecomposedCurvePieces(curve) *
+                                                      kArcLengthPieceBytes,
+                                     limits)
+                              .memory_bytes,
+          .heavy = true};
+}
+
 absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
                                         const ServiceLimits& limits,
                                         v1::ArcLengthResponse& response) {
@@ -106,17 +148,21 @@ absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
     intervals.push_back(end);
   }
   if (intervals.empty()) intervals = {domain.start, domain.end};
+  // One table per thread of the pool.
+  absl::StatusOr<uint64_t> work =
+      ArcLengthWork(*curve, 1 + DefaultMaxHelpers(), limits);
+  if (!work.ok()) return work.status();
   return UnaryWork{
-      .plan = {.memory_bytes =
-                   AnswerPlan(count, 16 * count, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, count, 16 * count + *work, limits),
       .run = [curve = *std::move(curve), intervals = std::move(intervals),
-              tolerance = *tolerance,
-              &response](const ExecutionContext& execution) {
-        return ArcLengths(curve, intervals, tolerance,
-                          UninitializedArray(*response.mutable_lengths(),
-                                             intervals.size() / 2),
-                          execution);
+              tolerance = *tolerance, &request,
+              &response](const ExecutionContext& execution) -> absl::Status {
+        return LengthError(
+            ArcLengths(curve, intervals, tolerance,
+                       UninitializedArray(*response.mutable_lengths(),
+                                          intervals.size() / 2),
+                       execution),
+            request);
       }};
 }
 
@@ -142,18 +188,20 @@ absl::StatusOr<UnaryWork> PlanParametersAtArcLength(
   }
   const double start =
       request.has_start() ? request.start() : DomainOf(*curve).start;
+  absl::StatusOr<uint64_t> work = ArcLengthWork(*curve, 1, limits);
+  if (!work.ok()) return work.status();
   return UnaryWork{
-      .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, values, *work, limits),
       .run = [curve = *std::move(curve), start,
               lengths = SpanOf(request.lengths()), tolerance = *tolerance,
+              &request,
               &response](const ExecutionContext& execution) -> absl::Status {
         const absl::Span<double> parameters =
             UninitializedArray(*response.mutable_parameters(), lengths.size());
         if (absl::Status status = ParametersAtArcLengths(
                 curve, start, lengths, tolerance, parameters, execution);
             !status.ok()) {
-          return status;
+          return LengthError(status, request);
         }
         return PointsAt(curve, parameters, *response.mutable_points(),
                         execution);
@@ -183,25 +231,35 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
   const std::pair<double, double> ends =
       EndsOf(request.interval(), DomainOf(*curve));
   const double start = ends.first, end = ends.second;
+  absl::StatusOr<uint64_t> work = ArcLengthWork(*curve, 1, limits);
+  if (!work.ok()) return work.status();
   return UnaryWork{
-      .plan = {.memory_bytes = AnswerPlan(values, 0, limits).memory_bytes,
-               .heavy = true},
+      .plan = ArcLengthPlan(*curve, values, *work, limits),
       .run = [curve = *std::move(curve), start, end, count,
-              tolerance = *tolerance,
+              tolerance = *tolerance, &request,
               &response](const ExecutionContext& execution) -> absl::Status {
         const absl::Span<double> parameters = UninitializedArray(
             *response.mutable_parameters(), static_cast<size_t>(count));
-        if (absl::Status status = PrefixFieldPath(
-                EqualArcLengthParameters(curve, start, end,
-                                         static_cast<size_t>(count), tolerance,
-                                         parameters, execution),
-                "interval");
+        if (absl::Status status =
+                LengthError(EqualArcLengthParameters(
+                                curve, start, end, static_cast<size_t>(count),
+                                tolerance, parameters, execution),
+                            request, true);
             !status.ok()) {
           return status;
         }
         return PointsAt(curve, parameters, *response.mutable_points(),
                         execution);
       }};
+}
+
+// ScaledCopyBytes returns the memory of the copies of the curve and of the
+// parameters rescaled by powers of two that curvature and frames evaluate
+// (core/differential_geometry.h): at most the curve's Bezier pieces'
+// values, and one value per parameter.
+uint64_t ScaledCopyBytes(const Curve& curve,
+                         const std::vector<double>& parameters) {
+  return SaturatingProduct(DecomposedCurveValues(curve) + parameters.size(), 8);
 }
 
 // Points of `dimension` coordinates in a response, `count` of them, or none
@@ -230,7 +288,8 @@ absl::StatusOr<UnaryWork> PlanCurvature(
     return status;
   }
   return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values, limits),
+      .plan = AnswerPlan(
+          values, 8 * values + ScaledCopyBytes(*curve, *parameters), limits),
       .run = [curve = *std::move(curve), parameters = *std::move(parameters),
               dimension, sizes,
               &response](const ExecutionContext& execution) -> absl::Status {
@@ -287,7 +346,8 @@ absl::StatusOr<UnaryWork> PlanRotationMinimizingFrames(
     return status;
   }
   return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values, limits),
+      .plan = AnswerPlan(
+          values, 8 * values + ScaledCopyBytes(*curve, *parameters), limits),
       .run = [curve = *std::move(curve), parameters = *std::move(parameters),
               reference = SpanOf(request.initial_reference()), dimension, sizes,
               request = &request.parameters(),

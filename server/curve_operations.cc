@@ -124,7 +124,10 @@ absl::StatusOr<UnaryWork> PlanBezierReduce(
   }
   const BezierCurveView view = bezier.view();
   const uint64_t values = view.control_points.coordinates.size() + 1;
-  return UnaryWork{.plan = AnswerPlan(values, 64 * values, limits),
+  // The work: the degree-elevation matrix, its binomials in long double,
+  // and the least-squares system, each about (n + 1)^2 values.
+  const uint64_t points = view.control_points.size();
+  return UnaryWork{.plan = AnswerPlan(values, 64 * points * points, limits),
                    .run = [bezier, by = static_cast<int>(request.by()),
                            &response](const ExecutionContext&) -> absl::Status {
                      absl::StatusOr<ReducedBezierCurve> reduced =

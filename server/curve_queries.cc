@@ -23,11 +23,13 @@ absl::StatusOr<UnaryWork> PlanClosestPoint(
     v1::ClosestPointResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
-  absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+  absl::StatusOr<uint64_t> work = PieceWorkBytes(
+      DecomposedCurveValues(*curve), DecomposedCurvePieces(*curve),
+      kPieceRecordBytes, limits, "curve");
   if (!work.ok()) return work.status();
   return PlanClosestPoints(
-      DimensionOf(*curve), 1, *work, request.queries(), request.options(),
+      GeometryFieldOf(request), DimensionOf(*curve), 1, *work,
+      request.queries(), request.options(),
       [curve = *std::move(curve)](const PointsView& queries,
                                   const ClosestPointOptions& options,
                                   const ExecutionContext& execution) {
@@ -61,11 +63,13 @@ absl::StatusOr<UnaryWork> PlanIntersect(
   absl::StatusOr<Curve> second =
       PrepareCurve(request.second(), limits, "second");
   if (!second.ok()) return second.status();
-  absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(DecomposedCurveValues(*first), limits, "first");
+  absl::StatusOr<uint64_t> work = PieceWorkBytes(
+      DecomposedCurveValues(*first), DecomposedCurvePieces(*first),
+      kPartRecordBytes, limits, "first");
   if (!work.ok()) return work.status();
-  absl::StatusOr<uint64_t> second_work =
-      PieceWorkBytes(DecomposedCurveValues(*second), limits, "second");
+  absl::StatusOr<uint64_t> second_work = PieceWorkBytes(
+      DecomposedCurveValues(*second), DecomposedCurvePieces(*second),
+      kPartRecordBytes, limits, "second");
   if (!second_work.ok()) return second_work.status();
   const int dimension = DimensionOf(*first);
   if (DimensionOf(*second) != dimension) {
@@ -109,7 +113,7 @@ absl::StatusOr<UnaryWork> PlanBoundingBox(
   absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+      CheckWorkBytes(CurveBoundingBoxBytes(*curve), limits, "curve");
   if (!work.ok()) return work.status();
   return PlanBoundingBox(
       DimensionOf(*curve), *work, *tolerance,

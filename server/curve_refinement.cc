@@ -122,6 +122,14 @@ absl::StatusOr<UnaryWork> PlanInsert(const v1::InsertKnotsRequest& request,
       *curve);
 }
 
+// Bytes of one Bezier segment beside its doubles: the core's record of it
+// and its array's block, and in the answer its Curve, BezierCurve and
+// Points messages with their blocks and its pointer in the repeated field
+// (grown by doubling).
+constexpr uint64_t kSegmentRecordBytes =
+    sizeof(BezierCurveData) + sizeof(v1::Curve) + sizeof(v1::BezierCurve) +
+    sizeof(v1::Points) + 5 * 32 + 2 * sizeof(void*);
+
 absl::StatusOr<UnaryWork> PlanDecompose(
     const v1::DecomposeCurveRequest& request, const ServiceLimits& limits,
     v1::DecomposeCurveResponse& response) {
@@ -132,8 +140,13 @@ absl::StatusOr<UnaryWork> PlanDecompose(
       !status.ok()) {
     return status;
   }
+  // Cutting holds the knot-refined control points beside the pieces, which
+  // then live beside the answer; every segment has its records.
   return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values, limits),
+      .plan = AnswerPlan(
+          values,
+          8 * values + DecomposedCurvePieces(*curve) * kSegmentRecordBytes,
+          limits),
       .run = [curve = *std::move(curve),
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<BezierDecomposition> decomposition =

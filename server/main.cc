@@ -49,10 +49,21 @@ ABSL_FLAG(std::string, log_level, "info",
 ABSL_FLAG(std::string, log_format, "text", "text or json");
 ABSL_FLAG(absl::Duration, grace_period, absl::Seconds(10),
           "Time in-flight RPCs get to finish on SIGTERM/SIGINT");
-ABSL_FLAG(std::string, tls_cert, "", "PEM certificate chain (enables TLS)");
-ABSL_FLAG(std::string, tls_key, "", "PEM private key");
+ABSL_FLAG(std::string, tls_cert, "",
+          "PEM certificate chain (enables TLS; needs --tls_key)");
+ABSL_FLAG(std::string, tls_key, "",
+          "PEM private key of --tls_cert's certificate (unencrypted)");
 ABSL_FLAG(std::string, tls_client_ca, "",
-          "PEM CA that must sign client certificates (mutual TLS)");
+          "PEM CA that must sign client certificates (mutual TLS; needs "
+          "--tls_cert and --tls_key)");
+ABSL_FLAG(std::vector<std::string>, tls_allowed_clients, {},
+          "Comma-separated client identities allowed with --tls_client_ca: "
+          "a DNS name or URI (e.g. spiffe://...) of the client certificate's "
+          "subject alternative names, or its common name; other clients get "
+          "PERMISSION_DENIED. Empty allows every certificate the CA signed");
+ABSL_FLAG(bool, reflection, true,
+          "Serve gRPC server reflection (lists the services and their "
+          "protos to any client)");
 ABSL_FLAG(int64_t, max_message_bytes, 64 << 20, "Largest gRPC message");
 ABSL_FLAG(uint64_t, max_control_points, 1'000'000,
           "Most control or data points per request");
@@ -70,6 +81,9 @@ ABSL_FLAG(uint64_t, max_simplify_moves, uint64_t{1} << 35,
           "Control-point values one knot simplification may move (interior "
           "knots times the net's values; its array moves grow with the "
           "square of the size)");
+ABSL_FLAG(absl::Duration, max_call_time, absl::Seconds(60),
+          "Longest time a call may run: its deadline when the client sets "
+          "none or a later one (0 = no server-side limit)");
 ABSL_FLAG(uint64_t, memory_budget, 768ull << 20,
           "Bytes the process may use: calls together may reserve 3/4 of it "
           "for their answers and work (a call that does not fit gets "
@@ -104,7 +118,9 @@ freeform::server::ServerOptions OptionsFromFlags() {
   options.metrics_listen_address = absl::GetFlag(FLAGS_metrics_listen);
   options.tls = {.cert_file = absl::GetFlag(FLAGS_tls_cert),
                  .key_file = absl::GetFlag(FLAGS_tls_key),
-                 .client_ca_file = absl::GetFlag(FLAGS_tls_client_ca)};
+                 .client_ca_file = absl::GetFlag(FLAGS_tls_client_ca),
+                 .allowed_clients = absl::GetFlag(FLAGS_tls_allowed_clients)};
+  options.reflection = absl::GetFlag(FLAGS_reflection);
   freeform::server::ServiceLimits& limits = options.limits;
   limits.max_message_bytes = absl::GetFlag(FLAGS_max_message_bytes);
   limits.max_control_points = absl::GetFlag(FLAGS_max_control_points);
@@ -117,6 +133,7 @@ freeform::server::ServerOptions OptionsFromFlags() {
       absl::GetFlag(FLAGS_max_closest_point_pieces);
   limits.max_simplify_moves = absl::GetFlag(FLAGS_max_simplify_moves);
   limits.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget);
+  limits.max_call_time = absl::GetFlag(FLAGS_max_call_time);
   return options;
 }
 

@@ -1,5 +1,7 @@
 #include "metrics.h"
 
+#include <CivetServer.h>
+#include <civetweb.h>
 #include <google/protobuf/descriptor.h>
 #include <prometheus/client_metric.h>
 #include <prometheus/collectable.h>
@@ -13,6 +15,7 @@
 
 #include <array>
 #include <atomic>
+#include <cstring>
 #include <exception>
 #include <utility>
 
@@ -62,6 +65,41 @@ prometheus::MetricFamily GaugeFamily(std::string name, std::string help,
           .help = std::move(help),
           .type = prometheus::MetricType::Gauge,
           .metric = {std::move(metric)}};
+}
+
+constexpr char kMetricsPath[] = "/metrics";
+
+// The endpoint's civetweb: prometheus-cpp's Exposer serves on it. civetweb
+// gives each connection a worker thread of its own from the moment it is
+// accepted until its request has arrived and been answered, so an idle or
+// slow connection holds a worker until request_timeout_ms; with the
+// Exposer's 2 workers and civetweb's 30 s, two idle connections stopped
+// every scrape for 30 s. Here a request (a scraper sends its few hundred
+// bytes at once) must arrive within 1 s, from the accept, and 16 workers
+// serve: up to 15 idle connections leave a scrape unaffected, and more
+// delay it by 1 s per 16 of them ahead of it in civetweb's queue. No
+// keep-alive: each scrape is its own connection.
+std::vector<std::string> EndpointCivetwebOptions(const std::string& address) {
+  return {"listening_ports",    address, "num_threads",       "16",
+          "request_timeout_ms", "1000",  "enable_keep_alive", "no"};
+}
+
+// civetweb matches a handler's URI as a case-insensitive prefix of the
+// request's path after merging repeated slashes: /metricsX, /METRICS,
+// //metrics and /metrics/x would all reach prometheus-cpp's /metrics
+// handler. civetweb calls this first for every request: it answers 404 to
+// any path (as sent, percent-decoded, without the query) but exactly
+// /metrics, and leaves that one to the handler (returns 0).
+int AnswerOnlyTheMetricsPath(mg_connection* connection) {
+  const mg_request_info* request = mg_get_request_info(connection);
+  if (request != nullptr && request->local_uri_raw != nullptr &&
+      std::strcmp(request->local_uri_raw, kMetricsPath) == 0) {
+    return 0;
+  }
+  constexpr int kNotFound = 404;
+  mg_send_http_error(connection, kNotFound, "Not Found: only %s is served\n",
+                     kMetricsPath);
+  return kNotFound;
 }
 
 }  // namespace
@@ -253,8 +291,12 @@ absl::StatusOr<std::unique_ptr<MetricsEndpoint>> MetricsEndpoint::Start(
     const std::string& address, const ServerMetrics& metrics) {
   std::unique_ptr<prometheus::Exposer> exposer;
   try {
-    // civetweb throws when it cannot bind the address.
-    exposer = std::make_unique<prometheus::Exposer>(address);
+    // civetweb throws when it cannot bind the address. It copies the
+    // callbacks.
+    CivetCallbacks callbacks;
+    callbacks.begin_request = AnswerOnlyTheMetricsPath;
+    exposer = std::make_unique<prometheus::Exposer>(
+        EndpointCivetwebOptions(address), &callbacks);
   } catch (const std::exception& error) {
     return absl::UnavailableError(
         absl::StrCat("cannot serve metrics on --metrics_listen=", address,
@@ -269,7 +311,7 @@ absl::StatusOr<std::unique_ptr<MetricsEndpoint>> MetricsEndpoint::Start(
   }
   for (const std::weak_ptr<prometheus::Collectable>& collectable :
        metrics.collectables()) {
-    exposer->RegisterCollectable(collectable);
+    exposer->RegisterCollectable(collectable, kMetricsPath);
   }
   return std::unique_ptr<MetricsEndpoint>(
       new MetricsEndpoint(std::move(exposer), ports.front()));

@@ -11,7 +11,9 @@
 // few atomic adds and the histogram's own lock.
 //
 // MetricsEndpoint serves them as Prometheus text at http://ADDRESS/metrics
-// until it is destroyed.
+// until it is destroyed: that path exactly (any other gets 404), with
+// enough workers and a short request timeout that idle or slow connections
+// cannot hold back a scrape for long (metrics.cc).
 #ifndef FREEFORM_SERVER_METRICS_H_
 #define FREEFORM_SERVER_METRICS_H_
 

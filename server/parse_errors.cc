@@ -26,8 +26,9 @@ std::string ShortMethodName(const std::string& method) {
 
 class ParseErrorInterceptor : public grpc::experimental::Interceptor {
  public:
-  explicit ParseErrorInterceptor(grpc::experimental::ServerRpcInfo* info)
-      : info_(info) {
+  // `served` tells whether the server serves the call's service.
+  ParseErrorInterceptor(grpc::experimental::ServerRpcInfo* info, bool served)
+      : info_(info), served_(served) {
     HandOffToGrpc(this);  // to the first Intercept
   }
 
@@ -39,7 +40,9 @@ class ParseErrorInterceptor : public grpc::experimental::Interceptor {
     if (methods->QueryInterceptionHookPoint(
             grpc::experimental::InterceptionHookPoints::PRE_SEND_STATUS)) {
       const grpc::Status status = methods->GetSendStatus();
-      if (IsParseFailure(status, info_->method())) Rewrite(methods);
+      if (served_ && IsParseFailure(status, info_->method())) {
+        Rewrite(methods);
+      }
     }
     HandOffToGrpc(this);  // to the next Intercept
     methods->Proceed();
@@ -60,15 +63,27 @@ class ParseErrorInterceptor : public grpc::experimental::Interceptor {
   }
 
   grpc::experimental::ServerRpcInfo* const info_;
+  const bool served_;
 };
 
 }  // namespace
+
+ParseErrorInterceptorFactory::ParseErrorInterceptorFactory(
+    const std::vector<std::string>& services)
+    : services_(services.begin(), services.end()) {}
 
 grpc::experimental::Interceptor*
 ParseErrorInterceptorFactory::CreateServerInterceptor(
     grpc::experimental::ServerRpcInfo* info) {
   TakeBackFromGrpc(this);  // FreeformServer::Start handed the server over
-  return new ParseErrorInterceptor(info);
+  return new ParseErrorInterceptor(
+      info, services_.contains(ServiceOf(info->method())));
+}
+
+std::string ServiceOf(const std::string& method) {
+  const size_t slash = method.rfind('/');
+  if (method.size() < 2 || method.front() != '/' || slash == 0) return "";
+  return method.substr(1, slash - 1);
 }
 
 std::string RequestTypeOf(const std::string& method) {

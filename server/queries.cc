@@ -74,7 +74,23 @@ void WriteClosestPoints(const ClosestPoints& minima,
 absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values,
                                         const ServiceLimits& limits,
                                         absl::string_view field) {
-  const uint64_t bytes = SaturatingProduct(piece_values, 3 * 8);
+  return CheckWorkBytes(SaturatingProduct(piece_values, 3 * 8), limits, field);
+}
+
+absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values, uint64_t pieces,
+                                        uint64_t records,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field) {
+  const uint64_t values = SaturatingProduct(piece_values, 3 * 8);
+  const uint64_t bookkeeping = SaturatingProduct(pieces, records);
+  return CheckWorkBytes(
+      values > UINT64_MAX - bookkeeping ? UINT64_MAX : values + bookkeeping,
+      limits, field);
+}
+
+absl::StatusOr<uint64_t> CheckWorkBytes(uint64_t bytes,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field) {
   if (bytes <= limits.memory_budget_bytes) return bytes;
   return ExhaustedFieldError(
       field, absl::StrCat("its Bezier pieces would take ", bytes >> 20,
@@ -156,11 +172,21 @@ absl::Status IntersectionError(const absl::Status& status) {
   return status;
 }
 
+absl::Status QueryError(const absl::Status& status, absl::string_view geometry,
+                        absl::string_view tolerance) {
+  const std::optional<std::string> field = FieldPathOf(status);
+  if (field == "weights") return PrefixFieldPath(status, geometry);
+  if (field == "tolerance") {
+    return InvalidFieldError(tolerance, FieldRuleOf(status));
+  }
+  return status;
+}
+
 absl::StatusOr<UnaryWork> PlanClosestPoints(
-    int dimension, int parameter_count, uint64_t work_bytes,
-    const v1::Points& queries, const v1::ClosestPointOptions& options,
-    ClosestPointSearch search, const ServiceLimits& limits,
-    v1::ClosestPointResponse& response) {
+    std::string geometry, int dimension, int parameter_count,
+    uint64_t work_bytes, const v1::Points& queries,
+    const v1::ClosestPointOptions& options, ClosestPointSearch search,
+    const ServiceLimits& limits, v1::ClosestPointResponse& response) {
   absl::StatusOr<PointsView> points = PreparePoints(queries, limits, "queries");
   if (!points.ok()) return points.status();
   if (points->dimension != dimension) {
@@ -181,17 +207,23 @@ absl::StatusOr<UnaryWork> PlanClosestPoints(
       !status.ok()) {
     return status;
   }
+  // The search works on a copy of the geometry rescaled by powers of two
+  // (a third of the pieces' share) and of the queries.
+  const uint64_t copies =
+      work_bytes / 3 + 8 * uint64_t{points->coordinates.size()};
   return UnaryWork{
-      .plan =
-          {.memory_bytes =
-               AnswerPlan(values, 8 * values + work_bytes, limits).memory_bytes,
-           .heavy = true},
+      .plan = {.memory_bytes =
+                   AnswerPlan(values, 8 * values + work_bytes + copies, limits)
+                       .memory_bytes,
+               .heavy = true},
       .run = [points = *points, options = *core_options,
-              search = std::move(search),
+              search = std::move(search), geometry = std::move(geometry),
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<ClosestPoints> minima =
             search(points, options, execution);
-        if (!minima.ok()) return minima.status();
+        if (!minima.ok()) {
+          return QueryError(minima.status(), geometry, "options.tolerance");
+        }
         WriteClosestPoints(*minima, response);
         return absl::OkStatus();
       }};

@@ -6,6 +6,7 @@
 #define FREEFORM_SERVER_QUERIES_H_
 
 #include <cstdint>
+#include <string>
 
 #include "absl/functional/any_invocable.h"
 #include "absl/status/statusor.h"
@@ -28,10 +29,50 @@ inline constexpr uint64_t kDefaultMaxResults = 1 << 16;
 
 // PieceWorkBytes returns the working memory of a query that cuts geometry
 // into Bezier pieces of `piece_values` doubles (DecomposedCurveValues,
-// SurfacePieceValues; the queries keep them in homogeneous form and a
-// subdivided copy), or RESOURCE_EXHAUSTED naming `field` when that is over
-// the server's memory budget.
+// SurfacePieceValues), three times their values (cutting holds the
+// knot-refined control points beside the pieces; the queries then keep them
+// in homogeneous form and a copy, projected or subdivided), or
+// RESOURCE_EXHAUSTED naming `field` when that is over the server's memory
+// budget.
 absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field);
+
+// Bytes of records per piece besides its values: its data and lifted net
+// with their blocks, and the query's box, ball and flags of it
+// (closest points, sections).
+inline constexpr uint64_t kPieceRecordBytes = 256;
+// The same for the intersections, which also hold every piece of their
+// second input as a part (a shared block with its projected points and
+// box) while the first input's pieces are searched against them.
+inline constexpr uint64_t kPartRecordBytes = 512;
+
+// Bytes per curve piece of the arc-length queries: the breakpoints and the
+// cuts between them, and the length table's ends and sums, grown by
+// doubling, for four kept intervals per piece. A smooth piece's quadrature
+// halves agree to rounding within a few halvings (a piece whose speed
+// vanishes somewhere measures the same); the core's own cap is
+// kMaxArcLengthIntervals per piece.
+inline constexpr uint64_t kArcLengthPieceBytes = 256;
+
+// Bytes of a curve-surface intersection's search besides the pieces: its
+// hits (48 bytes each, at most one per leaf pair, and the leaves are at
+// most half of the 2^20 pairs it examines, queries.cc) in a vector grown by
+// doubling, whose old and new arrays both exist while it grows. A segment
+// lying in a flat patch at tolerance 1e-6 reaches 38 MB.
+inline constexpr uint64_t kCurveSurfaceSearchBytes = 3 * 48 * (1 << 19);
+
+// PieceWorkBytes with `pieces` pieces (DecomposedCurvePieces,
+// SurfacePieceCount) of `records` bytes of records each besides.
+absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values, uint64_t pieces,
+                                        uint64_t records,
+                                        const ServiceLimits& limits,
+                                        absl::string_view field);
+
+// CheckWorkBytes returns `bytes`, a query's working memory, or
+// RESOURCE_EXHAUSTED naming `field` when that is over the server's memory
+// budget.
+absl::StatusOr<uint64_t> CheckWorkBytes(uint64_t bytes,
                                         const ServiceLimits& limits,
                                         absl::string_view field);
 
@@ -69,6 +110,14 @@ absl::StatusOr<IntersectionOptions> ToCore(
 // options.tolerance. Other errors pass unchanged.
 absl::Status IntersectionError(const absl::Status& status);
 
+// QueryError maps the core's fields of a query no double parameter answers
+// (core/arc_length.h, core/closest_point.h) to the request's: "weights" to
+// the geometry's weights (`geometry` is its path, "curve.bspline", so
+// "curve.bspline.weights") and "tolerance" to `tolerance` ("tolerance" or
+// "options.tolerance"). Other errors pass unchanged.
+absl::Status QueryError(const absl::Status& status, absl::string_view geometry,
+                        absl::string_view tolerance);
+
 // A closest-point search of a prepared geometry: (queries, options,
 // context) -> minima.
 using ClosestPointSearch = absl::AnyInvocable<absl::StatusOr<ClosestPoints>(
@@ -76,15 +125,17 @@ using ClosestPointSearch = absl::AnyInvocable<absl::StatusOr<ClosestPoints>(
                                                   const>;
 
 // PlanClosestPoints plans a batch of closest-point queries of a geometry
-// of `dimension` with `parameter_count` parameters per point, whose pieces
-// take `work_bytes` (PieceWorkBytes): the queries
-// ("queries", within the parameter limit) and options are checked and the
-// answer's size bounded before any work.
+// at the request path `geometry` ("curve.bspline") of `dimension` with
+// `parameter_count` parameters per point, whose pieces take `work_bytes`
+// (PieceWorkBytes; the search adds a rescaled copy of the geometry and of
+// the queries): the queries ("queries", within the parameter limit) and
+// options are checked and the answer's size bounded before any work. The
+// search's errors name the request's fields (QueryError).
 absl::StatusOr<UnaryWork> PlanClosestPoints(
-    int dimension, int parameter_count, uint64_t work_bytes,
-    const v1::Points& queries, const v1::ClosestPointOptions& options,
-    ClosestPointSearch search, const ServiceLimits& limits,
-    v1::ClosestPointResponse& response);
+    std::string geometry, int dimension, int parameter_count,
+    uint64_t work_bytes, const v1::Points& queries,
+    const v1::ClosestPointOptions& options, ClosestPointSearch search,
+    const ServiceLimits& limits, v1::ClosestPointResponse& response);
 
 // A bounding-box computation of a prepared geometry at a tolerance.
 using BoxComputation = absl::AnyInvocable<absl::StatusOr<BoundingBox>(

@@ -108,7 +108,8 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
  private:
   void PlanAndRun(bool on_pool) {
     if (record_.token().IsCancelled()) return Answer(record_.token().status());
-    absl::StatusOr<UnaryWork> work = std::move(planner_)();
+    absl::StatusOr<UnaryWork> work =
+        record_.Contain([this] { return std::move(planner_)(); });
     if (!work.ok()) return Answer(work.status());
     if (absl::Status status = record_.Reserve(work->plan); !status.ok()) {
       return Answer(status);
@@ -121,7 +122,10 @@ class UnaryCall final : public grpc::ServerUnaryReactor {
     Run();
   }
 
-  void Run() { Answer(std::move(run_)(record_.execution())); }
+  void Run() {
+    Answer(record_.Contain(
+        [this] { return std::move(run_)(record_.execution()); }));
+  }
 
   void Answer(absl::Status status) {
     if (status.ok()) status = record_.CheckAnswer(*response_);
@@ -208,7 +212,7 @@ CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
       observer_(frame->observer_ == nullptr
                     ? nullptr
                     : &frame->observer_->ForMethod(method)) {
-  WatchCall(*context, token_);
+  WatchCall(*context, frame->limits().max_call_time, token_);
   frame_->calls_in_flight_.fetch_add(1, std::memory_order_acq_rel);
   frame_->calls_started_.fetch_add(1, std::memory_order_acq_rel);
 }
@@ -230,9 +234,11 @@ ExecutionContext CallRecord::chunk_execution() const {
 }
 
 absl::Status CallRecord::Reserve(const CallPlan& plan) {
-  // The request stays in memory for the whole call too.
+  // The request stays in memory for the whole call too, as parsed: its
+  // arrays' capacity (parsing grows them by doubling) and its submessages.
   absl::StatusOr<MemoryBudget::Reservation> reservation =
-      frame_->budget().Reserve(plan.memory_bytes + request_bytes_, method_);
+      frame_->budget().Reserve(plan.memory_bytes + request_->SpaceUsedLong(),
+                               method_);
   if (!reservation.ok()) {
     Refuse(Refusal::kMemoryBudget);
     return reservation.status();
@@ -319,11 +325,36 @@ grpc::ServerUnaryReactor* RpcFrame::Unary(
   return call;
 }
 
-void WatchCall(grpc::CallbackServerContext& context, CancellationToken& token) {
-  if (auto deadline = SteadyDeadline(context); deadline.has_value()) {
-    token.SetDeadline(*deadline);
+void WatchCall(grpc::CallbackServerContext& context,
+               absl::Duration max_call_time, CancellationToken& token) {
+  const std::optional<CancellationToken::Clock::time_point> client =
+      SteadyDeadline(context);
+  if (max_call_time > absl::ZeroDuration()) {
+    const auto server = CancellationToken::Clock::now() +
+                        absl::ToChronoNanoseconds(max_call_time);
+    if (!client.has_value() || server < *client) {
+      token.SetDeadline(
+          server, absl::StrCat("the call ran for the server's longest call "
+                               "time (--max_call_time=",
+                               absl::FormatDuration(max_call_time),
+                               ") before its work finished; split the "
+                               "request, or ask for a higher limit"));
+    } else {
+      token.SetDeadline(*client);
+    }
+  } else if (client.has_value()) {
+    token.SetDeadline(*client);
   }
   token.SetPoll([&context] { return context.IsCancelled(); });
+}
+
+absl::Status HandlerThrew(absl::string_view method, absl::string_view what) {
+  spdlog::error("rpc method={} threw: {} (a server bug: the call answers "
+                "INTERNAL)",
+                std::string(method), std::string(what));
+  return absl::InternalError(
+      "the server failed on this request (a server bug: please report the "
+      "request)");
 }
 
 absl::Status DrainingError() {

@@ -32,6 +32,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -150,6 +151,13 @@ class CallRecord {
   // drains.
   absl::Status CheckNotDraining();
   void Cancel() { token_.Cancel(); }
+  // Contain runs `step` (a planner, a run, a prepare or a fill) and returns
+  // its result, or INTERNAL when it throws: an exception never leaves the
+  // frame, so the call still answers, leaves the in-flight count and
+  // releases its reservation, and the server stays up. The access log
+  // names the method and the exception (HandlerThrew).
+  template <typename Step>
+  auto Contain(Step&& step) const -> decltype(std::forward<Step>(step)());
   // Done reports the call's final status to the observer and writes the
   // access-log line. The reservation is held until the record is
   // destroyed, after the call's messages (declare the record first in a
@@ -242,8 +250,10 @@ inline constexpr size_t kInlinePlanningBytes = 64 * 1024;
 // WatchCall makes `token` stop at the call's deadline and when the client
 // cancels, as every call's own token does: for a planner that does real
 // work before the call's token is at hand (PlanMesh with a normal-angle
-// limit evaluates the surfaces).
-void WatchCall(grpc::CallbackServerContext& context, CancellationToken& token);
+// limit evaluates the surfaces). The deadline is the client's, or
+// `max_call_time` from now when that comes first (ServiceLimits).
+void WatchCall(grpc::CallbackServerContext& context,
+               absl::Duration max_call_time, CancellationToken& token);
 
 // QueueFullError is the answer to a call whose work the pool's full queue
 // refused.
@@ -276,6 +286,22 @@ inline constexpr bool kCheckAnswers = true;
 // AnswerStatus converts a call's final status for the wire, with field-path
 // details (errors.h).
 grpc::Status AnswerStatus(const absl::Status& status);
+
+// HandlerThrew logs that a step of `method` threw `what` and returns the
+// INTERNAL answer of the call.
+absl::Status HandlerThrew(absl::string_view method, absl::string_view what);
+
+template <typename Step>
+auto CallRecord::Contain(Step&& step) const
+    -> decltype(std::forward<Step>(step)()) {
+  try {
+    return std::forward<Step>(step)();
+  } catch (const std::exception& exception) {
+    return HandlerThrew(method_, exception.what());
+  } catch (...) {
+    return HandlerThrew(method_, "an exception of unknown type");
+  }
+}
 
 template <typename Task>
 bool RpcFrame::Schedule(Task task) {
@@ -351,7 +377,8 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
   };
 
   void Plan() {
-    absl::StatusOr<StreamWork<Response>> work = std::move(planner_)();
+    absl::StatusOr<StreamWork<Response>> work =
+        record_.Contain([this] { return std::move(planner_)(); });
     if (!work.ok()) return Fail(work.status());
     if (absl::Status status = record_.Reserve(work->plan); !status.ok()) {
       return Fail(status);
@@ -359,7 +386,8 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
     work_ = *std::move(work);
     if (!work_.prepare) return Begin();
     if (!record_.Schedule([this] {
-          absl::StatusOr<size_t> chunks = work_.prepare(record_.execution());
+          absl::StatusOr<size_t> chunks = record_.Contain(
+              [this] { return work_.prepare(record_.execution()); });
           if (!chunks.ok()) return Fail(chunks.status());
           {
             std::lock_guard<std::mutex> lock(mutex_);
@@ -448,8 +476,9 @@ class StreamCall final : public grpc::ServerWriteReactor<Response> {
   void Compute(size_t slot) {
     Response& message = slots_[slot].message;
     message.Clear();
-    absl::Status status =
-        work_.fill(slots_[slot].chunk, message, record_.chunk_execution());
+    absl::Status status = record_.Contain([&] {
+      return work_.fill(slots_[slot].chunk, message, record_.chunk_execution());
+    });
     if (status.ok()) status = record_.CheckAnswer(message);
     Computed(slot, status);
   }

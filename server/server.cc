@@ -2,16 +2,17 @@
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <grpcpp/impl/server_builder_option.h>
 #include <grpcpp/security/server_credentials.h>
 #include <grpcpp/server_builder.h>
 
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "curve_service.h"
-#include "freeform/client/file.h"
 #include "grpc_handoff.h"
 #include "metrics.h"
 #include "parse_errors.h"
@@ -23,28 +24,40 @@ namespace {
 // Memory released by calls before an idle server hands it back.
 constexpr uint64_t kTrimAfterReleasedBytes = 64ull << 20;
 
-absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> Credentials(
-    const TlsOptions& tls) {
-  if (tls.cert_file.empty() && tls.key_file.empty()) {
-    return grpc::InsecureServerCredentials();
+// ReflectionOption gives one server exactly one server reflection plugin,
+// or none. Linking gRPC's reflection library registers its plugin for every
+// server the process builds (a static initializer calls
+// InitProtoReflectionServerBuilderPlugin), with no switch to leave it out:
+// the option removes what the builder got from there and adds its own.
+class ReflectionOption final : public grpc::ServerBuilderOption {
+ public:
+  explicit ReflectionOption(bool enabled) : enabled_(enabled) {}
+
+  void UpdateArguments(grpc::ChannelArguments* /*arguments*/) override {}
+  void UpdatePlugins(std::vector<std::unique_ptr<grpc::ServerBuilderPlugin>>*
+                         plugins) override {
+    auto reflection =
+        std::make_unique<grpc::reflection::ProtoServerReflectionPlugin>();
+    const std::string name = reflection->name();
+    std::erase_if(*plugins,
+                  [&](const auto& plugin) { return plugin->name() == name; });
+    if (enabled_) plugins->push_back(std::move(reflection));
   }
-  if (tls.cert_file.empty() || tls.key_file.empty()) {
-    return absl::InvalidArgumentError("TLS needs both a cert and a key file");
+
+ private:
+  const bool enabled_;
+};
+
+// ServedServices returns the full names of the services of the server
+// `options` describe.
+std::vector<std::string> ServedServices(const ServerOptions& options) {
+  std::vector<std::string> services = {v1::CurveService::service_full_name(),
+                                       v1::SurfaceService::service_full_name(),
+                                       "grpc.health.v1.Health"};
+  if (options.reflection) {
+    services.push_back("grpc.reflection.v1alpha.ServerReflection");
   }
-  absl::StatusOr<std::string> cert = ReadFileToString(tls.cert_file);
-  if (!cert.ok()) return cert.status();
-  absl::StatusOr<std::string> key = ReadFileToString(tls.key_file);
-  if (!key.ok()) return key.status();
-  grpc::SslServerCredentialsOptions options;
-  options.pem_key_cert_pairs.push_back({*key, *cert});
-  if (!tls.client_ca_file.empty()) {
-    absl::StatusOr<std::string> ca = ReadFileToString(tls.client_ca_file);
-    if (!ca.ok()) return ca.status();
-    options.pem_root_certs = *ca;
-    options.client_certificate_request =
-        GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
-  }
-  return grpc::SslServerCredentials(options);
+  return services;
 }
 
 // MakeMetrics returns the metrics of `server`, which read its frame and
@@ -65,7 +78,7 @@ std::unique_ptr<ServerMetrics> MakeMetrics(const FreeformServer& server,
 absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
     const ServerOptions& options) {
   absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> credentials =
-      Credentials(options.tls);
+      ListenerCredentials(options.tls);
   if (!credentials.ok()) return credentials.status();
 
   std::unique_ptr<FreeformServer> server(new FreeformServer());
@@ -90,8 +103,8 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
       std::make_unique<SurfaceServiceImpl>(server->frame_.get());
 
   grpc::EnableDefaultHealthCheckService(true);
-  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
+  builder.SetOption(std::make_unique<ReflectionOption>(options.reflection));
   const int max_message = static_cast<int>(options.limits.max_message_bytes);
   server->max_message_bytes_ = max_message;
   builder.SetMaxReceiveMessageSize(max_message);
@@ -101,7 +114,8 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   std::vector<
       std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>>
       interceptors;
-  interceptors.push_back(std::make_unique<ParseErrorInterceptorFactory>());
+  interceptors.push_back(
+      std::make_unique<ParseErrorInterceptorFactory>(ServedServices(options)));
   // Every call starts with the factory making its interceptor: from then on
   // the call's thread sees the server built here (grpc_handoff.h).
   HandOffToGrpc(interceptors.back().get());

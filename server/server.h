@@ -1,8 +1,9 @@
 // FreeformServer: freeformd's gRPC server, usable in-process by tests.
 //
 // Start() builds the thread pool, registers CurveService, SurfaceService,
-// the standard grpc.health.v1.Health service and server reflection, and
-// listens on the given address (port 0 picks a free port; port() tells
+// the standard grpc.health.v1.Health service and (unless turned off) server
+// reflection, and listens on the given address, in plaintext or with TLS
+// (tls.h) (port 0 picks a free port; port() tells
 // which). With a metrics address it also serves Prometheus metrics there
 // (metrics.h; metrics_port() tells the port). Shutdown() marks health
 // NOT_SERVING, lets in-flight RPCs finish within the grace period, then
@@ -24,6 +25,7 @@
 #include "memory_trimmer.h"
 #include "rpc.h"
 #include "service_limits.h"
+#include "tls.h"
 
 namespace freeform::server {
 
@@ -32,20 +34,15 @@ class MetricsEndpoint;
 class ServerMetrics;
 class SurfaceServiceImpl;
 
-struct TlsOptions {
-  // PEM files; TLS is on when cert and key are both set.
-  std::string cert_file;
-  std::string key_file;
-  // With a client CA, clients must present a certificate it signed (mTLS).
-  std::string client_ca_file;
-};
-
 struct ServerOptions {
   std::string listen_address = "0.0.0.0:50051";
   // Pool threads for large batches; 0 means one per hardware thread.
   int threads = 0;
   ServiceLimits limits;
   TlsOptions tls;
+  // Serve grpc.reflection.v1alpha.ServerReflection: lists the services and
+  // their proto descriptors to any client (grpcurl, grpcui).
+  bool reflection = true;
   // HOST:PORT of the Prometheus metrics (http://HOST:PORT/metrics; port 0
   // picks a free port); empty serves none.
   std::string metrics_listen_address;

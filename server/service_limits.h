@@ -13,6 +13,7 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
+#include "absl/time/time.h"
 
 namespace freeform::server {
 
@@ -50,6 +51,10 @@ struct ServiceLimits {
   // 2^35 bounds that part to about 14 s here: planar curves up to about
   // 130,000 control points, spatial ones up to about 107,000.
   uint64_t max_simplify_moves = uint64_t{1} << 35;
+  // Longest time a call may run: its deadline when the client sets none or
+  // a later one, so a legal but huge request cannot hold the CPU for
+  // minutes. Zero means no server-side limit.
+  absl::Duration max_call_time = absl::Seconds(60);
 };
 
 // CheckDimensionLimit returns INVALID_ARGUMENT on "<field>.dimension" unless

@@ -50,10 +50,12 @@ absl::StatusOr<UnaryWork> PlanClosestPoint(
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
   absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+      PieceWorkBytes(SurfacePieceValues(*surface), SurfacePieceCount(*surface),
+                     kPieceRecordBytes, limits, "surface");
   if (!work.ok()) return work.status();
   return PlanClosestPoints(
-      DimensionOf(*surface), 2, *work, request.queries(), request.options(),
+      GeometryFieldOf(request), DimensionOf(*surface), 2, *work,
+      request.queries(), request.options(),
       [surface = *std::move(surface)](const PointsView& queries,
                                       const ClosestPointOptions& options,
                                       const ExecutionContext& execution) {
@@ -69,11 +71,13 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
   if (!curve.ok()) return curve.status();
   absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
   if (!surface.ok()) return surface.status();
-  absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(DecomposedCurveValues(*curve), limits, "curve");
+  absl::StatusOr<uint64_t> work = PieceWorkBytes(
+      DecomposedCurveValues(*curve), DecomposedCurvePieces(*curve),
+      kPartRecordBytes, limits, "curve");
   if (!work.ok()) return work.status();
   absl::StatusOr<uint64_t> surface_work =
-      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+      PieceWorkBytes(SurfacePieceValues(*surface), SurfacePieceCount(*surface),
+                     kPartRecordBytes, limits, "surface");
   if (!surface_work.ok()) return surface_work.status();
   const int dimension = DimensionOf(*curve);
   if (DimensionOf(*surface) != dimension) {
@@ -94,7 +98,8 @@ absl::StatusOr<UnaryWork> PlanIntersectCurve(
   return UnaryWork{
       .plan = {.memory_bytes =
                    AnswerPlan(values,
-                              8 * values + *work + *surface_work + candidates,
+                              8 * values + *work + *surface_work + candidates +
+                                  kCurveSurfaceSearchBytes,
                               limits)
                        .memory_bytes,
                .heavy = true},
@@ -156,7 +161,8 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
                 "fit_tolerance");
   if (!fit_tolerance.ok()) return fit_tolerance.status();
   absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+      PieceWorkBytes(SurfacePieceValues(*surface), SurfacePieceCount(*surface),
+                     kPieceRecordBytes, limits, "surface");
   if (!work.ok()) return work.status();
   const int dimension = DimensionOf(*surface);
   // A vertex holds its point and (u, v), and with a fit at most one
@@ -225,8 +231,12 @@ absl::StatusOr<UnaryWork> PlanCurvature(
       !status.ok()) {
     return status;
   }
+  // The core evaluates a copy of the surface rescaled by powers of two (at
+  // most its pieces' values) at a copy of the samples (two values each).
+  const uint64_t copies =
+      SaturatingProduct(SurfacePieceValues(*plan.surface) + 2 * plan.size(), 8);
   return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values, limits),
+      .plan = AnswerPlan(values, 8 * values + copies, limits),
       .run = [plan = std::move(plan),
               &response](const ExecutionContext& execution) -> absl::Status {
         const SurfaceCurvatureSizes sizes = CurvatureSizes(plan.size());
@@ -267,7 +277,7 @@ absl::StatusOr<UnaryWork> PlanBoundingBox(
   absl::StatusOr<double> tolerance = RequestTolerance(request);
   if (!tolerance.ok()) return tolerance.status();
   absl::StatusOr<uint64_t> work =
-      PieceWorkBytes(SurfacePieceValues(*surface), limits, "surface");
+      CheckWorkBytes(SurfaceBoundingBoxBytes(*surface), limits, "surface");
   if (!work.ok()) return work.status();
   return PlanBoundingBox(
       DimensionOf(*surface), *work, *tolerance,

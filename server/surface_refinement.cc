@@ -145,26 +145,36 @@ absl::StatusOr<UnaryWork> PlanInsert(
 }
 
 // A mesh request prepared and planned: the surfaces (which the plan reads,
-// so the input is moved, never copied) and the plan.
+// so the input is moved, never copied), the plan, and its memory (the
+// service never sends the triangles' own surfaces and corner parameters,
+// so the mesher skips them).
 struct MeshInput {
   std::vector<Surface> surfaces;
   std::shared_ptr<const MeshPlan> plan;
   size_t cap = 0;
   MeshSize size;
+  MeshMemory memory;
 
   // Bytes of the answer: per vertex its position, normal, (u, v) and
-  // surface; per triangle three indices.
+  // surface; per triangle three indices (at most four bytes each on the
+  // wire, as vertex numbers stay below 2^28).
   uint64_t AnswerBytes() const {
     return size.vertices * uint64_t{8 * (3 + 3 + 2) + 4} +
            size.triangles * uint64_t{3 * 4};
   }
-  // Bytes of the mesher's own arrays: the answer's, each vertex's source
-  // and weld entry, each triangle's piece and corner (u, v), and the Bezier
-  // pieces of the surfaces.
-  uint64_t WorkBytes() const {
-    return AnswerBytes() + size.vertices * uint64_t{24 + 16} +
-           size.triangles * uint64_t{4 + 6 * 8} +
-           SaturatingProduct(PlannedPieceValues(*plan), sizeof(double));
+  // Bytes of a unary answer's call: the plan, and the mesher at its peak,
+  // or its mesh copied into the answer, or the answer and its serialized
+  // copy (the mesh is gone by then).
+  uint64_t UnaryBytes() const {
+    return memory.plan +
+           std::max({memory.tessellation, memory.mesh + AnswerBytes(),
+                     2 * AnswerBytes()});
+  }
+  // Bytes of a stream's call: the plan, and the mesher at its peak, or
+  // its mesh and the chunk messages the stream holds (`chunk_bytes`).
+  uint64_t StreamBytes(uint64_t chunk_bytes) const {
+    return memory.plan +
+           std::max(memory.tessellation, memory.mesh + chunk_bytes);
   }
 };
 
@@ -271,6 +281,7 @@ absl::StatusOr<MeshInput> PrepareMesh(
   if (!plan.ok()) return plan.status();
   input.plan = *std::move(plan);
   input.size = PlannedMeshSize(*input.plan);
+  input.memory = PlannedMeshMemory(*input.plan, CornerAttributes::kSkip);
   return input;
 }
 
@@ -330,19 +341,17 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Tessellate(
       [this, context, request, response]() -> absl::StatusOr<UnaryWork> {
         const ServiceLimits& limits = frame_->limits();
         CancellationToken planning;
-        WatchCall(*context, planning);
+        WatchCall(*context, limits.max_call_time, planning);
         absl::StatusOr<MeshInput> input = PrepareMesh(
             *request, limits, static_cast<uint64_t>(limits.max_message_bytes),
             &planning);
         if (!input.ok()) return input.status();
         return UnaryWork{
-            .plan = {.memory_bytes =
-                         2 * input->AnswerBytes() + input->WorkBytes(),
-                     .heavy = true},
+            .plan = {.memory_bytes = input->UnaryBytes(), .heavy = true},
             .run = [input = *std::move(input), request, response](
                        const ExecutionContext& execution) -> absl::Status {
-              absl::StatusOr<Mesh> mesh =
-                  TessellatePlanned(*input.plan, execution.cancellation);
+              absl::StatusOr<Mesh> mesh = TessellatePlanned(
+                  *input.plan, execution.cancellation, CornerAttributes::kSkip);
               if (!mesh.ok()) return mesh.status();
               FillMesh(*mesh, request->normals(), 0, mesh->vertices.size() / 3,
                        0, mesh->triangles.size() / 3, *response);
@@ -362,7 +371,7 @@ SurfaceServiceImpl::TessellateStream(
       [this, context, request]() -> absl::StatusOr<Work> {
         const ServiceLimits& limits = frame_->limits();
         CancellationToken planning;
-        WatchCall(*context, planning);
+        WatchCall(*context, limits.max_call_time, planning);
         absl::StatusOr<MeshInput> input =
             PrepareMesh(*request, limits, UINT64_MAX, &planning);
         if (!input.ok()) return input.status();
@@ -382,16 +391,16 @@ SurfaceServiceImpl::TessellateStream(
         auto mesh = std::make_shared<Mesh>();
         auto shared = std::make_shared<MeshInput>(*std::move(input));
         return Work{
-            .plan = {.memory_bytes =
-                         shared->WorkBytes() +
-                         2 * frame_->chunks_in_flight() * chunk_bytes,
+            .plan = {.memory_bytes = shared->StreamBytes(
+                         2 * frame_->chunks_in_flight() * chunk_bytes),
                      .heavy = true},
             .chunk_count = 0,
             .prepare = [mesh, shared, chunk,
                         request](const ExecutionContext& execution)
                 -> absl::StatusOr<size_t> {
               absl::StatusOr<Mesh> made =
-                  TessellatePlanned(*shared->plan, execution.cancellation);
+                  TessellatePlanned(*shared->plan, execution.cancellation,
+                                    CornerAttributes::kSkip);
               if (!made.ok()) return made.status();
               *mesh = *std::move(made);
               const size_t vertices = mesh->vertices.size() / 3;

@@ -1,6 +1,6 @@
 // Scraping freeformd's Prometheus metrics in tests: an HTTP/1.0 GET over a
-// plain loopback socket (no HTTP library) and the value of one series in
-// the text format.
+// plain loopback socket (no HTTP library), its status line, and the value
+// of one series in the text format.
 #ifndef FREEFORM_TESTS_METRICS_SCRAPE_H_
 #define FREEFORM_TESTS_METRICS_SCRAPE_H_
 
@@ -13,6 +13,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "absl/status/statusor.h"
 #include "absl/strings/match.h"
@@ -23,9 +24,16 @@
 
 namespace freeform {
 
-// HttpGet returns the body of http://127.0.0.1:PORT/PATH when the answer
-// is 200 OK.
-inline absl::StatusOr<std::string> HttpGet(int port, absl::string_view path) {
+// The status line ("HTTP/1.1 200 OK") and the body of an HTTP answer.
+struct HttpAnswer {
+  std::string status_line;
+  std::string body;
+};
+
+// HttpExchange sends `GET PATH HTTP/1.0` to 127.0.0.1:PORT and returns the
+// answer; UNAVAILABLE when none came within 10 s.
+inline absl::StatusOr<HttpAnswer> HttpExchange(int port,
+                                               absl::string_view path) {
   const int socket_fd = socket(AF_INET, SOCK_STREAM, 0);
   if (socket_fd < 0) return absl::InternalError("socket() failed");
   const timeval timeout = {.tv_sec = 10, .tv_usec = 0};
@@ -55,12 +63,20 @@ inline absl::StatusOr<std::string> HttpGet(int port, absl::string_view path) {
     return absl::UnavailableError(absl::StrCat(
         "no HTTP answer from 127.0.0.1:", port, path, ": ", answer));
   }
-  const absl::string_view status_line =
-      absl::string_view(answer).substr(0, answer.find("\r\n"));
-  if (!absl::StrContains(status_line, " 200 ")) {
-    return absl::UnavailableError(absl::StrCat("GET ", path, ": ", answer));
+  return HttpAnswer{.status_line = answer.substr(0, answer.find("\r\n")),
+                    .body = answer.substr(body + 4)};
+}
+
+// HttpGet returns the body of http://127.0.0.1:PORT/PATH when the answer
+// is 200 OK.
+inline absl::StatusOr<std::string> HttpGet(int port, absl::string_view path) {
+  absl::StatusOr<HttpAnswer> answer = HttpExchange(port, path);
+  if (!answer.ok()) return answer.status();
+  if (!absl::StrContains(answer->status_line, " 200 ")) {
+    return absl::UnavailableError(absl::StrCat(
+        "GET ", path, ": ", answer->status_line, "\r\n\r\n", answer->body));
   }
-  return answer.substr(body + 4);
+  return std::move(answer->body);
 }
 
 // MetricValue returns the value of `series` (a name with its labels, as

@@ -34,19 +34,25 @@ constexpr char kRetryServiceConfig[] = R"({
   }]
 })";
 
+// ReadCredentialFile reads a certificate, key or CA file of at most
+// kMaxCredentialFileBytes (freeform/client/file.h).
+absl::StatusOr<std::string> ReadCredentialFile(const std::string& path) {
+  return ReadRegularFile(path, kMaxCredentialFileBytes);
+}
+
 absl::StatusOr<std::shared_ptr<grpc::ChannelCredentials>> Credentials(
     const ClientOptions& options) {
   if (!options.use_tls) return grpc::InsecureChannelCredentials();
   grpc::SslCredentialsOptions ssl;
   if (!options.root_ca_file.empty()) {
-    absl::StatusOr<std::string> ca = ReadFileToString(options.root_ca_file);
+    absl::StatusOr<std::string> ca = ReadCredentialFile(options.root_ca_file);
     if (!ca.ok()) return ca.status();
     ssl.pem_root_certs = *ca;
   }
   if (!options.cert_file.empty()) {
-    absl::StatusOr<std::string> cert = ReadFileToString(options.cert_file);
+    absl::StatusOr<std::string> cert = ReadCredentialFile(options.cert_file);
     if (!cert.ok()) return cert.status();
-    absl::StatusOr<std::string> key = ReadFileToString(options.key_file);
+    absl::StatusOr<std::string> key = ReadCredentialFile(options.key_file);
     if (!key.ok()) return key.status();
     ssl.pem_cert_chain = *cert;
     ssl.pem_private_key = *key;

@@ -198,8 +198,11 @@ absl::StatusOr<Pieces> LiftPieces(const Curve& curve,
   absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve, cancel);
   if (!pieces.ok()) return pieces.status();
   Pieces result{.dimension = DimensionOf(curve), .parameter_count = 1};
-  for (const BezierCurveData& segment : pieces->segments) {
+  // Each piece is freed once lifted, so the pieces exist once at a time.
+  result.nets.reserve(pieces->segments.size());
+  for (BezierCurveData& segment : pieces->segments) {
     result.nets.push_back(LiftCurve(segment));
+    segment = {};
   }
   result.parameters = [breaks = std::move(pieces->breakpoints)](
                           size_t k, double s, double, double* out) {
@@ -215,9 +218,14 @@ absl::StatusOr<Pieces> LiftPieces(const Surface& surface,
       DecomposeSurface(surface, cancel);
   if (!pieces.ok()) return pieces.status();
   Pieces result{.dimension = DimensionOf(surface), .parameter_count = 2};
-  for (const SurfaceData& patch : pieces->pieces.patches) {
+  // Each piece is freed once lifted, so the pieces exist once at a time;
+  // the parameters need the breakpoints only.
+  result.nets.reserve(pieces->pieces.patches.size());
+  for (SurfaceData& patch : pieces->pieces.patches) {
     result.nets.push_back(LiftSurface(patch));
+    patch = {};
   }
+  std::vector<SurfaceData>().swap(pieces->pieces.patches);
   result.parameters = [shared = *std::move(pieces)](size_t k, double s,
                                                     double t, double* out) {
     const std::array<double, 2> uv = SurfacePieceParameters(shared, k, s, t);

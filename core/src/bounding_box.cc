@@ -16,6 +16,7 @@
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/triangular.h"
+#include "variant_dispatch.h"
 
 namespace freeform {
 namespace {
@@ -109,12 +110,32 @@ struct LiftedPieces {
   bool rational = false;
   size_t block = 0;
   size_t initial = 0;
+  // The most halvings of one side's search (BoxHalvings).
+  size_t halvings = 0;
   std::vector<Shape> shapes;  // of the initial pieces
   std::vector<double> values;
 };
 
+// A piece unbounded by a zero weight inside is halved whatever the work of
+// the bounded ones (a halving or two in each direction bounds it), up to
+// this multiple of their budget.
+constexpr size_t kUnboundedWorkFactor = 4;
+
+// BoxHalvings returns the most halvings one side's search makes of pieces
+// of `shape`: kMaxBoxHalvings, or fewer when the work budgets of bounded and
+// unbounded pieces (Extreme) run out first.
+template <typename Shape>
+size_t BoxHalvings(Shape shape, int dimension) {
+  const size_t work = std::max<size_t>(1, HalvingWork(shape, dimension));
+  return std::min<size_t>(
+      kMaxBoxHalvings,
+      (1 + kUnboundedWorkFactor) * kMaxBoxHalvingWork / work + 2);
+}
+
+// Lift frees every net once it is copied, so the pieces exist once at a
+// time. `pieces.values` keeps room for the halves the searches make.
 template <typename Net>
-auto Lift(const std::vector<Net>& nets) {
+auto Lift(std::vector<Net>& nets) {
   using Shape = decltype(ShapeOf(nets.front()));
   LiftedPieces<Shape> pieces;
   pieces.dimension = nets.front().dimension;
@@ -125,25 +146,31 @@ auto Lift(const std::vector<Net>& nets) {
   const size_t width = static_cast<size_t>(pieces.width);
   for (const Net& net : nets) {
     pieces.block = std::max(pieces.block, PointCount(ShapeOf(net)) * width);
+    pieces.halvings =
+        std::max(pieces.halvings, BoxHalvings(ShapeOf(net), pieces.dimension));
   }
   pieces.initial = nets.size();
+  pieces.shapes.reserve(nets.size());
+  pieces.values.reserve((pieces.initial + 2 * pieces.halvings) * pieces.block);
   pieces.values.resize(pieces.initial * pieces.block);
   for (size_t n = 0; n < nets.size(); ++n) {
-    const Net& net = nets[n];
+    Net& net = nets[n];
     pieces.shapes.push_back(ShapeOf(net));
     const auto block =
         pieces.values.begin() + static_cast<std::ptrdiff_t>(n * pieces.block);
     if (!pieces.rational) {
       std::copy(net.coordinates.begin(), net.coordinates.end(), block);
-      continue;
+    } else {
+      // HomogeneousPoints keeps the point of a zero weight as a direction.
+      const PointsView points{net.dimension, net.coordinates};
+      const std::vector<double> lifted = HomogeneousPoints(
+          points, net.weights.empty() ? std::vector<double>(points.size(), 1.0)
+                                      : net.weights);
+      std::copy(lifted.begin(), lifted.end(), block);
     }
-    // HomogeneousPoints keeps the point of a zero weight as a direction.
-    const PointsView points{net.dimension, net.coordinates};
-    const std::vector<double> lifted = HomogeneousPoints(
-        points, net.weights.empty() ? std::vector<double>(points.size(), 1.0)
-                                    : net.weights);
-    std::copy(lifted.begin(), lifted.end(), block);
+    net = {};
   }
+  std::vector<Net>().swap(nets);
   return pieces;
 }
 
@@ -222,11 +249,6 @@ bool LowerBound(const Piece<Shape>& a, const Piece<Shape>& b) {
   return a.bound < b.bound;
 }
 
-// A piece unbounded by a zero weight inside is halved whatever the work of
-// the bounded ones (a halving or two in each direction bounds it), up to
-// this multiple of their budget.
-constexpr size_t kUnboundedWorkFactor = 4;
-
 // Extreme returns an upper bound of the signed coordinate j over the pieces
 // within `tolerance` of a value the geometry attains (see bounding_box.h),
 // or a non-finite value when the geometry has none: a corner at infinity,
@@ -238,6 +260,7 @@ absl::StatusOr<double> Extreme(LiftedPieces<Shape>& pieces, int j, double sign,
                                std::vector<double>& scratch) {
   pieces.values.resize(pieces.initial * pieces.block);
   std::vector<size_t> free_blocks;
+  free_blocks.reserve(pieces.halvings);
   auto allocate = [&]() {
     if (!free_blocks.empty()) {
       const size_t block = free_blocks.back();
@@ -252,6 +275,7 @@ absl::StatusOr<double> Extreme(LiftedPieces<Shape>& pieces, int j, double sign,
     return pieces.values.data() + block * pieces.block;
   };
   std::vector<Piece<Shape>> heap;
+  heap.reserve(pieces.initial + pieces.halvings + 1);
   double best = -kInfinity;
   for (size_t n = 0; n < pieces.initial; ++n) {
     const Shape shape = pieces.shapes[n];
@@ -308,8 +332,7 @@ absl::StatusOr<double> Extreme(LiftedPieces<Shape>& pieces, int j, double sign,
 
 // BoxOf returns the box of the geometry made of the Bezier pieces `nets`.
 template <typename Net>
-absl::StatusOr<BoundingBox> BoxOf(const std::vector<Net>& nets,
-                                  double tolerance,
+absl::StatusOr<BoundingBox> BoxOf(std::vector<Net> nets, double tolerance,
                                   const CancellationToken* cancel) {
   const int dimension = nets.front().dimension;
   double scale = 0.0;
@@ -363,7 +386,97 @@ TriangularPatchData PatchOf(const TriangularPatchView& view) {
           .domain_triangle = {}};
 }
 
+// What one heap block costs beyond its bytes: glibc's header and rounding.
+constexpr uint64_t kBlockOverhead = 32;
+
+// BoxBytes bounds the memory of the box of `pieces` pieces of `shape`, each
+// piece kept as `records` bytes of records besides its values: cutting the
+// geometry holds its knot-refined control points beside the pieces (at
+// most three times their values); the search then holds the lifted blocks
+// with room for the halves (the pieces being freed as they are lifted),
+// the shapes, the heap and the free blocks. Saturates.
+template <typename Shape>
+uint64_t BoxBytes(uint64_t pieces, Shape shape, int dimension, bool rational,
+                  uint64_t records) {
+  const uint64_t block =
+      PointCount(shape) * static_cast<uint64_t>(dimension + (rational ? 1 : 0));
+  const uint64_t halvings = BoxHalvings(shape, dimension);
+  if (pieces > (uint64_t{1} << 40) / std::max<uint64_t>(block, records)) {
+    return UINT64_MAX;
+  }
+  return 8 * std::max(3 * pieces * block,
+                      2 * pieces * block + 2 * halvings * block) +
+         pieces * (records + sizeof(Shape)) +
+         (pieces + halvings + 1) * sizeof(Piece<Shape>) +
+         halvings * sizeof(size_t);
+}
+
+// A curve's pieces are kept as BezierCurveData, then SurfaceData columns.
+constexpr uint64_t kCurvePieceRecords =
+    sizeof(BezierCurveData) + sizeof(SurfaceData) + 2 * kBlockOverhead;
+constexpr uint64_t kSurfacePieceRecords =
+    sizeof(SurfaceData) + 2 * kBlockOverhead;
+
+NetShape Column(size_t points) { return {static_cast<int>(points), 1}; }
+
 }  // namespace
+
+uint64_t CurveBoundingBoxBytes(const Curve& curve) {
+  const int dimension = DimensionOf(curve);
+  return std::visit(
+      internal::Overloaded{
+          [&](const BezierCurve& bezier) {
+            return BoxBytes(1, Column(bezier.view().control_points.size()),
+                            dimension, bezier.view().rational(),
+                            kCurvePieceRecords);
+          },
+          [&](const BSplineCurve& bspline) {
+            const BSplineCurveView& view = bspline.view();
+            return BoxBytes(
+                view.control_points.size() - static_cast<size_t>(view.degree),
+                Column(static_cast<size_t>(view.degree) + 1), dimension,
+                view.rational(), kCurvePieceRecords);
+          },
+          [&](const LagrangeCurve& lagrange) {
+            return BoxBytes(1, Column(lagrange.view().points.size()), dimension,
+                            false, kCurvePieceRecords);
+          },
+          [&](const HermiteCurve& hermite) {
+            return BoxBytes(hermite.view().points.size() - 1, Column(4),
+                            dimension, false, kCurvePieceRecords);
+          }},
+      curve);
+}
+
+uint64_t SurfaceBoundingBoxBytes(const Surface& surface) {
+  return std::visit(
+      internal::Overloaded{
+          [](const BezierSurface& bezier) {
+            const BezierSurfaceView& view = bezier.view();
+            return BoxBytes(
+                1, NetShape{view.control_net.count_u, view.control_net.count_v},
+                view.control_net.dimension, view.rational(),
+                kSurfacePieceRecords);
+          },
+          [](const BSplineSurface& bspline) {
+            const BSplineSurfaceView& view = bspline.view();
+            const uint64_t pieces =
+                static_cast<uint64_t>(view.control_net.count_u -
+                                      view.degree_u) *
+                static_cast<uint64_t>(view.control_net.count_v - view.degree_v);
+            return BoxBytes(pieces,
+                            NetShape{view.degree_u + 1, view.degree_v + 1},
+                            view.control_net.dimension, view.rational(),
+                            kSurfacePieceRecords);
+          },
+          [](const TriangularPatch& patch) {
+            const TriangularPatchView& view = patch.view();
+            return BoxBytes(1, TriangleShape{view.degree},
+                            view.control_points.dimension, view.rational(),
+                            sizeof(TriangularPatchData) + 2 * kBlockOverhead);
+          }},
+      surface);
+}
 
 absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
                                              double tolerance,
@@ -375,10 +488,12 @@ absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
   absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve, cancel);
   if (!pieces.ok()) return pieces.status();
   std::vector<SurfaceData> nets;
+  nets.reserve(pieces->segments.size());
   for (BezierCurveData& segment : pieces->segments) {
     nets.push_back(ColumnOf(std::move(segment)));
   }
-  return BoxOf(nets, tolerance, cancel);
+  std::vector<BezierCurveData>().swap(pieces->segments);
+  return BoxOf(std::move(nets), tolerance, cancel);
 }
 
 absl::StatusOr<BoundingBox> SurfaceBoundingBox(
@@ -396,7 +511,7 @@ absl::StatusOr<BoundingBox> SurfaceBoundingBox(
   absl::StatusOr<SurfaceDecomposition> pieces =
       DecomposeSurface(surface, cancel);
   if (!pieces.ok()) return pieces.status();
-  return BoxOf(pieces->pieces.patches, tolerance, cancel);
+  return BoxOf(std::move(pieces->pieces.patches), tolerance, cancel);
 }
 
 }  // namespace freeform

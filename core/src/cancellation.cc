@@ -27,7 +27,8 @@ absl::Status CancellationToken::status() const {
       return absl::CancelledError("the request was cancelled");
     case kDeadlineExceeded:
       return absl::DeadlineExceededError(
-          "the deadline passed before the work finished");
+          deadline_why_.empty() ? "the deadline passed before the work finished"
+                                : deadline_why_);
     default:
       return absl::OkStatus();
   }

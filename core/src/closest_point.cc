@@ -14,6 +14,8 @@
 #include "freeform/core/cancellation.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "scaled.h"
+#include "scaled_geometry.h"
 
 namespace freeform {
 namespace {
@@ -63,6 +65,9 @@ struct Candidate {
   size_t piece = 0;
   double x[2] = {0.0, 0.0};
   double distance = kInfinity;
+  // False for a point of a flat part, which Newton has nowhere to move
+  // (it would only follow the rounding of a zero gradient).
+  bool polish = true;
 };
 
 // What every query reads about the pieces, computed once per batch: their
@@ -217,7 +222,7 @@ PhiHull PhiHulls::Of(const double* points, int count, int dimension,
   const int n = count - 1;
   const int m = 2 * n;
   constexpr int kMaxDegree = 64;
-  if (n < 1 || n > kMaxDegree) return {};
+  if (n < 0 || n > kMaxDegree) return {};
   const size_t row = static_cast<size_t>(count);
   if (n != degree_) {
     double binomial_n[kMaxDegree + 1];
@@ -258,9 +263,11 @@ PhiHull PhiHulls::Of(const double* points, int count, int dimension,
   }
   const double rounding = 4.0 * (dimension + m + 4) *
                           std::numeric_limits<double>::epsilon() * reach;
+  // A part of degree 0 is a point: phi is its constant, no curvature.
   return {.lowest = lowest - rounding,
-          .curvature =
-              static_cast<double>(m) * (m - 1) * (second - 4.0 * rounding)};
+          .curvature = m < 2 ? -kInfinity
+                             : static_cast<double>(m) * (m - 1) *
+                                   (second - 4.0 * rounding)};
 }
 
 // A part of a piece: its net over the box [lo, hi] of the piece's
@@ -308,6 +315,7 @@ class Search {
   double ConvexBound(const Node& node, const Candidate& found,
                      double curvature);
   bool Examine(Node node, CancellationPoll& poll, absl::Status& status);
+  void MarkIfFlat(const Node& node, const Candidate& found);
   void Push(Node node);
   void Report(size_t r, ClosestPoints& answer);
   double* PointOf(const Candidate& candidate);
@@ -332,6 +340,9 @@ class Search {
   std::vector<Candidate> polished_;
   double best_ = kInfinity;
   double lower_ = kInfinity;
+  // A resolved part lies at one distance from the query to rounding: the
+  // minimum is attained along a stretch or region (a constant piece).
+  bool flat_ = false;
 };
 
 void Search::Model(size_t piece, const double* x, LocalModel& model) {
@@ -464,6 +475,31 @@ double Search::ConvexBound(const Node& node, const Candidate& found,
   return std::sqrt(2.0 * std::max(lowest, 0.0));
 }
 
+// MarkIfFlat sets flat_ when a resolved part is a single point to rounding
+// (the box of its control points, which holds it, is that small: a
+// constant piece, all its control points equal). Every parameter of such a
+// part is a minimum; on a curve max_minima of them, evenly spread, become
+// candidates (on a surface its parameters count as one minimum, since they
+// give one point).
+void Search::MarkIfFlat(const Node& node, const Candidate& found) {
+  if (!internal::Project(NetOf(node), projected_)) return;
+  // The copy's coordinates are at most 1 (scaled_geometry.h).
+  constexpr double kRounding = 32.0 * std::numeric_limits<double>::epsilon();
+  if (!(internal::BoxDiameter(projected_, pieces_.dimension) <= kRounding)) {
+    return;
+  }
+  flat_ = true;
+  if (pieces_.parameter_count != 1) return;
+  const int count = options_.max_minima;
+  for (int k = 0; k < count; ++k) {
+    Candidate spread = found;
+    spread.polish = false;
+    const double fraction = count > 1 ? k / (count - 1.0) : 0.5;
+    spread.x[0] = node.lo[0] + fraction * (node.hi[0] - node.lo[0]);
+    candidates_.push_back(spread);
+  }
+}
+
 void Search::Push(Node node) {
   if (node.bound > best_ + options_.tolerance) {
     if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
@@ -512,6 +548,7 @@ bool Search::Examine(Node node, CancellationPoll& poll, absl::Status& status) {
   if (found.distance - node.bound <= options_.tolerance &&
       node.diameter <= leaf) {
     lower_ = std::min(lower_, node.bound);
+    MarkIfFlat(node, found);
     if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
     return true;
   }
@@ -559,6 +596,7 @@ absl::Status Search::Run(const double* query, size_t r, CancellationPoll& poll,
   candidates_.clear();
   best_ = kInfinity;
   lower_ = kInfinity;
+  flat_ = false;
   // The piece nearest by its box (then by its box's centre) is examined
   // first: the best distance it sets rules out most other pieces at once.
   const size_t count = pieces_.nets.size();
@@ -603,7 +641,7 @@ absl::Status Search::Run(const double* query, size_t r, CancellationPoll& poll,
     if (node.shared == nullptr) spare_.push_back(std::move(node.owned));
   }
   if (!status.ok()) return status;
-  answer.complete[r] = complete ? 1 : 0;
+  answer.complete[r] = complete && !flat_ ? 1 : 0;
   Report(r, answer);
   return absl::OkStatus();
 }
@@ -615,20 +653,25 @@ void Search::Report(size_t r, ClosestPoints& answer) {
   const double one[2] = {1.0, 1.0};
   const double limit = best_ + options_.tolerance;
   polished_.clear();
-  for (size_t k = 0; k < candidates_.size(); ++k) {
-    const Candidate& candidate = candidates_[k];
+  const Candidate* last = nullptr;  // the last candidate polished
+  for (const Candidate& candidate : candidates_) {
+    if (!(candidate.distance <= limit)) continue;
     // The halves of a part start from its point and often end there too.
-    const bool again = k > 0 && candidates_[k - 1].piece == candidate.piece &&
-                       candidates_[k - 1].x[0] == candidate.x[0] &&
-                       candidates_[k - 1].x[1] == candidate.x[1];
-    if (candidate.distance <= limit && !again) {
-      polished_.push_back(Newton(candidate, zero, one, kPolishNewtonSteps));
+    if (last != nullptr && last->piece == candidate.piece &&
+        last->x[0] == candidate.x[0] && last->x[1] == candidate.x[1]) {
+      continue;
     }
+    last = &candidate;
+    const Candidate polished =
+        candidate.polish ? Newton(candidate, zero, one, kPolishNewtonSteps)
+                         : candidate;
+    if (std::isfinite(polished.distance)) polished_.push_back(polished);
   }
-  std::sort(polished_.begin(), polished_.end(),
-            [](const Candidate& a, const Candidate& b) {
-              return a.distance < b.distance;
-            });
+  // Stable: minima at one distance (a flat part's) keep their order.
+  std::stable_sort(polished_.begin(), polished_.end(),
+                   [](const Candidate& a, const Candidate& b) {
+                     return a.distance < b.distance;
+                   });
   const int dim = pieces_.dimension;
   const int pc = pieces_.parameter_count;
   const size_t slots = static_cast<size_t>(answer.max_minima);
@@ -673,10 +716,55 @@ void Search::Report(size_t r, ClosestPoints& answer) {
   answer.lower_bounds[r] = std::min(lower_, smallest);
 }
 
-absl::StatusOr<ClosestPoints> Solve(const Pieces& pieces,
-                                    const PointsView& queries,
-                                    const ClosestPointOptions& options,
-                                    const ExecutionContext& context) {
+// The search runs on the geometry's copy rescaled by powers of two
+// (scaled_geometry.h: coordinates and weights at most 1), each query
+// divided by the same 2^e. A query farther than kFarQuery from the origin
+// in those units (the geometry lies within sqrt(dimension) of it) is
+// searched from kFarSearch along its direction instead: every point of the
+// geometry is at the same distance from it to rounding (their distances
+// differ by at most 2 sqrt(dimension), below 2^-450 of the distance), and
+// the nearest point from there is the geometry's point farthest along that
+// direction, as it is from the query itself to rounding.
+constexpr double kFarQuery = 0x1p500;
+constexpr double kFarSearch = 0x1p20;
+// Tolerances in the copy's units are kept below this, whose square is
+// finite.
+constexpr double kLargestScaledTolerance = 0x1p510;
+
+// SearchPoint writes where query q (dim coordinates, original units) is
+// searched from; returns true when it is a far query.
+bool SearchPoint(const double* q, int dim, const internal::ScaledValues& scale,
+                 double* out) {
+  double largest = 0.0;
+  for (int x = 0; x < dim; ++x) largest = std::max(largest, std::abs(q[x]));
+  if (internal::ExponentAbove(largest) - scale.coordinate_exponent <= 500) {
+    for (int x = 0; x < dim; ++x) out[x] = scale.Unlength(q[x]);
+    return false;
+  }
+  const double norm = internal::ScaledNorm(q, dim);
+  for (int x = 0; x < dim; ++x) out[x] = kFarSearch * (q[x] / norm);
+  return true;
+}
+
+ClosestPointOptions ScaledOptions(const ClosestPointOptions& options,
+                                  const internal::ScaledValues& scale) {
+  ClosestPointOptions scaled = options;
+  scaled.tolerance =
+      std::min(scale.Unlength(options.tolerance), kLargestScaledTolerance);
+  scaled.separation =
+      std::min(scale.Unlength(options.separation), kLargestScaledTolerance);
+  return scaled;
+}
+
+// Search answers every query on the pieces of the scaled copy; far[r] says
+// whether query r was a far one. Distances, points and parameters are the
+// copy's.
+absl::StatusOr<ClosestPoints> SearchAll(const Pieces& pieces,
+                                        const PointsView& queries,
+                                        const internal::ScaledValues& scale,
+                                        const ClosestPointOptions& options,
+                                        const ExecutionContext& context,
+                                        std::vector<uint8_t>& far) {
   const size_t count = queries.size();
   const size_t slots = count * static_cast<size_t>(options.max_minima);
   ClosestPoints answer{
@@ -689,6 +777,7 @@ absl::StatusOr<ClosestPoints> Solve(const Pieces& pieces,
       .complete = std::vector<uint8_t>(count),
       .parameters = std::vector<double>(slots * pieces.parameter_count),
       .points = std::vector<double>(slots * pieces.dimension)};
+  far.assign(count, 0);
   const Prepared prepared(pieces);
   ExecutionContext chunks = context;
   chunks.grain = std::clamp<size_t>(context.grain, 1, 64);
@@ -696,8 +785,11 @@ absl::StatusOr<ClosestPoints> Solve(const Pieces& pieces,
   absl::Status status = ParallelFor(count, chunks, [&](size_t b, size_t e) {
     Search search(prepared, options);
     CancellationPoll poll(context.cancellation);
+    std::vector<double> from(static_cast<size_t>(pieces.dimension));
     for (size_t r = b; r < e && !stopped.load(std::memory_order_relaxed); ++r) {
-      if (!search.Run(queries.point(r), r, poll, answer).ok()) {
+      far[r] =
+          SearchPoint(queries.point(r), pieces.dimension, scale, from.data());
+      if (!search.Run(from.data(), r, poll, answer).ok()) {
         stopped.store(true, std::memory_order_relaxed);
       }
     }
@@ -705,6 +797,169 @@ absl::StatusOr<ClosestPoints> Solve(const Pieces& pieces,
   if (!status.ok()) return status;
   if (stopped.load()) return CheckCancelled(context.cancellation);
   return answer;
+}
+
+// Evaluates a geometry's points at `count` parameter tuples.
+using PointEvaluator = absl::FunctionRef<absl::Status(absl::Span<const double>,
+                                                      absl::Span<double>)>;
+
+// Finisher turns the search's answer into the geometry's own: parameters
+// and distances back in the original units, each returned point the
+// geometry's point at its returned parameter (evaluated, not the search's
+// approximation), the distance the distance to that point, and a check that
+// the distance is still within the tolerance of the certified lower bound.
+struct Finisher {
+  const PointsView& queries;
+  const internal::ScaledValues& scale;
+  const ClosestPointOptions& options;  // in original units
+  const std::vector<uint8_t>& far;
+  bool rational;
+  PointEvaluator evaluate;
+
+  absl::Status Finish(size_t r, ClosestPoints& answer) const;
+  absl::Status CertificationError(size_t r, double distance,
+                                  double lower) const;
+  absl::Status DistanceOverflow(size_t r, int dim) const;
+};
+
+absl::Status Finisher::DistanceOverflow(size_t r, int dim) const {
+  const double* q = queries.point(r);
+  int largest = 0;
+  for (int x = 1; x < dim; ++x) {
+    if (std::abs(q[x]) > std::abs(q[largest])) largest = x;
+  }
+  return InvalidFieldError(
+      IndexedField("queries.coordinates",
+                   r * static_cast<size_t>(dim) + static_cast<size_t>(largest)),
+      "the distance from this query point to the geometry exceeds the "
+      "largest double");
+}
+
+absl::Status Finisher::CertificationError(size_t r, double distance,
+                                          double lower) const {
+  const std::string rule = absl::StrCat(
+      "the closest point of queries[", r, "] cannot be certified within ",
+      options.tolerance, ": the point at the nearest double parameter is ",
+      distance, " away while no point of the geometry is nearer than ", lower,
+      "; the geometry moves that far between adjacent parameters there");
+  if (rational) {
+    return InvalidFieldError(
+        "weights", absl::StrCat(rule,
+                                " (its weights vary that steeply: "
+                                "docs/references.md, 'Closest points by branch "
+                                "and bound')"));
+  }
+  return InvalidFieldError("tolerance", rule);
+}
+
+absl::Status Finisher::Finish(size_t r, ClosestPoints& answer) const {
+  const size_t count = static_cast<size_t>(answer.counts[r]);
+  if (count == 0) return absl::OkStatus();
+  const int dim = answer.dimension;
+  const size_t pc = static_cast<size_t>(answer.parameter_count);
+  const size_t slot = r * static_cast<size_t>(answer.max_minima);
+  double* parameters = answer.parameters.data() + slot * pc;
+  for (size_t k = 0; k < count * pc; ++k) {
+    parameters[k] = std::ldexp(
+        parameters[k], k % pc == 0 ? scale.u_exponent : scale.v_exponent);
+  }
+  double* points = answer.points.data() + slot * static_cast<size_t>(dim);
+  if (absl::Status status =
+          evaluate(absl::MakeConstSpan(parameters, count * pc),
+                   absl::MakeSpan(points, count * static_cast<size_t>(dim)));
+      !status.ok()) {
+    return status;
+  }
+  const double* q = queries.point(r);
+  double distance = kInfinity;
+  for (size_t k = 0; k < count; ++k) {
+    distance =
+        std::min(distance, internal::ScaledDistance(
+                               points + k * static_cast<size_t>(dim), q, dim));
+  }
+  if (!std::isfinite(distance)) return DistanceOverflow(r, dim);
+  constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+  const double lower =
+      far[r] != 0 ? distance * (1.0 - 16.0 * kEpsilon)
+                  : std::min(scale.Length(answer.lower_bounds[r]), distance);
+  answer.distances[r] = distance;
+  answer.lower_bounds[r] = lower;
+  // From a far query every point is at the minimum distance to rounding.
+  if (far[r] != 0) answer.complete[r] = 0;
+  if (answer.complete[r] == 0) return absl::OkStatus();
+  // The rounding of the hull bounds and of the evaluations: a few units in
+  // the last place of the coordinates' scale.
+  double size = scale.Length(1.0);
+  for (int x = 0; x < dim; ++x) size = std::max(size, std::abs(q[x]));
+  if (distance - lower <= options.tolerance + 64.0 * kEpsilon * size) {
+    return absl::OkStatus();
+  }
+  return CertificationError(r, distance, lower);
+}
+
+// Finish runs the Finisher over every query in chunks; the failure of the
+// first query that fails, if any, is returned.
+absl::Status Finish(const Finisher& finisher, ClosestPoints& answer,
+                    const ExecutionContext& context) {
+  std::atomic<size_t> first_failure{std::numeric_limits<size_t>::max()};
+  std::vector<absl::Status> failures(answer.counts.size());
+  ExecutionContext chunks = context;
+  chunks.grain = std::clamp<size_t>(context.grain, 1, 256);
+  absl::Status status =
+      ParallelFor(answer.counts.size(), chunks, [&](size_t b, size_t e) {
+        for (size_t r = b; r < e; ++r) {
+          absl::Status result = finisher.Finish(r, answer);
+          if (result.ok()) continue;
+          failures[r] = std::move(result);
+          size_t seen = first_failure.load();
+          while (r < seen && !first_failure.compare_exchange_weak(seen, r)) {
+          }
+          return;
+        }
+      });
+  if (!status.ok()) return status;
+  const size_t r = first_failure.load();
+  return r < failures.size() ? failures[r] : absl::OkStatus();
+}
+
+bool IsRational(const Pieces& pieces) {
+  for (const Net& net : pieces.nets) {
+    if (net.rational) return true;
+  }
+  return false;
+}
+
+absl::StatusOr<Pieces> ScaledPieces(const internal::ScaledCurve& scaled,
+                                    const CancellationToken* cancel) {
+  return internal::LiftPieces(scaled.curve(), cancel);
+}
+
+absl::StatusOr<Pieces> ScaledPieces(const internal::ScaledSurface& scaled,
+                                    const CancellationToken* cancel) {
+  return internal::LiftPieces(scaled.surface(), cancel);
+}
+
+internal::ScaledCurve ScaledOf(const Curve& curve) {
+  return internal::ScaledCurve::Of(curve);
+}
+
+internal::ScaledSurface ScaledOf(const Surface& surface) {
+  return internal::ScaledSurface::Of(surface);
+}
+
+absl::Status EvaluatePoints(const Curve& curve,
+                            absl::Span<const double> parameters,
+                            absl::Span<double> points) {
+  const absl::Span<double> output[] = {points};
+  return EvaluateCurve(curve, parameters, output);
+}
+
+absl::Status EvaluatePoints(const Surface& surface,
+                            absl::Span<const double> parameters,
+                            absl::Span<double> points) {
+  const absl::Span<double> output[] = {points};
+  return EvaluateSurface(surface, SurfaceSamples::Pairs(parameters), output,
+                         {});
 }
 
 // ClosestPointsOn checks the options and queries and answers them on a
@@ -718,10 +973,29 @@ absl::StatusOr<ClosestPoints> ClosestPointsOn(
       !status.ok()) {
     return status;
   }
-  absl::StatusOr<Pieces> pieces =
-      internal::LiftPieces(geometry, context.cancellation);
+  const auto scaled = ScaledOf(geometry);
+  absl::StatusOr<Pieces> pieces = ScaledPieces(scaled, context.cancellation);
   if (!pieces.ok()) return pieces.status();
-  return Solve(*pieces, queries, options, context);
+  for (Net& net : pieces->nets) internal::NormalizeWeights(net);
+  std::vector<uint8_t> far;
+  absl::StatusOr<ClosestPoints> answer =
+      SearchAll(*pieces, queries, scaled.scale(),
+                ScaledOptions(options, scaled.scale()), context, far);
+  if (!answer.ok()) return answer.status();
+  const auto evaluate = [&](absl::Span<const double> parameters,
+                            absl::Span<double> points) {
+    return EvaluatePoints(geometry, parameters, points);
+  };
+  const Finisher finisher{.queries = queries,
+                          .scale = scaled.scale(),
+                          .options = options,
+                          .far = far,
+                          .rational = IsRational(*pieces),
+                          .evaluate = evaluate};
+  if (absl::Status status = Finish(finisher, *answer, context); !status.ok()) {
+    return status;
+  }
+  return answer;
 }
 
 }  // namespace

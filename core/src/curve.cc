@@ -175,6 +175,17 @@ uint64_t DecomposedCurveValues(const Curve& curve) {
       curve);
 }
 
+uint64_t DecomposedCurvePieces(const Curve& curve) {
+  if (const auto* bspline = std::get_if<BSplineCurve>(&curve)) {
+    const BSplineCurveView& view = bspline->view();
+    return view.control_points.size() - static_cast<uint64_t>(view.degree);
+  }
+  if (const auto* hermite = std::get_if<HermiteCurve>(&curve)) {
+    return hermite->view().points.size() - 1;
+  }
+  return 1;
+}
+
 absl::StatusOr<BezierDecomposition> DecomposeCurve(
     const Curve& curve, const CancellationToken* cancel) {
   return std::visit(

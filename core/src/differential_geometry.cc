@@ -14,6 +14,8 @@
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface_output.h"
+#include "scaled.h"
+#include "scaled_geometry.h"
 
 namespace freeform {
 namespace {
@@ -33,7 +35,9 @@ double Dot(const double* a, const double* b, int d) {
   return sum;
 }
 
-double Norm(const double* a, int d) { return std::sqrt(Dot(a, a, d)); }
+// Norm is |a|, its squares scaled so that they neither underflow nor
+// overflow (scaled.h).
+double Norm(const double* a, int d) { return internal::ScaledNorm(a, d); }
 
 void Cross(const double* a, const double* b, double* out) {
   out[0] = a[1] * b[2] - a[2] * b[1];
@@ -70,15 +74,13 @@ CurvePoint FrenetPoint(const double* d1, const double* d2, const double* d3,
   const double bend = Norm(across.data(), d);
   if (!(bend * width * width / 2 > kNegligible * motion)) return point;
   point.status = CurvePointStatus::kRegular;
-  point.curvature = bend / (speed * speed);
+  point.curvature = bend / speed / speed;
   for (int j = 0; j < d; ++j) point.normal[j] = across[j] / bend;
   if (d == 3) {
     Cross(point.tangent.data(), point.normal.data(), point.binormal.data());
-    std::array<double, 3> cross{};
-    Cross(d1, d2, cross.data());
-    // |r' x r''| = |r'| |r''_perp|.
-    const double area = speed * bend;
-    point.torsion = Dot(cross.data(), d3, 3) / (area * area);
+    // r' x r'' = |r'| |r''_perp| B, so the torsion is B . r''' / (|r'|
+    // |r''_perp|), without the products that would overflow.
+    point.torsion = Dot(point.binormal.data(), d3, 3) / speed / bend;
   }
   return point;
 }
@@ -109,11 +111,14 @@ absl::Status CheckFrenetOutput(const FrenetFrameOutput& output, int dimension,
   return absl::OkStatus();
 }
 
-// The derivatives 0..3 of a curve at every parameter, and the width of its
-// domain.
+// The derivatives 0..3 of a curve at every parameter, evaluated on its copy
+// rescaled by powers of two (scaled_geometry.h), the width of that copy's
+// domain, and the exponent e of its coordinates (the curve's curvature and
+// torsion are the copy's times 2^-e).
 struct CurveDerivatives {
   int dimension = 0;
   double width = 0.0;
+  int coordinate_exponent = 0;
   std::array<std::vector<double>, 4> orders;
 
   const double* at(int order, size_t r) const {
@@ -124,17 +129,35 @@ struct CurveDerivatives {
 absl::StatusOr<CurveDerivatives> EvaluateDerivatives(
     const Curve& curve, absl::Span<const double> parameters,
     const ExecutionContext& context) {
-  const ParameterDomain domain = DomainOf(curve);
-  CurveDerivatives derivatives{.dimension = DimensionOf(curve),
-                               .width = domain.end - domain.start,
-                               .orders = {}};
+  const ParameterDomain original = DomainOf(curve);
+  if (absl::Status status = ValidateInRange(parameters, original.start,
+                                            original.end, "parameters");
+      !status.ok()) {
+    return status;
+  }
+  const internal::ScaledCurve scaled = internal::ScaledCurve::Of(curve);
+  std::vector<double> scaled_parameters;
+  absl::Span<const double> at = parameters;
+  if (scaled.scale().u_exponent != 0) {
+    scaled_parameters.resize(parameters.size());
+    for (size_t r = 0; r < parameters.size(); ++r) {
+      scaled_parameters[r] = scaled.ToScaled(parameters[r]);
+    }
+    at = scaled_parameters;
+  }
+  const ParameterDomain domain = DomainOf(scaled.curve());
+  CurveDerivatives derivatives{
+      .dimension = DimensionOf(curve),
+      .width = domain.end - domain.start,
+      .coordinate_exponent = scaled.scale().coordinate_exponent,
+      .orders = {}};
   std::array<absl::Span<double>, 4> output;
   for (size_t k = 0; k < output.size(); ++k) {
     derivatives.orders[k].resize(parameters.size() *
                                  static_cast<size_t>(derivatives.dimension));
     output[k] = absl::MakeSpan(derivatives.orders[k]);
   }
-  if (absl::Status status = EvaluateCurve(curve, parameters, output, context);
+  if (absl::Status status = EvaluateCurve(scaled.curve(), at, output, context);
       !status.ok()) {
     return status;
   }
@@ -142,9 +165,13 @@ absl::StatusOr<CurveDerivatives> EvaluateDerivatives(
 }
 
 CurvePoint FrenetAt(const CurveDerivatives& derivatives, size_t r) {
-  return FrenetPoint(derivatives.at(1, r), derivatives.at(2, r),
-                     derivatives.at(3, r), derivatives.dimension,
-                     derivatives.width);
+  CurvePoint point = FrenetPoint(derivatives.at(1, r), derivatives.at(2, r),
+                                 derivatives.at(3, r), derivatives.dimension,
+                                 derivatives.width);
+  const internal::PowerOfTwoScale back(-derivatives.coordinate_exponent);
+  point.curvature = back(point.curvature);
+  point.torsion = back(point.torsion);
+  return point;
 }
 
 // MovingAt is FrenetAt for a point that must have a tangent.
@@ -212,14 +239,21 @@ absl::StatusOr<std::array<double, kMaxDimension>> InitialReference(
 }
 
 // Reflect reflects `vectors` in the hyperplane orthogonal to `normal`
-// (skipped when `normal` vanishes).
+// (skipped when `normal` vanishes), the normal first divided by the power
+// of two at or above its largest component so that its square cannot
+// underflow for points close together.
 void Reflect(const double* normal, int d,
              std::initializer_list<double*> vectors) {
-  const double c = Dot(normal, normal, d);
-  if (!(c > std::numeric_limits<double>::min())) return;
+  double largest = 0.0;
+  for (int j = 0; j < d; ++j) largest = std::max(largest, std::abs(normal[j]));
+  if (!(largest > 0.0) || !std::isfinite(largest)) return;
+  const int e = internal::ExponentAbove(largest);
+  std::array<double, kMaxDimension> unit{};
+  for (int j = 0; j < d; ++j) unit[j] = std::ldexp(normal[j], -e);
+  const double c = Dot(unit.data(), unit.data(), d);
   for (double* v : vectors) {
-    const double f = 2.0 * Dot(normal, v, d) / c;
-    for (int j = 0; j < d; ++j) v[j] -= f * normal[j];
+    const double f = 2.0 * Dot(unit.data(), v, d) / c;
+    for (int j = 0; j < d; ++j) v[j] -= f * unit[j];
   }
 }
 
@@ -277,12 +311,48 @@ double SecondForm(const std::array<double, 3>& lmn,
          lmn[2] * a[1] * b[1];
 }
 
+// UnitPartials holds the partials S_u, S_v, S_uu, S_uv, S_vv of one point
+// after the reparameterization (u, v) -> (u, v) / c, c = 2^e with e the
+// SafeExponent of the largest component of S_u and S_v (scaled.h): the
+// first partials are divided by c, the second by c^2, so that E, F, G and
+// the products below stay within the double range whatever the geometry's
+// scale, and the curvatures do not change.
+struct UnitPartials {
+  // p[a] points at partial a: the evaluated one when e = 0, else its
+  // scaled copy in `scaled`.
+  std::array<const double*, 5> p{};
+  std::array<std::array<double, 3>, 5> scaled{};
+
+  UnitPartials(SurfaceOutput partials, size_t r) {
+    const std::array<std::pair<int, int>, 5> orders = {
+        {{1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}}};
+    for (size_t a = 0; a < orders.size(); ++a) {
+      p[a] = PartialAt(partials, orders[a].first, orders[a].second, r);
+    }
+    double largest = 0.0;
+    for (int a = 0; a < 2; ++a) {
+      for (int j = 0; j < 3; ++j)
+        largest = std::max(largest, std::abs(p[a][j]));
+    }
+    const int e = largest == 0.0 ? 0 : internal::SafeExponent(largest);
+    if (e == 0) return;
+    for (size_t a = 0; a < orders.size(); ++a) {
+      const int order = orders[a].first + orders[a].second;
+      for (int j = 0; j < 3; ++j) {
+        scaled[a][j] = std::ldexp(p[a][j], -order * e);
+      }
+      p[a] = scaled[a].data();
+    }
+  }
+};
+
 // CurvaturePoint computes the curvatures of point r from its partials and
 // unit normal (see differential_geometry.h).
 SurfacePoint CurvaturePoint(SurfaceOutput partials, size_t r, const double* n) {
   SurfacePoint point;
-  const double* su = PartialAt(partials, 1, 0, r);
-  const double* sv = PartialAt(partials, 0, 1, r);
+  const UnitPartials unit(partials, r);
+  const double* su = unit.p[0];
+  const double* sv = unit.p[1];
   const double e = Dot(su, su, 3);
   const double f = Dot(su, sv, 3);
   const double g = Dot(sv, sv, 3);
@@ -290,9 +360,8 @@ SurfacePoint CurvaturePoint(SurfaceOutput partials, size_t r, const double* n) {
   Cross(su, sv, cross.data());
   const double area = Norm(cross.data(), 3);
   if (!(area > kSingularSurface * (e + g))) return point;
-  const std::array<double, 3> lmn = {Dot(PartialAt(partials, 2, 0, r), n, 3),
-                                     Dot(PartialAt(partials, 1, 1, r), n, 3),
-                                     Dot(PartialAt(partials, 0, 2, r), n, 3)};
+  const std::array<double, 3> lmn = {Dot(unit.p[2], n, 3), Dot(unit.p[3], n, 3),
+                                     Dot(unit.p[4], n, 3)};
   // e1 = S_u / |S_u| and e2 = n x e1 = (E S_v - F S_u) / (|S_u| area) in
   // parameter coordinates.
   const double root_e = std::sqrt(e);
@@ -302,7 +371,17 @@ SurfacePoint CurvaturePoint(SurfaceOutput partials, size_t r, const double* n) {
   const double s12 = SecondForm(lmn, e1, e2);
   const double s22 = SecondForm(lmn, e2, e2);
   point.mean = 0.5 * (s11 + s22);
-  point.gaussian = s11 * s22 - s12 * s12;
+  // K is exact to a few rounding errors of the shape operator's size
+  // squared (those of s11, s22 and s12 themselves); below that it is noise,
+  // returned as 0, which on a cylinder of radius 1e-300 would otherwise be
+  // scaled back to an overflow.
+  const double size = std::max({std::abs(s11), std::abs(s22), std::abs(s12)});
+  const double gaussian = s11 * s22 - s12 * s12;
+  point.gaussian =
+      std::abs(gaussian) <=
+              16.0 * std::numeric_limits<double>::epsilon() * size * size
+          ? 0.0
+          : gaussian;
   const double radius = std::hypot(0.5 * (s11 - s22), s12);
   point.principal = {point.mean + radius, point.mean - radius};
   const bool umbilic =
@@ -470,16 +549,31 @@ absl::Status EvaluateSurfaceCurvatures(const Surface& surface,
   for (std::vector<double>& buffer : buffers) {
     partials.push_back(absl::MakeSpan(buffer));
   }
+  if (absl::Status status = ValidateSamples(surface, samples); !status.ok()) {
+    return status;
+  }
+  // Evaluated on the copy rescaled by powers of two (scaled_geometry.h):
+  // its curvatures are the surface's times 2^e.
+  const internal::ScaledSurface scaled = internal::ScaledSurface::Of(surface);
+  std::vector<double> storage;
   std::vector<double> normals(3 * count);
-  if (absl::Status status = EvaluateSurface(surface, samples, partials,
-                                            absl::MakeSpan(normals), context);
+  if (absl::Status status =
+          EvaluateSurface(scaled.surface(), scaled.Samples(samples, storage),
+                          partials, absl::MakeSpan(normals), context);
       !status.ok()) {
     return status;
   }
+  const int exponent = scaled.scale().coordinate_exponent;
+  const internal::PowerOfTwoScale back(-exponent);
+  const internal::PowerOfTwoScale back_squared(-2 * exponent);
   return ParallelFor(count, context, [&](size_t b, size_t e) {
     for (size_t r = b; r < e; ++r) {
       const double* normal = normals.data() + 3 * r;
-      StoreCurvature(CurvaturePoint(partials, r, normal), normal, r, output);
+      SurfacePoint point = CurvaturePoint(partials, r, normal);
+      point.mean = back(point.mean);
+      point.gaussian = back_squared(point.gaussian);
+      for (double& k : point.principal) k = back(k);
+      StoreCurvature(point, normal, r, output);
     }
   });
 }

@@ -89,10 +89,12 @@ absl::StatusOr<CurveInterpolation> InterpolateCurve(
   }
   const absl::Span<const double> sites =
       has_start || has_end ? absl::Span<const double>(doubled) : t;
-  std::vector<double> knots = KnotsFor(
+  absl::StatusOr<std::vector<double>> placed = KnotsFor(
       sites, p,
       universal ? Parameterization::kUniversal : Parameterization::kUniform,
-      options.knot_rule);
+      options.knot_rule, options.cancel);
+  if (!placed.ok()) return placed.status();
+  std::vector<double> knots = *std::move(placed);
   const EndCondition start{.order = has_start ? 1 : 0,
                            .value = options.start_derivative};
   const EndCondition end{.order = has_end ? 1 : 0,

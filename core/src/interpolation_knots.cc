@@ -9,12 +9,15 @@ namespace {
 
 // AveragingKnots returns the clamped knots u_{j+p} = (s_j + ... +
 // s_{j+p-1}) / p, j = 1..N-p-1, for N sites s (eq. 9.8).
-std::vector<double> AveragingKnots(absl::Span<const double> s, int p) {
+absl::StatusOr<std::vector<double>> AveragingKnots(
+    absl::Span<const double> s, int p, const CancellationToken* cancel) {
   const size_t count = s.size();
   const size_t degree = static_cast<size_t>(p);
   std::vector<double> knots(count + degree + 1, s.back());
   std::fill_n(knots.begin(), degree + 1, s.front());
+  CancellationPoll poll(cancel);
   for (size_t j = 1; j + degree < count; ++j) {
+    if (absl::Status status = poll.Done(degree); !status.ok()) return status;
     double sum = 0;
     for (size_t i = j; i < j + degree; ++i) sum += s[i];
     knots[j + degree] = sum / p;
@@ -43,9 +46,11 @@ std::vector<double> ClampedUniformKnots(int count, int p) {
   return knots;
 }
 
-std::vector<double> KnotsFor(absl::Span<const double> t, int p,
-                             Parameterization parameterization,
-                             KnotRule knot_rule) {
+absl::StatusOr<std::vector<double>> KnotsFor(absl::Span<const double> t,
+                                             int p,
+                                             Parameterization parameterization,
+                                             KnotRule knot_rule,
+                                             const CancellationToken* cancel) {
   const int count = static_cast<int>(t.size());
   if (parameterization == Parameterization::kUniversal) {
     return ClampedUniformKnots(count, p);
@@ -53,7 +58,7 @@ std::vector<double> KnotsFor(absl::Span<const double> t, int p,
   if (knot_rule == KnotRule::kUniform) {
     return UniformKnots(t.front(), t.back(), count, p);
   }
-  return AveragingKnots(t, p);
+  return AveragingKnots(t, p, cancel);
 }
 
 }  // namespace freeform::internal

@@ -6,7 +6,9 @@
 
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "freeform/core/cancellation.h"
 #include "freeform/core/interpolation.h"
 
 namespace freeform::internal {
@@ -17,11 +19,13 @@ std::vector<double> ClampedUniformKnots(int count, int p);
 
 // KnotsFor returns the clamped knots of degree p for the sites t (one
 // function per site): ClampedUniformKnots for kUniversal, else by the
-// KnotRule (kAveraging: eq. 9.8; kUniform: equally spaced on
-// [t.front(), t.back()]).
-std::vector<double> KnotsFor(absl::Span<const double> t, int p,
-                             Parameterization parameterization,
-                             KnotRule knot_rule);
+// KnotRule (kAveraging: eq. 9.8, N p additions, which poll `cancel`;
+// kUniform: equally spaced on [t.front(), t.back()]).
+absl::StatusOr<std::vector<double>> KnotsFor(absl::Span<const double> t,
+                                             int p,
+                                             Parameterization parameterization,
+                                             KnotRule knot_rule,
+                                             const CancellationToken* cancel);
 
 }  // namespace freeform::internal
 

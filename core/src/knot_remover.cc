@@ -338,6 +338,7 @@ KnotRemover::Candidate KnotRemover::Solve(int index) const {
   const double u = knots[static_cast<size_t>(index)];
   int s = 1;
   while (knots[static_cast<size_t>(index - s)] == u) ++s;
+  if (s == p + 1) return SolveAtStep(index);
   Candidate c{.index = index, .first = index - p, .last = index - s};
   // The new points from both ends of the run (The NURBS Book A5.8): the
   // left half from the equations first.., the right half from ..last; the
@@ -360,6 +361,25 @@ KnotRemover::Candidate KnotRemover::Solve(int index) const {
     SolveFor(spline_.point(c.first + k + 1),
              k == count - 1 ? spline_.point(c.last + 1) : c.point(k + 1, block),
              1.0 - a, a, block, c.point(k, block));
+  }
+  return c;
+}
+
+KnotRemover::Candidate KnotRemover::SolveAtStep(int index) const {
+  // Knot u = knots[index] of multiplicity p + 1 (a degree-0 step): the
+  // B-splines first and first + 1 meet at u with a jump from one point to
+  // the next, and removing one copy joins them into one B-spline over both
+  // spans. Its point is their midpoint, which halves the larger deviation;
+  // Certify measures what that costs.
+  const int block = spline_.block;
+  Candidate c{.index = index,
+              .first = index - spline_.degree - 1,
+              .last = index - spline_.degree};
+  c.replacement.resize(static_cast<size_t>(block));
+  const double* left = spline_.point(c.first);
+  const double* right = spline_.point(c.last);
+  for (int x = 0; x < block; ++x) {
+    c.replacement[static_cast<size_t>(x)] = 0.5 * left[x] + 0.5 * right[x];
   }
   return c;
 }
@@ -524,13 +544,16 @@ absl::Status KnotRemover::Push(KnotQueue& queue, int v,
 absl::Status KnotRemover::Refresh(KnotQueue& queue, int index,
                                   CancellationPoll& poll) const {
   // The candidates whose last copy lies within [index - 2p, index + 2p - 1]
-  // read points or knots that the removal at `index` changed
+  // read points or knots that the removal at `index` changed; for degree 0,
+  // whose removals join two neighbouring points, [index - 1, index]
   // (docs/references.md, 'Knot removal'): evaluate them again.
   const int p = spline_.degree;
   const int size = static_cast<int>(spline_.knots.size());
+  const int before = p == 0 ? 1 : 2 * p;
+  const int after = p == 0 ? 0 : 2 * p - 1;
   double previous = std::nan("");
-  for (int g = std::max(index - 2 * p, 0);
-       g <= std::min(index + 2 * p - 1, size - 1); ++g) {
+  for (int g = std::max(index - before, 0);
+       g <= std::min(index + after, size - 1); ++g) {
     const double u = spline_.knots[static_cast<size_t>(g)];
     if (u == previous || !Interior(u)) continue;
     previous = u;

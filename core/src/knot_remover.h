@@ -159,6 +159,8 @@ class KnotRemover {
   // value: Solve's new points, certified by Certify.
   Candidate Evaluate(int index) const;
   Candidate Solve(int index) const;
+  // SolveAtStep is Solve for a knot of multiplicity p + 1 (degree 0).
+  Candidate SolveAtStep(int index) const;
   void Certify(Candidate& candidate) const;
   // Outside returns the worst deviation of the fine coefficients outside
   // [lo, hi].

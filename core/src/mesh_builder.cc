@@ -1,5 +1,8 @@
 // TessellatePlanned of mesh.h: the pieces of a MeshPlan cut from their
 // surfaces, meshed over their grids and rings, evaluated, and welded.
+// Every array the builder keeps is sized from the plan before it is filled
+// and the mesh is made in place of the builder's arrays, so its peak memory
+// is known before it starts (PlannedMeshBytes).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -9,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "absl/container/flat_hash_map.h"
+#include "absl/hash/hash.h"
 #include "absl/status/status.h"
 #include "freeform/core/mesh.h"
 #include "freeform/core/status.h"
@@ -46,11 +49,36 @@ double Norm3(double x, double y, double z) {
   return std::sqrt(x * x + y * y + z * z);
 }
 
+// Vertices are evaluated this many at a time, so the evaluator's buffers
+// stay small however large a piece's grid is.
+constexpr size_t kEvaluationBatch = 4096;
+
+// Bytes of the evaluator's buffers for one batch: the (u, v) pairs, the
+// first partials (3 values each) and normals, and for degenerate points
+// the second partials (6) and their normals, their (u, v) and indices.
+constexpr uint64_t kEvaluationBatchBytes =
+    kEvaluationBatch * 8 * (2 + 3 * 3 + 3 + 6 * 3 + 3 + 2 + 1);
+
+// What one heap block costs beyond its bytes: glibc's header and rounding.
+constexpr uint64_t kBlockOverhead = 32;
+
+// Bytes of a node of the builder's std::map of corner points.
+constexpr uint64_t kCornerNodeBytes = 96;
+
+// WeldSlots returns the slots of the welding table of `count` vertices: a
+// power of two at least twice the count, so at most half are used.
+size_t WeldSlots(size_t count) {
+  size_t slots = 16;
+  while (slots < 2 * count) slots *= 2;
+  return slots;
+}
+
 // The mesh under construction, before evaluation and welding.
 class MeshBuilder {
  public:
-  explicit MeshBuilder(const MeshPlan& plan)
+  MeshBuilder(const MeshPlan& plan, CornerAttributes corner_attributes)
       : plan_(plan),
+        keep_corners_(corner_attributes == CornerAttributes::kMake),
         corners_(plan.pieces.size()),
         edge_vertices_(plan.edges.size()) {}
 
@@ -85,15 +113,18 @@ class MeshBuilder {
   void BuildPiece(uint32_t piece);
 
   const MeshPlan& plan_;
+  // Whether the mesh gets Mesh::triangle_patch and Mesh::corner_uv.
+  const bool keep_corners_;
   // The plan's pieces when it holds them, else owned_decompositions_.
   const std::vector<SurfaceDecomposition>* decompositions_ = nullptr;
   std::vector<SurfaceDecomposition> owned_decompositions_;
-  // Per piece: its corner vertices (0,0), (1,0), (1,1), (0,1).
+  // Build's own: per piece its corner vertices (0,0), (1,0), (1,1), (0,1);
+  // per edge segments + 1 vertices in its canonical direction (created by
+  // the first piece that uses it); the vertex of every corner point.
   std::vector<std::array<uint32_t, 4>> corners_;
-  // Per edge: segments + 1 vertices in its canonical direction (created
-  // by the first piece that uses it).
   std::vector<std::vector<uint32_t>> edge_vertices_;
   std::map<Point3, uint32_t> corner_index_;
+  // Per vertex (at most the plan's), and per triangle.
   std::vector<VertexSource> sources_;
   std::vector<double> positions_;
   std::vector<double> normals_;
@@ -181,8 +212,9 @@ void MeshBuilder::AddTriangle(uint32_t piece, const Sample& a, const Sample& b,
   if (a.vertex == b.vertex || b.vertex == c.vertex || a.vertex == c.vertex) {
     return;
   }
+  for (const Sample* s : {&a, &b, &c}) triangles_.push_back(s->vertex);
+  if (!keep_corners_) return;
   for (const Sample* s : {&a, &b, &c}) {
-    triangles_.push_back(s->vertex);
     corner_uv_.push_back(s->u);
     corner_uv_.push_back(s->v);
   }
@@ -245,80 +277,133 @@ void MeshBuilder::BuildPiece(uint32_t piece) {
 }
 
 absl::Status MeshBuilder::Build(const CancellationToken* cancel) {
+  // The plan's sizes bound what the pieces make (before welding).
   sources_.reserve(plan_.size.vertices);
   triangles_.reserve(3 * plan_.size.triangles);
+  if (keep_corners_) {
+    triangle_piece_.reserve(plan_.size.triangles);
+    corner_uv_.reserve(6 * plan_.size.triangles);
+  }
   for (uint32_t piece = 0; piece < plan_.pieces.size(); ++piece) {
     if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
       return status;
     }
     BuildPiece(piece);
   }
+  // Only the pieces' construction needs these.
+  std::vector<std::array<uint32_t, 4>>().swap(corners_);
+  std::vector<std::vector<uint32_t>>().swap(edge_vertices_);
+  std::map<Point3, uint32_t>().swap(corner_index_);
   return absl::OkStatus();
 }
 
 absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
-  std::vector<std::vector<uint32_t>> owned(plan_.pieces.size());
-  for (uint32_t r = 0; r < sources_.size(); ++r) {
-    owned[sources_[r].piece].push_back(r);
+  // The vertices piece by piece (a counting sort): vertex order[k] for k in
+  // [first[p], first[p + 1]) belongs to piece p.
+  const size_t pieces = plan_.pieces.size();
+  std::vector<uint32_t> first(pieces + 1, 0);
+  for (const VertexSource& source : sources_) ++first[source.piece + 1];
+  for (size_t piece = 0; piece < pieces; ++piece) {
+    first[piece + 1] += first[piece];
+  }
+  std::vector<uint32_t> order(sources_.size());
+  {
+    std::vector<uint32_t> next(first.begin(), first.end() - 1);
+    for (uint32_t r = 0; r < sources_.size(); ++r) {
+      order[next[sources_[r].piece]++] = r;
+    }
   }
   positions_.resize(3 * sources_.size());
   normals_.resize(3 * sources_.size());
   std::vector<double> uv;
+  uv.reserve(2 * kEvaluationBatch);
   internal::PieceEvaluator evaluator;
-  for (uint32_t piece = 0; piece < plan_.pieces.size(); ++piece) {
-    if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
-      return status;
-    }
-    const std::vector<uint32_t>& vertices = owned[piece];
-    if (vertices.empty()) continue;
-    uv.clear();
-    for (uint32_t r : vertices) {
-      uv.push_back(sources_[r].u);
-      uv.push_back(sources_[r].v);
-    }
-    if (absl::Status status = evaluator.Evaluate(PieceView(piece), uv);
-        !status.ok()) {
-      return status;
-    }
-    for (size_t k = 0; k < vertices.size(); ++k) {
-      std::copy_n(&evaluator.positions()[3 * k], 3,
-                  &positions_[3 * vertices[k]]);
-      std::copy_n(&evaluator.normals()[3 * k], 3, &normals_[3 * vertices[k]]);
+  for (uint32_t piece = 0; piece < pieces; ++piece) {
+    for (size_t start = first[piece]; start < first[piece + 1];
+         start += kEvaluationBatch) {
+      if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
+        return status;
+      }
+      const size_t end =
+          std::min<size_t>(first[piece + 1], start + kEvaluationBatch);
+      uv.clear();
+      for (size_t k = start; k < end; ++k) {
+        uv.push_back(sources_[order[k]].u);
+        uv.push_back(sources_[order[k]].v);
+      }
+      if (absl::Status status = evaluator.Evaluate(PieceView(piece), uv);
+          !status.ok()) {
+        return status;
+      }
+      for (size_t k = start; k < end; ++k) {
+        std::copy_n(&evaluator.positions()[3 * (k - start)], 3,
+                    &positions_[3 * order[k]]);
+        std::copy_n(&evaluator.normals()[3 * (k - start)], 3,
+                    &normals_[3 * order[k]]);
+      }
     }
   }
   return absl::OkStatus();
+}
+
+// CellIndex converts a cell coordinate to an integer, saturated at +-2^62
+// (a NaN to 0): a vertex far out of the geometry's scale (an epsilon of
+// 1e-300 against coordinates near 1) would overflow int64. Vertices it
+// merges into one cell are still welded only within epsilon of each other.
+int64_t CellIndex(double scaled) {
+  constexpr double kLargest = 4611686018427387904.0;  // 2^62
+  if (scaled >= kLargest) return int64_t{1} << 62;
+  if (scaled <= -kLargest) return -(int64_t{1} << 62);
+  if (!(scaled == scaled)) return 0;
+  return static_cast<int64_t>(scaled);
 }
 
 // WeldMap returns, for every vertex, an earlier unwelded vertex within
 // `epsilon` of it (itself when none), found by hashing into cells of 4
 // epsilon: a vertex within epsilon of another lies in the same cell or in a
 // neighbouring one across a cell side it is within epsilon of, so most
-// vertices look into one cell only.
+// vertices look into one cell only. The cells are an open-addressing table
+// (linear probing) of WeldSlots(count) vertex numbers, each slot the first
+// vertex of a cell, whose position gives the cell back; next[r] is the
+// vertex after r in its cell.
 std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
                               double epsilon) {
   const size_t count = positions.size() / 3;
   const double cell_size = 4 * epsilon;
-  std::vector<uint32_t> target(count);
   using Cell = std::array<int64_t, 3>;
-  // Each cell's first vertex; next[r] is the vertex after r in its cell.
-  // (An open-addressing table: std::unordered_map's node chains cost a
-  // quarter of the whole mesh time in cache misses.)
+  auto cell_of = [&](size_t r) {
+    Cell cell;
+    for (int x = 0; x < 3; ++x) {
+      cell[x] = CellIndex(std::floor(positions[3 * r + x] / cell_size));
+    }
+    return cell;
+  };
   constexpr uint32_t kNone = UINT32_MAX;
-  absl::flat_hash_map<Cell, uint32_t> cells;
-  cells.reserve(count);
+  std::vector<uint32_t> slots(WeldSlots(count), kNone);
+  const size_t mask = slots.size() - 1;
+  // The slot of `cell`: the one holding its first vertex, or the empty one
+  // where it goes.
+  auto slot_of = [&](const Cell& cell) -> uint32_t& {
+    const size_t hash = absl::Hash<Cell>{}(cell);
+    size_t at = hash & mask;
+    while (slots[at] != kNone && cell_of(slots[at]) != cell) {
+      at = (at + 1) & mask;
+    }
+    return slots[at];
+  };
+  std::vector<uint32_t> target(count);
   std::vector<uint32_t> next(count, kNone);
   for (size_t r = 0; r < count; ++r) {
     target[r] = static_cast<uint32_t>(r);
     const double* p = &positions[3 * r];
-    Cell cell;
+    const Cell cell = cell_of(r);
     // Per axis the cells to search: its own, and the neighbour across a
     // side within epsilon.
     std::array<std::array<int, 2>, 3> steps;
     std::array<int, 3> step_count;
     for (int x = 0; x < 3; ++x) {
-      const double scaled = std::floor(p[x] / cell_size);
-      cell[x] = static_cast<int64_t>(scaled);
-      const double offset = p[x] - scaled * cell_size;
+      const double offset =
+          p[x] - std::floor(p[x] / cell_size) * cell_size;
       steps[x] = {0, 0};
       step_count[x] = 1;
       if (offset <= epsilon) steps[x][step_count[x]++] = -1;
@@ -328,11 +413,10 @@ std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
     for (int i = 0; i < step_count[0] && !found; ++i) {
       for (int j = 0; j < step_count[1] && !found; ++j) {
         for (int k = 0; k < step_count[2] && !found; ++k) {
-          auto it = cells.find({cell[0] + steps[0][i], cell[1] + steps[1][j],
-                                cell[2] + steps[2][k]});
-          if (it == cells.end()) continue;
-          for (uint32_t other = it->second; other != kNone;
-               other = next[other]) {
+          for (uint32_t other =
+                   slot_of({cell[0] + steps[0][i], cell[1] + steps[1][j],
+                            cell[2] + steps[2][k]});
+               other != kNone; other = next[other]) {
             const double* q = &positions[3 * other];
             if (Norm3(p[0] - q[0], p[1] - q[1], p[2] - q[2]) <= epsilon) {
               target[r] = other;
@@ -344,48 +428,74 @@ std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
       }
     }
     if (found) continue;
-    uint32_t& head = cells.try_emplace(cell, kNone).first->second;
+    uint32_t& head = slot_of(cell);
     next[r] = head;
     head = static_cast<uint32_t>(r);
   }
   return target;
 }
 
+// Finish makes the mesh in place of the builder's arrays: a kept vertex's
+// new number is never above its old one, nor a kept triangle's, so each
+// array is compacted from the front and moved into the mesh.
 Mesh MeshBuilder::Finish() {
   const double epsilon = std::max(1e-12 * plan_.scale, 1e-300);
-  const std::vector<uint32_t> target = WeldMap(positions_, epsilon);
+  // target[r] becomes vertex r's number in the mesh: its own for a kept
+  // vertex, else that of the earlier kept vertex it was welded to.
+  std::vector<uint32_t> target = WeldMap(positions_, epsilon);
   Mesh mesh;
-  std::vector<uint32_t> index(target.size());
+  mesh.patch.reserve(target.size());
+  mesh.uv.reserve(2 * target.size());
+  size_t kept = 0;
   for (size_t r = 0; r < target.size(); ++r) {
-    if (target[r] != r) continue;
-    index[r] = static_cast<uint32_t>(mesh.patch.size());
-    mesh.vertices.insert(mesh.vertices.end(), positions_.begin() + 3 * r,
-                         positions_.begin() + 3 * r + 3);
-    mesh.normals.insert(mesh.normals.end(), normals_.begin() + 3 * r,
-                        normals_.begin() + 3 * r + 3);
+    if (target[r] != r) {
+      target[r] = target[target[r]];
+      continue;
+    }
+    target[r] = static_cast<uint32_t>(kept);
+    if (kept != r) {
+      std::copy_n(&positions_[3 * r], 3, &positions_[3 * kept]);
+      std::copy_n(&normals_[3 * r], 3, &normals_[3 * kept]);
+    }
     const VertexSource& source = sources_[r];
     mesh.patch.push_back(plan_.pieces[source.piece].surface);
     const std::array<double, 2> uv =
         SurfaceParameters(source.piece, source.u, source.v);
     mesh.uv.insert(mesh.uv.end(), uv.begin(), uv.end());
+    ++kept;
   }
-  for (size_t t = 0; t < triangle_piece_.size(); ++t) {
+  std::vector<VertexSource>().swap(sources_);
+  positions_.resize(3 * kept);
+  normals_.resize(3 * kept);
+  mesh.vertices = std::move(positions_);
+  mesh.normals = std::move(normals_);
+  size_t made = 0;
+  for (size_t t = 0; 3 * t < triangles_.size(); ++t) {
     std::array<uint32_t, 3> corners;
-    for (int k = 0; k < 3; ++k) {
-      corners[k] = index[target[triangles_[3 * t + k]]];
-    }
+    for (int k = 0; k < 3; ++k) corners[k] = target[triangles_[3 * t + k]];
     if (corners[0] == corners[1] || corners[1] == corners[2] ||
         corners[0] == corners[2]) {
       continue;  // collapsed by welding
     }
-    mesh.triangles.insert(mesh.triangles.end(), corners.begin(), corners.end());
-    const uint32_t piece = triangle_piece_[t];
-    mesh.triangle_patch.push_back(plan_.pieces[piece].surface);
-    for (int k = 0; k < 3; ++k) {
-      const std::array<double, 2> uv = SurfaceParameters(
-          piece, corner_uv_[6 * t + 2 * k], corner_uv_[6 * t + 2 * k + 1]);
-      mesh.corner_uv.insert(mesh.corner_uv.end(), uv.begin(), uv.end());
+    std::copy(corners.begin(), corners.end(), &triangles_[3 * made]);
+    if (keep_corners_) {
+      const uint32_t piece = triangle_piece_[t];
+      triangle_piece_[made] = plan_.pieces[piece].surface;
+      for (int k = 0; k < 3; ++k) {
+        const std::array<double, 2> uv = SurfaceParameters(
+            piece, corner_uv_[6 * t + 2 * k], corner_uv_[6 * t + 2 * k + 1]);
+        std::copy(uv.begin(), uv.end(), &corner_uv_[6 * made + 2 * k]);
+      }
     }
+    ++made;
+  }
+  triangles_.resize(3 * made);
+  mesh.triangles = std::move(triangles_);
+  if (keep_corners_) {
+    triangle_piece_.resize(made);
+    corner_uv_.resize(6 * made);
+    mesh.triangle_patch = std::move(triangle_piece_);
+    mesh.corner_uv = std::move(corner_uv_);
   }
   return mesh;
 }
@@ -393,13 +503,101 @@ Mesh MeshBuilder::Finish() {
 }  // namespace
 
 absl::StatusOr<Mesh> TessellatePlanned(const MeshPlan& plan,
-                                       const CancellationToken* cancel) {
-  MeshBuilder builder(plan);
+                                       const CancellationToken* cancel,
+                                       CornerAttributes corner_attributes) {
+  MeshBuilder builder(plan, corner_attributes);
   absl::Status status = builder.Decompose(cancel);
   if (status.ok()) status = builder.Build(cancel);
   if (status.ok()) status = builder.Evaluate(cancel);
   if (!status.ok()) return status;
   return builder.Finish();
+}
+
+MeshMemory PlannedMeshMemory(const MeshPlan& plan,
+                             CornerAttributes corner_attributes) {
+  using internal::InnerPlace;
+  using internal::OuterPlace;
+  const uint64_t vertices = plan.size.vertices;
+  const uint64_t triangles = plan.size.triangles;
+  const uint64_t pieces = plan.pieces.size();
+  const uint64_t edges = plan.edges.size();
+  const bool corners = corner_attributes == CornerAttributes::kMake;
+  // The Bezier pieces: their values, and per piece its SurfaceData (in a
+  // vector grown by doubling) and its arrays' blocks. (The plan's sum
+  // saturates; the sizes below stay far from overflowing once it is
+  // within any memory.)
+  if (plan.piece_values > (uint64_t{1} << 56) ||
+      vertices > (uint64_t{1} << 40) || triangles > (uint64_t{1} << 40)) {
+    return {UINT64_MAX, UINT64_MAX, UINT64_MAX};
+  }
+  const uint64_t piece_bytes =
+      8 * plan.piece_values +
+      pieces * (2 * sizeof(SurfaceData) + 2 * kBlockOverhead);
+  const bool plan_holds_pieces = !plan.decompositions.empty();
+  MeshMemory memory;
+  memory.plan = pieces * sizeof(PiecePlan) + edges * sizeof(EdgePlan) +
+                (plan_holds_pieces ? piece_bytes : 0);
+  // The mesh: per vertex its position, normal, (u, v) and surface, per
+  // triangle its corners (and its surface and corners' (u, v)).
+  memory.mesh =
+      vertices * (6 * sizeof(double) + 2 * sizeof(double) + sizeof(uint32_t)) +
+      triangles * (3 * sizeof(uint32_t) +
+                   (corners ? sizeof(uint32_t) + 6 * sizeof(double) : 0));
+  // From Build to the end: the vertices' sources and the triangles (with
+  // their pieces and corner parameters), sized from the plan.
+  const uint64_t held =
+      vertices * sizeof(VertexSource) + triangles * 3 * sizeof(uint32_t) +
+      (corners ? triangles * (sizeof(uint32_t) + 6 * sizeof(double)) : 0);
+  // Build alone: the corners and side vertices of every piece and edge,
+  // the map of corner points, and the largest piece's grid and ring.
+  uint64_t build =
+      pieces * (sizeof(std::array<uint32_t, 4>) + 4 * kCornerNodeBytes) +
+      edges * (sizeof(std::vector<uint32_t>) + kBlockOverhead);
+  for (const EdgePlan& edge : plan.edges) {
+    build += (static_cast<uint64_t>(edge.segments) + 1) * sizeof(uint32_t);
+  }
+  uint64_t largest_piece = 0;
+  for (const PiecePlan& piece : plan.pieces) {
+    uint64_t ring = 0;
+    for (int side = 0; side < 4; ++side) {
+      ring +=
+          static_cast<uint64_t>(internal::SideSegments(
+              piece, plan.edges[static_cast<size_t>(piece.edge[side])], side)) +
+          1;
+    }
+    const uint64_t grid_u = static_cast<uint64_t>(piece.grid_u);
+    const uint64_t grid_v = static_cast<uint64_t>(piece.grid_v);
+    largest_piece = std::max(largest_piece,
+                             (grid_u - 1) * (grid_v - 1) * sizeof(uint32_t) +
+                                 ring * (sizeof(Sample) + sizeof(OuterPlace)) +
+                                 2 * (grid_u + grid_v) * sizeof(InnerPlace));
+  }
+  build += largest_piece;
+  // Evaluate: positions and normals, the vertices sorted by piece, and
+  // one batch's evaluation.
+  const uint64_t positions = vertices * 6 * sizeof(double);
+  const uint64_t evaluate = positions + vertices * sizeof(uint32_t) +
+                            (pieces + 1) * 2 * sizeof(uint32_t) +
+                            kEvaluationBatchBytes;
+  // Finish: the positions and normals (the mesh's now), every vertex's
+  // target, then the welding table and the cells' chains, or afterwards
+  // the mesh's surfaces and (u, v).
+  const uint64_t finish =
+      positions + vertices * sizeof(uint32_t) +
+      std::max<uint64_t>(
+          vertices * sizeof(uint32_t) + WeldSlots(vertices) * sizeof(uint32_t),
+          vertices * (sizeof(uint32_t) + 2 * sizeof(double)));
+  const uint64_t building = held + std::max({build, evaluate, finish});
+  // Every large array ends in a partly used page.
+  constexpr uint64_t kLargeArrays = 24;
+  // Without the plan's pieces, Decompose cuts them first, and cutting a
+  // surface holds its knot-refined nets beside them (InsertSurfaceKnots in
+  // u, then in v): at most three times the pieces.
+  memory.tessellation =
+      kLargeArrays * 4096 +
+      (plan_holds_pieces ? building
+                         : std::max(3 * piece_bytes, piece_bytes + building));
+  return memory;
 }
 
 absl::StatusOr<Mesh> TessellateSurfaces(absl::Span<const Surface> surfaces,

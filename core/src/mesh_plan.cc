@@ -276,12 +276,27 @@ double NeededCells(double m, double tolerance) {
 // (second partials `second`) and the longest edge (first partial `first`:
 // an edge spans at most one cell each way, so h_u M_u + h_v M_v <= L when
 // each term is at most L / 2).
-double CellsFor(double second, double first, const MeshOptions& options) {
-  double cells = NeededCells(second, options.tolerance);
+// `by_tolerance` is what the tolerance alone needs.
+struct Cells {
+  double cells = 1.0;
+  double by_tolerance = 1.0;
+};
+
+Cells CellsFor(double second, double first, const MeshOptions& options) {
+  Cells cells;
+  cells.by_tolerance = NeededCells(second, options.tolerance);
+  cells.cells = cells.by_tolerance;
   if (options.max_edge_length > 0.0) {
-    cells = std::max(cells, std::ceil(2.0 * first / options.max_edge_length));
+    cells.cells = std::max(cells.cells,
+                           std::ceil(2.0 * first / options.max_edge_length));
   }
   return cells;
+}
+
+// PieceVertices is the bound on a piece's vertices that a grid of
+// cells_u x cells_v cells plans: its interior grid nodes and the corners.
+double PieceVertices(double cells_u, double cells_v) {
+  return (std::max(2.0, cells_u) - 1.0) * (std::max(2.0, cells_v) - 1.0) + 4.0;
 }
 
 // The non-empty spans s (knots[s] < knots[s + 1]) of a domain [t_p,
@@ -430,7 +445,12 @@ class Planner {
   absl::StatusOr<std::shared_ptr<const MeshPlan>> Finish();
 
  private:
-  absl::Status AddVertices(double count);
+  // AddVertices counts a piece's planned vertices, and those it would need
+  // for the tolerance alone.
+  absl::Status AddVertices(double count, double by_tolerance);
+  // TooLarge is the refusal of a mesh over max_vertices, on the option
+  // that made it so: max_edge_length when the tolerance alone would fit.
+  absl::Status TooLarge(bool fits_by_tolerance) const;
   absl::Status RefineNormalAngles();
   void UseSide(PiecePlan& piece, int side, std::pair<int, bool> edge,
                double cells);
@@ -440,6 +460,7 @@ class Planner {
   MeshPlan plan_;
   EdgeTable edges_;
   double vertex_count_ = 0.0;
+  double vertex_count_by_tolerance_ = 0.0;
 };
 
 // RefineNormalAngles cuts the surfaces into their pieces, which the plan
@@ -456,13 +477,20 @@ absl::Status Planner::RefineNormalAngles() {
   return internal::RefineNormalAngles(plan_, options_, vertex_count_, cancel_);
 }
 
-absl::Status Planner::AddVertices(double count) {
+absl::Status Planner::AddVertices(double count, double by_tolerance) {
   vertex_count_ += count;
-  if (vertex_count_ > static_cast<double>(options_.max_vertices) ||
-      vertex_count_ >= UINT32_MAX) {
-    return internal::TessellationTooLarge("vertices", options_.max_vertices);
-  }
+  vertex_count_by_tolerance_ += by_tolerance;
+  const double cap =
+      std::min(static_cast<double>(options_.max_vertices), UINT32_MAX - 1.0);
+  if (vertex_count_ > cap) return TooLarge(vertex_count_by_tolerance_ <= cap);
   return absl::OkStatus();
+}
+
+absl::Status Planner::TooLarge(bool fits_by_tolerance) const {
+  const bool by_edges = fits_by_tolerance && options_.max_edge_length > 0.0;
+  return internal::TessellationTooLarge(
+      by_edges ? "max_edge_length" : "tolerance", "vertices",
+      options_.max_vertices);
 }
 
 void Planner::UseSide(PiecePlan& piece, int side, std::pair<int, bool> edge,
@@ -536,15 +564,18 @@ absl::Status Planner::AddSurface(uint32_t index, const TensorForm& form) {
       const PieceBounds bounds =
           BoundPiece(surface, spans_u[static_cast<size_t>(i)],
                      spans_v[static_cast<size_t>(j)]);
-      const double cells_u =
+      const Cells needed_u =
           CellsFor(bounds.uu + bounds.uv, bounds.u, options_);
-      const double cells_v =
+      const Cells needed_v =
           CellsFor(bounds.vv + bounds.uv, bounds.v, options_);
-      if (!(cells_u * cells_v <= static_cast<double>(options_.max_vertices)) ||
-          cells_u > internal::kMaxMeshCells ||
-          cells_v > internal::kMaxMeshCells) {
-        return internal::TessellationTooLarge("vertices",
-                                              options_.max_vertices);
+      const double cells_u = needed_u.cells;
+      const double cells_v = needed_v.cells;
+      const auto fits = [&](double u, double v) {
+        return u * v <= static_cast<double>(options_.max_vertices) &&
+               u <= internal::kMaxMeshCells && v <= internal::kMaxMeshCells;
+      };
+      if (!fits(cells_u, cells_v)) {
+        return TooLarge(fits(needed_u.by_tolerance, needed_v.by_tolerance));
       }
       PiecePlan piece{.surface = index,
                       .piece = static_cast<uint32_t>(i * (last_v + 1) + j),
@@ -557,8 +588,9 @@ absl::Status Planner::AddSurface(uint32_t index, const TensorForm& form) {
       }
       plan_.pieces.push_back(piece);
       // Interior grid nodes and the corners (an upper bound).
-      if (absl::Status status =
-              AddVertices((piece.grid_u - 1.0) * (piece.grid_v - 1.0) + 4.0);
+      if (absl::Status status = AddVertices(
+              PieceVertices(piece.grid_u, piece.grid_v),
+              PieceVertices(needed_u.by_tolerance, needed_v.by_tolerance));
           !status.ok()) {
         return status;
       }
@@ -620,7 +652,8 @@ absl::StatusOr<std::shared_ptr<const MeshPlan>> PlanMesh(
     return status;
   }
   if (surfaces.size() >= UINT32_MAX) {
-    return internal::TessellationTooLarge("vertices", options.max_vertices);
+    return internal::TessellationTooLarge("tolerance", "vertices",
+                                          options.max_vertices);
   }
   Planner planner(surfaces, options, cancel);
   for (size_t i = 0; i < surfaces.size(); ++i) {

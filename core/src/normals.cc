@@ -1,8 +1,10 @@
 #include "freeform/core/normals.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "scaled.h"
 
 namespace freeform {
 namespace {
@@ -29,29 +31,50 @@ Vec3 Cross(const Vec3& a, const Vec3& b) {
 // scale), far below the sine of any angle a real patch makes.
 constexpr double kDegenerate = 1e-10;
 
-Vec3 Partial(SurfaceOutput partials, int k, int l, size_t r) {
+// Partial returns the partial (k, l) of point r times 2^-e.
+Vec3 Partial(SurfaceOutput partials, int k, int l, size_t r, int e) {
   const double* p = partials[PartialIndex(k, l)].data() + 3 * r;
-  return {p[0], p[1], p[2]};
+  if (e == 0) return {p[0], p[1], p[2]};
+  return {std::ldexp(p[0], -e), std::ldexp(p[1], -e), std::ldexp(p[2], -e)};
+}
+
+double Length(const Vec3& a) {
+  const double values[] = {a.x, a.y, a.z};
+  return internal::ScaledNorm(values, 3);
 }
 
 // The unit normal of point r, degenerate points approached by
-// (sign_u h, sign_v h), h > 0 (see normals.h).
+// (sign_u h, sign_v h), h > 0 (see normals.h). Partials too large or too
+// small to square (|S_u|^2 + |S_v|^2 outside [2^-480, 2^500]) are first
+// divided by the power of two at or above their largest component (exact,
+// and the normal's direction does not change), so that a surface of size
+// 1e160 or 1e-160 gets its normal.
 Vec3 UnitNormal(SurfaceOutput partials, size_t r, double sign_u,
                 double sign_v) {
-  const Vec3 su = Partial(partials, 1, 0, r);
-  const Vec3 sv = Partial(partials, 0, 1, r);
+  int e = 0;
+  Vec3 su = Partial(partials, 1, 0, r, e);
+  Vec3 sv = Partial(partials, 0, 1, r, e);
+  double size = Dot(su, su) + Dot(sv, sv);
+  if (!(size >= 0x1p-480 && size <= 0x1p500) && size != 0.0) {
+    e = internal::ExponentAbove(
+        std::max({std::abs(su.x), std::abs(su.y), std::abs(su.z),
+                  std::abs(sv.x), std::abs(sv.y), std::abs(sv.z)}));
+    su = Partial(partials, 1, 0, r, e);
+    sv = Partial(partials, 0, 1, r, e);
+    size = Dot(su, su) + Dot(sv, sv);
+  }
   Vec3 normal = Cross(su, sv);
-  double length = std::sqrt(Dot(normal, normal));
-  if (!(length > kDegenerate * (Dot(su, su) + Dot(sv, sv)))) {
+  double length = Length(normal);
+  if (!(length > kDegenerate * size)) {
     if (MaxOrderOf(partials) < 2) return {};
-    const Vec3 suu = Partial(partials, 2, 0, r);
-    const Vec3 suv = Partial(partials, 1, 1, r);
-    const Vec3 svv = Partial(partials, 0, 2, r);
+    const Vec3 suu = Partial(partials, 2, 0, r, e);
+    const Vec3 suv = Partial(partials, 1, 1, r, e);
+    const Vec3 svv = Partial(partials, 0, 2, r, e);
     const Vec3 along_u = Cross(su, suv) + Cross(suu, sv);
     const Vec3 along_v = Cross(suv, sv) + Cross(su, svv);
-    const bool use_u = Dot(along_u, along_u) >= Dot(along_v, along_v);
+    const bool use_u = Length(along_u) >= Length(along_v);
     normal = use_u ? sign_u * along_u : sign_v * along_v;
-    length = std::sqrt(Dot(normal, normal));
+    length = Length(normal);
     if (!(length > 0.0) || !std::isfinite(length)) return {};
   }
   return (1.0 / length) * normal;

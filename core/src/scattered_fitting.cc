@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -322,6 +323,41 @@ absl::Status Residuals(const PointsView& points, ScatteredFit& fit,
 
 // SolveNet builds and solves the normal equations of FitScatteredSurface
 // for the net of fit.surface (knots set) at fit.parameters.
+double LargestDiagonal(BandedCholesky& normal) {
+  double largest = 0.0;
+  for (size_t i = 0; i < normal.size(); ++i) {
+    largest = std::max(largest, normal.lower(i, i));
+  }
+  return largest;
+}
+
+// The Cholesky factorization takes a pivot below 1e-12 of its diagonal as
+// singular. The thin-plate energy vanishes on planes, which only the data
+// term fixes: once the smoothing term's diagonal outgrows the data term's
+// by 1/kSmoothingRatio, those directions are lost in rounding and the
+// system is singular to working precision. Such a smoothing is refused,
+// naming the largest that keeps them.
+constexpr double kSmoothingRatio = 1e-12;
+
+absl::Status CheckSmoothingKeepsTheData(double smoothing, double data_diagonal,
+                                        double smoothing_diagonal) {
+  if (smoothing_diagonal * kSmoothingRatio <= data_diagonal) {
+    return absl::OkStatus();
+  }
+  const double largest =
+      std::isfinite(smoothing_diagonal) && smoothing_diagonal > 0.0
+          ? smoothing * (data_diagonal / kSmoothingRatio / smoothing_diagonal)
+          : 0.0;
+  return InvalidFieldError(
+      "smoothing",
+      absl::StrCat(smoothing,
+                   " outweighs the data by more than 10^12 (the data would be "
+                   "lost in rounding); for these points use at most ",
+                   largest > 0.0 ? absl::StrCat(largest)
+                                 : std::string("a finite smoothing"),
+                   " (a large smoothing tends to the least-squares plane)"));
+}
+
 absl::Status SolveNet(const PointsView& points,
                       const ScatteredFitOptions& options, ScatteredFit& fit) {
   SurfaceData& surface = fit.surface;
@@ -337,9 +373,15 @@ absl::Status SolveNet(const PointsView& points,
   }
   // The data term is summed, not averaged: scale lambda by N instead.
   if (options.smoothing > 0) {
+    const double data = LargestDiagonal(normal);
     if (absl::Status status =
             AddSmoothing(options.smoothing * static_cast<double>(points.size()),
                          surface, ordering, normal, options.cancel);
+        !status.ok()) {
+      return status;
+    }
+    if (absl::Status status = CheckSmoothingKeepsTheData(
+            options.smoothing, data, LargestDiagonal(normal) - data);
         !status.ok()) {
       return status;
     }
@@ -348,7 +390,7 @@ absl::Status SolveNet(const PointsView& points,
     if (!absl::IsFailedPrecondition(status)) return status;
     const auto singular = ordering.position(normal.failed_row());
     return InvalidFieldError(
-        "parameters",
+        options.parameters.empty() ? "points" : "parameters",
         absl::StrCat(
             "the least-squares system is singular (detected at control "
             "point (",

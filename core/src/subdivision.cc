@@ -443,6 +443,7 @@ absl::StatusOr<BezierPatchDecomposition> DecomposeBSplineSurface(
   BezierPatchDecomposition result;
   result.breakpoints_u = SpanBreakpoints(refined->knots_u, spans_u);
   result.breakpoints_v = SpanBreakpoints(refined->knots_v, spans_v);
+  result.patches.reserve(spans_u.size() * spans_v.size());
   for (const int s : spans_u) {
     for (const int t : spans_v) {
       result.patches.push_back(PatchOfSpans(*refined, s, t));
@@ -462,6 +463,7 @@ absl::StatusOr<BezierDecomposition> DecomposeBSplineCurve(
   const int dim = refined->points.dim;
   BezierDecomposition result;
   result.breakpoints = SpanBreakpoints(refined->knots, spans);
+  result.segments.reserve(spans.size());
   for (const int s : spans) {
     const auto first = refined->points.values.begin() +
                        static_cast<std::ptrdiff_t>(s - p) * dim;

@@ -175,6 +175,15 @@ uint64_t SurfacePieceValues(const Surface& surface) {
       surface);
 }
 
+uint64_t SurfacePieceCount(const Surface& surface) {
+  if (const auto* bspline = std::get_if<BSplineSurface>(&surface)) {
+    const BSplineSurfaceView& view = bspline->view();
+    return static_cast<uint64_t>(view.control_net.count_u - view.degree_u) *
+           static_cast<uint64_t>(view.control_net.count_v - view.degree_v);
+  }
+  return 1;
+}
+
 bool IsTriangular(const Surface& surface) {
   return std::holds_alternative<TriangularPatch>(surface);
 }

@@ -140,10 +140,14 @@ absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
   surface.dimension = points.dimension;
   surface.count_u = points.count_u;
   surface.count_v = points.count_v;
-  surface.knots_u =
-      KnotsFor(result.parameters_u, degree_u, parameterization, knot_rule);
-  surface.knots_v =
-      KnotsFor(result.parameters_v, degree_v, parameterization, knot_rule);
+  for (const bool in_u : {true, false}) {
+    absl::StatusOr<std::vector<double>> knots =
+        KnotsFor(in_u ? result.parameters_u : result.parameters_v,
+                 in_u ? degree_u : degree_v, parameterization, knot_rule,
+                 cancel);
+    if (!knots.ok()) return knots.status();
+    (in_u ? surface.knots_u : surface.knots_v) = *std::move(knots);
+  }
   // Two factorizations (docs/references.md, 'Global B-spline
   // interpolation'): u once for all columns, v once for all rows of the
   // intermediate net.

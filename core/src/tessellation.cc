@@ -142,7 +142,7 @@ absl::Status SubdivideBezierPiece(const double* control,
     if (top.depth >= internal::kMaxSubdivisionDepth ||
         IsFlat(piece, shape, tolerance, projected)) {
       if (parameters.size() >= max_points)
-        return TessellationTooLarge("points", max_points);
+        return TessellationTooLarge("tolerance", "points", max_points);
       parameters.push_back(top.b);
       intervals.pop_back();
       stack.resize(stack.size() - size);
@@ -168,7 +168,9 @@ absl::Status ValidateCurveRequest(const absl::Status& validation,
   if (absl::Status status = ValidateTolerance(tolerance); !status.ok()) {
     return status;
   }
-  if (max_points < 2) return TessellationTooLarge("points", max_points);
+  if (max_points < 2) {
+    return TessellationTooLarge("tolerance", "points", max_points);
+  }
   return absl::OkStatus();
 }
 

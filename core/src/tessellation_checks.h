@@ -54,12 +54,15 @@ inline absl::Status CheckResolvable(double tolerance,
   return CheckResolvableAt(tolerance, size);
 }
 
-// TessellationTooLarge is RESOURCE_EXHAUSTED naming the tolerance for a
-// tessellation needing more than `limit` of `what` (points, vertices).
-inline absl::Status TessellationTooLarge(absl::string_view what, size_t limit) {
+// TessellationTooLarge is RESOURCE_EXHAUSTED naming `field`, the option
+// that made a tessellation need more than `limit` of `what` (points,
+// vertices): the tolerance, or a limit such as max_edge_length.
+inline absl::Status TessellationTooLarge(absl::string_view field,
+                                         absl::string_view what,
+                                         size_t limit) {
   return ExhaustedFieldError(
-      "tolerance", absl::StrCat("the tessellation needs more than ", limit, " ",
-                                what, " at this tolerance"));
+      field, absl::StrCat("the tessellation needs more than ", limit, " ", what,
+                          " at this ", field));
 }
 
 }  // namespace freeform::internal

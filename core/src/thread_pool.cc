@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
+
+#include "absl/strings/str_cat.h"
 
 namespace freeform {
 
@@ -179,14 +183,34 @@ struct ParallelForState {
   void Run(uint32_t chunk) {
     if (token != nullptr && token->IsCancelled()) {
       skipped.store(true, std::memory_order_relaxed);
-    } else {
-      const size_t begin = chunk * grain;
-      body(begin, std::min(count, begin + grain));
+    } else if (!failed.load(std::memory_order_relaxed)) {
+      RunBody(chunk);
     }
     if (done.fetch_add(1, std::memory_order_acq_rel) + 1 == chunks) {
       std::lock_guard<std::mutex> lock(mutex);
       finished.notify_all();
     }
+  }
+
+  // RunBody runs one chunk's body. An exception it throws (an allocation
+  // that failed, a library precondition) must not end a helper's thread:
+  // it is kept as the loop's failure, and the chunks not yet run are
+  // skipped.
+  void RunBody(uint32_t chunk) {
+    const size_t begin = chunk * grain;
+    try {
+      body(begin, std::min(count, begin + grain));
+    } catch (const std::exception& exception) {
+      Fail(exception.what());
+    } catch (...) {
+      Fail("an exception of unknown type");
+    }
+  }
+
+  void Fail(const char* what) {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (failed.exchange(true, std::memory_order_relaxed)) return;
+    failure = what;
   }
 
   void WaitUntilDone() {
@@ -207,6 +231,8 @@ struct ParallelForState {
   std::atomic<size_t> next_share{1};
   std::atomic<uint32_t> done{0};
   std::atomic<bool> skipped{false};
+  std::atomic<bool> failed{false};
+  std::string failure;  // guarded by mutex
   std::mutex mutex;
   std::condition_variable finished;
 };
@@ -234,6 +260,13 @@ absl::Status ParallelFor(size_t count, const ExecutionContext& context,
   }
   state->Work(0);
   state->WaitUntilDone();
+  if (state->failed.load(std::memory_order_relaxed)) {
+    std::lock_guard<std::mutex> lock(state->mutex);
+    return absl::InternalError(
+        absl::StrCat("a parallel loop failed on an exception (a bug: please "
+                     "report the request): ",
+                     state->failure));
+  }
   if (state->skipped.load(std::memory_order_relaxed)) {
     return context.cancellation->status();
   }

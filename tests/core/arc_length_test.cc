@@ -18,10 +18,12 @@ namespace {
 
 constexpr auto Distance = testing_util::PointDistance;
 
+using testing_util::CornerLength;
 using testing_util::EvenlySpaced;
 using testing_util::NurbsCircle;
 using testing_util::RandomKnots;
 using testing_util::RandomValues;
+using testing_util::RationalCorner;
 
 std::vector<double> Points(const Curve& curve,
                            const std::vector<double>& parameters) {
@@ -336,6 +338,123 @@ TEST(ArcLength, ErrorsNameTheirField) {
                                      absl::MakeSpan(parameters))
                 .code(),
             absl::StatusCode::kInvalidArgument);
+}
+
+// The corner with weights 1, w, 1 (shapes.h) runs from (1, 0) to near (1, 1)
+// for t < 1/w and on to (0, 1) for t > 1 - 1/w: between the quadrature's
+// nodes for large w. Its length, below 2 and tending to 2, is the closed
+// form of its speed integrated independently in long double (CornerLength),
+// over the whole curve and over stretches of the first leg, which doubles
+// near t = 0 resolve at any weight.
+TEST(ArcLength, RationalCornerWithExtremeWeightsHasItsLength) {
+  for (const double w : {1.0, 1e5, 1e10, 1e15, 1e50, 1e150, 1e300}) {
+    const BezierCurveData data = RationalCorner(w);
+    const Curve corner = *BezierCurve::Create(data.view());
+    const absl::StatusOr<double> length = ArcLength(corner, 0.0, 1.0, 1e-10);
+    ASSERT_TRUE(length.ok()) << length.status();
+    EXPECT_NEAR(*length, static_cast<double>(CornerLength(w, 1.0)), 2e-10)
+        << "w = " << w;
+    EXPECT_LT(*length, 2.0);
+    for (const double t : {0.3 / w, 1.0 / w, 4.0 / w, 0.25}) {
+      if (t > 0.25) continue;
+      const absl::StatusOr<double> part = ArcLength(corner, 0.0, t, 1e-10);
+      ASSERT_TRUE(part.ok()) << part.status();
+      EXPECT_NEAR(*part, static_cast<double>(CornerLength(w, t)), 2e-10)
+          << "w = " << w << ", t = " << t;
+    }
+  }
+}
+
+// Lengths on the first leg of the corner with weight 1e10 have parameters
+// near t = 0, where doubles are dense: each is met within the tolerance.
+// On the second leg, within 1e-10 of t = 1, adjacent doubles of t are 1e-8
+// apart along the curve: no parameter meets a tolerance of 1e-9, which is
+// refused naming the weights; a tolerance of 1e-7 is met.
+TEST(ParametersAtArcLengths, RationalCornerMeetsTheToleranceOrNamesTheWeights) {
+  const double w = 1e10;
+  const BezierCurveData data = RationalCorner(w);
+  const Curve corner = *BezierCurve::Create(data.view());
+  const std::vector<double> first_leg = {0.1, 0.5, 0.9, 0.99};
+  std::vector<double> parameters(first_leg.size());
+  ASSERT_TRUE(ParametersAtArcLengths(corner, 0.0, first_leg, 1e-9,
+                                     absl::MakeSpan(parameters))
+                  .ok());
+  for (size_t i = 0; i < first_leg.size(); ++i) {
+    EXPECT_NEAR(static_cast<double>(CornerLength(w, parameters[i])),
+                first_leg[i], 1e-9 + 1e-11)
+        << i;
+  }
+  const std::vector<double> second_leg = {1.5};
+  std::vector<double> one(1);
+  const absl::Status refused = ParametersAtArcLengths(
+      corner, 0.0, second_leg, 1e-9, absl::MakeSpan(one));
+  EXPECT_EQ(refused.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(FieldPathOf(refused), "weights") << refused;
+  ASSERT_TRUE(
+      ParametersAtArcLengths(corner, 0.0, second_leg, 1e-7, absl::MakeSpan(one))
+          .ok());
+  EXPECT_NEAR(static_cast<double>(CornerLength(w, one[0])), 1.5, 1e-7 + 1e-11);
+}
+
+// Samples of the corner with weight 1e10 are equally far apart along it (the
+// independent CornerLength between consecutive ones), within twice the
+// tolerance, on both legs and across the corner.
+TEST(EqualArcLengthParameters, RationalCornerSamplesAreEquallySpaced) {
+  const double w = 1e10;
+  const BezierCurveData data = RationalCorner(w);
+  const Curve corner = *BezierCurve::Create(data.view());
+  const double tolerance = 1e-7;
+  std::vector<double> parameters(11);
+  ASSERT_TRUE(EqualArcLengthParameters(corner, 0.0, 1.0, parameters.size(),
+                                       tolerance, absl::MakeSpan(parameters))
+                  .ok());
+  const double spacing = static_cast<double>(CornerLength(w, 1.0)) / 10;
+  for (size_t k = 0; k + 1 < parameters.size(); ++k) {
+    EXPECT_NEAR(static_cast<double>(CornerLength(w, parameters[k + 1]) -
+                                    CornerLength(w, parameters[k])),
+                spacing, 2 * tolerance + 1e-11)
+        << k;
+  }
+}
+
+// Lengths are the same at every scale of the coordinates (S) and of the
+// knots (K), where double precision represents the curve: the unit segment
+// on knots [0, 0, K, K] has length 1 and its point at length 1/4 is at
+// t = K/4; the quadratic (0,0), (S,0), (S,S), congruent to the corner with
+// weight 1 scaled by S, has S times its length. Squared speeds of 1e-170
+// underflowed, and on knots 1e300 apart with S = 1e-300 the speed itself is
+// below the double range.
+TEST(ArcLength, EveryScaleOfCoordinatesAndKnots) {
+  const double unit_corner = static_cast<double>(CornerLength(1.0, 1.0));
+  for (int k = -300; k <= 300; k += 30) {
+    const double scale = std::pow(10.0, k);
+    const std::vector<double> segment = {0, 0, 1, 0};
+    const std::vector<double> knots = {0, 0, scale, scale};
+    const Curve line = *BSplineCurve::Create(
+        {.degree = 1, .control_points = {2, segment}, .knots = knots});
+    const absl::StatusOr<double> length = ArcLength(line, 0.0, scale, 1e-12);
+    ASSERT_TRUE(length.ok()) << length.status();
+    EXPECT_NEAR(*length, 1.0, 1e-12) << "K = " << scale;
+    const std::vector<double> quarter = {0.25};
+    std::vector<double> t(1);
+    ASSERT_TRUE(
+        ParametersAtArcLengths(line, 0.0, quarter, 1e-12, absl::MakeSpan(t))
+            .ok());
+    EXPECT_NEAR(t[0] / scale, 0.25, 1e-12) << "K = " << scale;
+    for (const double knot_scale : {1e-300, 1.0, 1e300}) {
+      const std::vector<double> points = {0, 0, scale, 0, scale, scale};
+      const std::vector<double> quadratic_knots = {
+          0, 0, 0, knot_scale, knot_scale, knot_scale};
+      const Curve curve = *BSplineCurve::Create({.degree = 2,
+                                                 .control_points = {2, points},
+                                                 .knots = quadratic_knots});
+      const absl::StatusOr<double> scaled =
+          ArcLength(curve, 0.0, knot_scale, 1e-12 * scale);
+      ASSERT_TRUE(scaled.ok()) << scaled.status();
+      EXPECT_NEAR(*scaled / scale, unit_corner, 1e-11)
+          << "S = " << scale << ", K = " << knot_scale;
+    }
+  }
 }
 
 // A spline of 200 spans needs far more quadrature steps than one poll's

@@ -667,6 +667,214 @@ TEST(ClosestPointTest, BatchOnThePoolMatchesSerial) {
   EXPECT_EQ(serial->parameters, parallel->parameters);
 }
 
+// CornerPoint writes the point of RationalCorner(w) (shapes.h) at
+// t = 1 - from_end when `from_end` is given (so that parameters within 1e-16
+// of 1 exist), else at t, from its closed form in long double.
+void CornerPoint(long double w, long double t, long double from_end,
+                 long double* point) {
+  const long double s = from_end > 0 ? from_end : 1 - t;
+  if (from_end > 0) t = 1 - from_end;
+  const long double d = s * s + 2 * w * t * s + t * t;
+  point[0] = (s * s + 2 * w * t * s) / d;
+  point[1] = (2 * w * t * s + t * t) / d;
+}
+
+// CornerSampleDistance returns the least distance from q to 40001 points of
+// RationalCorner(w) spread evenly in log t near each end, down to 1e-40 / w
+// of it: no point of the corner is nearer by much.
+double CornerSampleDistance(long double w, const double* q) {
+  long double best = INFINITY;
+  const long double lowest = std::log10(1e-40L / w);
+  for (int k = 0; k <= 20000; ++k) {
+    const long double e =
+        std::pow(10.0L, lowest + (-0.302L - lowest) * k / 20000);
+    for (const bool from_end : {false, true}) {
+      long double point[2];
+      CornerPoint(w, e, from_end ? e : 0, point);
+      best = std::min(best, std::hypot(point[0] - q[0], point[1] - q[1]));
+    }
+  }
+  return static_cast<double>(best);
+}
+
+// The corner with weights 1, w, 1 runs its second leg, from near (1, 1) to
+// (0, 1), for t within 1/w of 1, where adjacent doubles of t are 1.1e-16
+// apart. Up to w = 1e10 every query is answered: the returned point is the
+// curve's point at the returned parameter, the distance is its distance, no
+// sample of the curve is nearer by more than the tolerance, and the lower
+// bound is within it. From w = 1e15 on, the first leg (near t = 0, where
+// doubles are dense) still is; a query whose nearest point lies on the
+// second leg cannot be answered by any double parameter and is refused
+// naming the weights (with 1e50 the search reported a distance of 1 for a
+// point 1.118 away).
+TEST(ClosestPointTest, ExtremeWeightsAreAnsweredOrRefused) {
+  const std::vector<double> legs = {2.0, 0.5, 0.5, 2.0, 0.9, 0.9};
+  for (const double w : {1e5, 1e10, 1e15, 1e50, 1e300}) {
+    const BezierCurveData data = testing_util::RationalCorner(w);
+    const Curve corner = *BezierCurve::Create(data.view());
+    for (size_t r = 0; r < legs.size() / 2; ++r) {
+      const std::vector<double> q(legs.begin() + 2 * r,
+                                  legs.begin() + 2 * r + 2);
+      const absl::StatusOr<ClosestPoints> answer =
+          CurveClosestPoints(corner, {2, q});
+      if (w >= 1e15 && r == 1) {
+        EXPECT_EQ(answer.status().code(), absl::StatusCode::kInvalidArgument);
+        EXPECT_EQ(FieldPathOf(answer.status()), "weights") << answer.status();
+        continue;
+      }
+      ASSERT_TRUE(answer.ok()) << "w = " << w << ": " << answer.status();
+      ASSERT_GE(answer->counts[0], 1);
+      const std::vector<double> at = {answer->parameters[0]};
+      const std::vector<double> point = CurvePoints(corner, at);
+      EXPECT_EQ(point[0], answer->points[0]);
+      EXPECT_EQ(point[1], answer->points[1]);
+      EXPECT_NEAR(answer->distances[0], Distance(point.data(), q.data(), 2),
+                  1e-15);
+      EXPECT_LE(answer->distances[0], CornerSampleDistance(w, q.data()) + 1e-9)
+          << "w = " << w << ", q = (" << q[0] << ", " << q[1] << ")";
+      EXPECT_TRUE(answer->complete[0]);
+      EXPECT_LE(answer->lower_bounds[0], answer->distances[0]);
+      EXPECT_GE(answer->lower_bounds[0], answer->distances[0] - 1e-9);
+    }
+  }
+}
+
+// The corner extruded along z as a rational surface (weights 1, w, 1 across
+// the corner): the same answers, refusals and checks.
+TEST(ClosestPointTest, ExtremeWeightsOnSurfacesAreAnsweredOrRefused) {
+  for (const double w : {1e5, 1e50}) {
+    const std::vector<double> net = {1, 0, 0, 1, 0, 1, 1, 1, 0,
+                                     1, 1, 1, 0, 1, 0, 0, 1, 1};
+    const std::vector<double> weights = {1, 1, w, w, 1, 1};
+    const Surface sheet = *BezierSurface::Create(
+        {.control_net = {3, 3, 2, net}, .weights = weights});
+    const std::vector<double> first = {2.0, 0.5, 0.5};
+    const absl::StatusOr<ClosestPoints> answer =
+        SurfaceClosestPoints(sheet, {3, first});
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    const std::vector<double> uv = {answer->parameters[0],
+                                    answer->parameters[1]};
+    const std::vector<double> point =
+        SurfacePoints(sheet, SurfaceSamples::Pairs(uv));
+    EXPECT_NEAR(answer->distances[0], Distance(point.data(), first.data(), 3),
+                1e-15);
+    EXPECT_NEAR(answer->distances[0], 1.0, 1e-4);
+    EXPECT_NEAR(point[2], 0.5, 1e-9);
+    const std::vector<double> second = {0.5, 2.0, 0.5};
+    const absl::StatusOr<ClosestPoints> other =
+        SurfaceClosestPoints(sheet, {3, second});
+    if (w < 1e15) {
+      ASSERT_TRUE(other.ok()) << other.status();
+      const std::vector<double> st = {other->parameters[0],
+                                      other->parameters[1]};
+      const std::vector<double> there =
+          SurfacePoints(sheet, SurfaceSamples::Pairs(st));
+      EXPECT_NEAR(other->distances[0], Distance(there.data(), second.data(), 3),
+                  1e-15);
+      EXPECT_NEAR(other->distances[0], 1.0, 1e-4);
+    } else {
+      EXPECT_EQ(FieldPathOf(other.status()), "weights") << other.status();
+    }
+  }
+}
+
+// A segment of length s and a unit square scaled by s, with queries at
+// s above them, have distance s and the foot of the perpendicular at every
+// scale (at 1e-200 the squared distances underflowed to 0; past 1e154 they
+// overflowed to infinity). A query up to 1e300 away from the unit segment
+// gets its finite distance, with a point of the segment.
+TEST(ClosestPointTest, EveryScale) {
+  for (int k = -300; k <= 300; k += 25) {
+    const double s = std::pow(10.0, k);
+    const std::vector<double> segment = {0, 0, s, 0};
+    const Curve line = *BezierCurve::Create({.control_points = {2, segment}});
+    const std::vector<double> q = {0.3 * s, s};
+    const ClosestPointOptions options{.tolerance = 1e-12 * s,
+                                      .separation = 1e-9 * s};
+    const absl::StatusOr<ClosestPoints> answer =
+        CurveClosestPoints(line, {2, q}, options);
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    EXPECT_NEAR(answer->distances[0] / s, 1.0, 1e-12) << s;
+    EXPECT_NEAR(answer->parameters[0], 0.3, 1e-9) << s;
+    EXPECT_TRUE(answer->complete[0]) << s;
+    const std::vector<double> square = {0, 0, 0, 0, s, 0, s, 0, 0, s, s, 0};
+    const Surface plane =
+        *BezierSurface::Create({.control_net = {3, 2, 2, square}});
+    const std::vector<double> above = {0.3 * s, 0.6 * s, s};
+    const absl::StatusOr<ClosestPoints> foot =
+        SurfaceClosestPoints(plane, {3, above}, options);
+    ASSERT_TRUE(foot.ok()) << foot.status();
+    EXPECT_NEAR(foot->distances[0] / s, 1.0, 1e-12) << s;
+    EXPECT_NEAR(foot->parameters[0], 0.3, 1e-9) << s;
+    EXPECT_NEAR(foot->parameters[1], 0.6, 1e-9) << s;
+    if (k < 0) continue;
+    const std::vector<double> unit = {0, 0, 1, 0};
+    const Curve unit_line = *BezierCurve::Create({.control_points = {2, unit}});
+    const std::vector<double> far = {0.3, s};
+    const absl::StatusOr<ClosestPoints> distant =
+        CurveClosestPoints(unit_line, {2, far});
+    ASSERT_TRUE(distant.ok()) << distant.status();
+    EXPECT_NEAR(distant->distances[0] / s, 1.0, 1e-15) << s;
+    EXPECT_LE(distant->lower_bounds[0], distant->distances[0]);
+    EXPECT_EQ(distant->points[1], 0.0);
+    EXPECT_GE(distant->points[0], 0.0);
+    EXPECT_LE(distant->points[0], 1.0);
+  }
+}
+
+// A constant curve (every control point equal) is a stretch of minima at
+// every degree, as a degree-0 spline is: max_minima distinct parameters,
+// all at the point, with complete = false. A constant surface gives its one
+// point (its parameters count as one minimum) with complete = false.
+TEST(ClosestPointTest, ConstantGeometryIsAStretchOfMinimaAtEveryDegree) {
+  const std::vector<double> q = {4, 6};
+  const ClosestPointOptions options{.max_minima = 4};
+  const std::vector<double> three = {1, 2, 1, 2, 1, 2};
+  const std::vector<double> four = {1, 2, 1, 2, 1, 2, 1, 2};
+  const std::vector<double> step_knots = {0, 1, 2, 3};
+  const std::vector<double> linear_knots = {0, 0, 1, 2, 2};
+  std::vector<Curve> curves = {
+      *BSplineCurve::Create(
+          {.degree = 0, .control_points = {2, three}, .knots = step_knots}),
+      *BSplineCurve::Create(
+          {.degree = 1, .control_points = {2, three}, .knots = linear_knots}),
+      *BezierCurve::Create({.control_points = {2, four}})};
+  for (const Curve& curve : curves) {
+    const absl::StatusOr<ClosestPoints> answer =
+        CurveClosestPoints(curve, {2, q}, options);
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    EXPECT_EQ(answer->counts[0], 4);
+    EXPECT_FALSE(answer->complete[0]);
+    EXPECT_NEAR(answer->distances[0], 5.0, 1e-14);
+    std::vector<double> parameters(answer->parameters.begin(),
+                                   answer->parameters.begin() + 4);
+    std::sort(parameters.begin(), parameters.end());
+    EXPECT_EQ(std::adjacent_find(parameters.begin(), parameters.end()),
+              parameters.end());
+    for (int k = 0; k < 4; ++k) {  // to the rounding of the evaluation
+      EXPECT_NEAR(answer->points[2 * k], 1.0, 1e-15);
+      EXPECT_NEAR(answer->points[2 * k + 1], 2.0, 1e-15);
+    }
+  }
+  const std::vector<double> q3 = {4, 6, 0};
+  const std::vector<double> point = {1, 2, 0};
+  std::vector<double> constant_net;
+  for (int k = 0; k < 4; ++k) {
+    constant_net.insert(constant_net.end(), point.begin(), point.end());
+  }
+  const std::vector<Surface> surfaces = {
+      *BezierSurface::Create({.control_net = {3, 1, 1, point}}),
+      *BezierSurface::Create({.control_net = {3, 2, 2, constant_net}})};
+  for (const Surface& surface : surfaces) {
+    const absl::StatusOr<ClosestPoints> answer =
+        SurfaceClosestPoints(surface, {3, q3}, options);
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    EXPECT_EQ(answer->counts[0], 1);
+    EXPECT_FALSE(answer->complete[0]);
+    EXPECT_NEAR(answer->distances[0], 5.0, 1e-14);
+  }
+}
+
 TEST(ClosestPointTest, ErrorsNameTheirField) {
   const std::vector<double> arch = {0, 0, 1, 1, 2, 1, 3, 0};
   const absl::StatusOr<Curve> curve = BezierCurve::Create({{2, arch}, {}});

@@ -83,9 +83,11 @@ TEST(CollocationLu, MatchesBandedLuBitForBit) {
         if (has_start) sites.push_back(t.front());
         sites.insert(sites.end(), t.begin(), t.end());
         if (has_end) sites.push_back(t.back());
-        const std::vector<double> knots = KnotsFor(
-            sites, p, Parameterization::kChordLength,
-            rng() % 2 == 0 ? KnotRule::kAveraging : KnotRule::kUniform);
+        const std::vector<double> knots =
+            KnotsFor(sites, p, Parameterization::kChordLength,
+                     rng() % 2 == 0 ? KnotRule::kAveraging : KnotRule::kUniform,
+                     nullptr)
+                .value();
         const std::vector<double> coordinates =
             RandomValues(rng, static_cast<size_t>(count * dimension));
         const std::vector<double> start_value =
@@ -136,7 +138,9 @@ TEST(CollocationLu, SolvesRandomTotallyPositiveBandSystems) {
     const int count = 3 * p + 20;
     const std::vector<double> t = RandomParameters(rng, count);
     const std::vector<double> knots =
-        KnotsFor(t, p, Parameterization::kChordLength, KnotRule::kAveraging);
+        KnotsFor(t, p, Parameterization::kChordLength, KnotRule::kAveraging,
+                 nullptr)
+            .value();
     absl::StatusOr<OpenRows> rows = BuildOpenRows(p, knots, t, {}, {}, nullptr);
     ASSERT_TRUE(rows.ok());
     const std::vector<double> x = RandomValues(rng, 2 * count);

@@ -106,6 +106,53 @@ TEST(FrenetFrames, TwistedCubicTorsionAndCurvature) {
   }
 }
 
+// The circle of radius r has curvature 1/r towards its centre whatever the
+// scale of r and of its knots: squared derivatives of 1e-200 underflowed
+// (a SINGULAR point of curvature 0), and on knots 1e170 apart the second
+// derivative itself did.
+TEST(FrenetFrames, CircleCurvatureAtEveryScale) {
+  for (int k = -300; k <= 300; k += 50) {
+    const double radius = std::pow(10.0, k);
+    for (const double knots : {1e-300, 1.0, 1e170, 1e300}) {
+      BSplineCurveData data = NurbsCircle(radius);
+      for (double& knot : data.knots) knot *= knots;
+      const Curve circle = *BSplineCurve::Create(data.view());
+      const std::vector<double> t = {0.1 * knots, 0.3 * knots, 0.6 * knots};
+      Frenet frenet(2, t.size());
+      ASSERT_TRUE(EvaluateFrenetFrames(circle, t, frenet.output()).ok());
+      const std::vector<double> points = Derivatives(circle, t, 0);
+      for (size_t r = 0; r < t.size(); ++r) {
+        EXPECT_EQ(frenet.statuses[r], CurvePointStatus::kRegular)
+            << "r = " << radius << ", knots " << knots;
+        EXPECT_NEAR(frenet.curvatures[r] * radius, 1.0, 1e-12)
+            << "r = " << radius << ", knots " << knots;
+        for (int j = 0; j < 2; ++j) {  // the normal points to the centre
+          EXPECT_NEAR(frenet.normals[2 * r + j], -points[2 * r + j] / radius,
+                      1e-12);
+        }
+      }
+    }
+  }
+}
+
+// The twisted cubic (t, t^2, t^3) scaled by S has at t = 0 the curvature
+// 2 / S and the torsion 3 / S (TwistedCubicTorsionAndCurvature), at every
+// scale.
+TEST(FrenetFrames, TwistedCubicTorsionAtEveryScale) {
+  for (int k = -300; k <= 300; k += 50) {
+    const double scale = std::pow(10.0, k);
+    BezierCurveData data = TwistedCubic();
+    for (double& x : data.coordinates) x *= scale;
+    const Curve cubic = *BezierCurve::Create(data.view());
+    const std::vector<double> t = {0.0};
+    Frenet frenet(3, 1);
+    ASSERT_TRUE(EvaluateFrenetFrames(cubic, t, frenet.output()).ok());
+    EXPECT_EQ(frenet.statuses[0], CurvePointStatus::kRegular) << scale;
+    EXPECT_NEAR(frenet.curvatures[0] * scale, 2.0, 1e-12) << scale;
+    EXPECT_NEAR(frenet.torsions[0] * scale, 3.0, 1e-12) << scale;
+  }
+}
+
 // kappa = |dT/ds|: central differences of the unit tangent over a free-form
 // spline in 4-D, from first derivatives only.
 TEST(FrenetFrames, CurvatureMatchesDifferencesOfTheTangent) {
@@ -257,6 +304,38 @@ TEST(RotationMinimizingFrames, PlanarCurveKeepsItsAngleToThePlane) {
   }
 }
 
+// Along a circle of radius r in the plane z = 0 of 3-D space the frame
+// started at e_z stays e_z at every scale of r (and of the given initial
+// reference): at r = 1e-200 the squared tangent underflowed, so every
+// point "stood still", and the reflections were skipped between points
+// closer than 1e-154.
+TEST(RotationMinimizingFrames, PlanarCircleAtEveryScale) {
+  for (int k = -300; k <= 300; k += 50) {
+    const double radius = std::pow(10.0, k);
+    const BSplineCurveData flat = NurbsCircle(radius);
+    BSplineCurveData circle = flat;
+    circle.dimension = 3;
+    circle.coordinates.clear();
+    for (size_t i = 0; i < flat.weights.size(); ++i) {
+      circle.coordinates.insert(
+          circle.coordinates.end(),
+          {flat.coordinates[2 * i], flat.coordinates[2 * i + 1], 0.0});
+    }
+    const Curve curve = *BSplineCurve::Create(circle.view());
+    const std::vector<double> t = EvenlySpaced(0.0, 1.0, 33);
+    for (const double size : {1e-300, 1.0, 1e300}) {
+      Frames frames(3, t.size());
+      const std::vector<double> up = {0.0, 0.0, size};
+      ASSERT_TRUE(
+          EvaluateRotationMinimizingFrames(curve, t, up, frames.output()).ok())
+          << radius;
+      for (size_t r = 0; r < t.size(); ++r) {
+        EXPECT_NEAR(frames.references[3 * r + 2], 1.0, 1e-12) << radius;
+      }
+    }
+  }
+}
+
 // Along the twisted cubic the frame turns against the Frenet frame by
 // theta(t) = -integral of tau |r'| (r = cos theta N + sin theta B makes
 // r' parallel to T only then); the integral by Simpson's rule.
@@ -367,6 +446,41 @@ TEST(SurfaceCurvatures, SpherePatchHasGaussianOneOverRSquared) {
   EXPECT_EQ(at_pole.statuses[0], SurfacePointStatus::kSingular);
   EXPECT_EQ(at_pole.gaussian[0], 0.0);
   EXPECT_NEAR(at_pole.normals[2], -1.0, 1e-12);  // the limit: inwards
+}
+
+// A quarter of the cylinder of radius r about the z axis (the straight
+// profile from z = 0 to 2r turned by a quarter), as a rational Bezier patch
+// and as a B-spline patch on knots of any scale: S_u x S_v points inwards,
+// so k1 = 1/r around it, k2 = 0 along it, K = 0 and H = 1/(2r), at every
+// scale (past 1e77 the squares of S_u x S_v overflowed: UMBILIC with
+// curvatures 0).
+TEST(SurfaceCurvatures, CylinderAtEveryScale) {
+  for (int k = -300; k <= 300; k += 50) {
+    const double radius = std::pow(10.0, k);
+    const double rho[3] = {radius, radius, radius};
+    const double z[3] = {0.0, radius, 2.0 * radius};
+    SurfaceData data = testing_util::Revolution(rho, z);
+    for (const double knots : {0.0, 1e-300, 1.0, 1e300}) {
+      std::vector<double> uv = {0.3, 0.6};
+      Surface surface = *BezierSurface::Create(data.bezier_view());
+      if (knots > 0.0) {
+        data.knots_u = data.knots_v = {0, 0, 0, knots, knots, knots};
+        surface = *BSplineSurface::Create(data.bspline_view());
+        uv = {0.3 * knots, 0.6 * knots};
+      }
+      Curvatures curvatures(1);
+      ASSERT_TRUE(EvaluateSurfaceCurvatures(surface, SurfaceSamples::Pairs(uv),
+                                            curvatures.output())
+                      .ok());
+      EXPECT_EQ(curvatures.statuses[0], SurfacePointStatus::kRegular)
+          << "r = " << radius << ", knots " << knots;
+      EXPECT_NEAR(curvatures.principal[0] * radius, 1.0, 1e-12) << radius;
+      EXPECT_NEAR(curvatures.principal[1] * radius, 0.0, 1e-12) << radius;
+      EXPECT_EQ(curvatures.gaussian[0], 0.0) << radius;
+      EXPECT_NEAR(curvatures.mean[0] * radius, 0.5, 1e-12) << radius;
+      EXPECT_NEAR(curvatures.normals[2], 0.0, 1e-12);  // across the axis
+    }
+  }
 }
 
 // The graph z = f(u, v) = a u^2 + b u v + c v^2 over the unit square as a

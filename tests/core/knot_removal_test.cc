@@ -439,6 +439,88 @@ TEST(KnotRemoval, CuspKnotStays) {
   EXPECT_EQ(simplified->removals, 0);
 }
 
+// A degree-0 B-spline is a step function: its interior knot u_r separates
+// the constant pieces P_{r-1} and P_r, and removing it joins them into one
+// piece. Within tolerance only when they agree: the joined value is their
+// midpoint, |P_r - P_{r-1}| / 2 from each, which is also the true distance.
+BSplineCurveData StepCurve() {
+  return {.degree = 0,
+          .dimension = 1,
+          .coordinates = {1, 1, 2},
+          .knots = {0, 1, 2, 3}};
+}
+
+TEST(KnotRemoval, DegreeZeroEqualStepsJoin) {
+  const BSplineCurveData step = StepCurve();
+  absl::StatusOr<CurveKnotRemoval> simplified =
+      SimplifyCurveKnots(step.view(), 1e-9);
+  ASSERT_TRUE(simplified.ok()) << simplified.status();
+  EXPECT_EQ(simplified->removals, 1);
+  EXPECT_THAT(simplified->curve.knots, ElementsAreArray({0, 2, 3}));
+  EXPECT_THAT(simplified->curve.coordinates, ElementsAreArray({1, 2}));
+  EXPECT_EQ(simplified->error_bound, 0.0);
+  EXPECT_EQ(CurveDistance(step.view(), simplified->curve.view()), 0.0);
+  absl::StatusOr<CurveKnotRemoval> removed =
+      RemoveCurveKnot(step.view(), 1.0, 1, 1e-9);
+  ASSERT_TRUE(removed.ok()) << removed.status();
+  EXPECT_EQ(removed->removals, 1);
+  EXPECT_THAT(removed->curve.coordinates, ElementsAreArray({1, 2}));
+}
+
+TEST(KnotRemoval, DegreeZeroStepJoinsAtItsMidpointWithinHalfItsJump) {
+  const BSplineCurveData step = StepCurve();
+  absl::StatusOr<CurveKnotRemoval> kept =
+      RemoveCurveKnot(step.view(), 2.0, 1, 0.49);
+  ASSERT_TRUE(kept.ok()) << kept.status();
+  EXPECT_EQ(kept->removals, 0);
+  EXPECT_EQ(kept->curve.coordinates, step.coordinates);
+  absl::StatusOr<CurveKnotRemoval> joined =
+      RemoveCurveKnot(step.view(), 2.0, 1, 0.5);
+  ASSERT_TRUE(joined.ok()) << joined.status();
+  EXPECT_EQ(joined->removals, 1);
+  EXPECT_THAT(joined->curve.knots, ElementsAreArray({0, 1, 3}));
+  EXPECT_THAT(joined->curve.coordinates, ElementsAreArray({1.0, 1.5}));
+  EXPECT_EQ(joined->error_bound, 0.5);
+  EXPECT_EQ(CurveDistance(step.view(), joined->curve.view()), 0.5);
+}
+
+TEST(KnotRemoval, DegreeZeroSimplifyKeepsOnePieceForEachRunOfEqualValues) {
+  // Runs of equal 2D values on random knots, rational too (a weight per
+  // run: the certificate bounds the homogeneous points, so pieces of equal
+  // values but other weights, though the same curve, are not certified
+  // equal): simplifying
+  // within 1e-9 leaves one piece per run, with the run's value, and the
+  // same step function.
+  std::mt19937_64 rng(7);
+  for (const bool rational : {false, true}) {
+    SCOPED_TRACE(rational ? "rational" : "polynomial");
+    BSplineCurveData curve{.degree = 0, .dimension = 2};
+    std::vector<double> expected;
+    std::uniform_int_distribution<int> run_length(1, 4);
+    for (int run = 0; run < 12; ++run) {
+      const std::vector<double> value = RandomValues(rng, 2);
+      const double weight = RandomValues(rng, 1, 0.5, 2.0)[0];
+      expected.insert(expected.end(), value.begin(), value.end());
+      for (int k = run_length(rng); k > 0; --k) {
+        curve.coordinates.insert(curve.coordinates.end(), value.begin(),
+                                 value.end());
+        if (rational) curve.weights.push_back(weight);
+      }
+    }
+    const int count = static_cast<int>(curve.coordinates.size() / 2);
+    curve.knots = RandomKnots(rng, 0, count - 1, true);
+    ASSERT_TRUE(ValidateBSplineCurve(curve.view()).ok());
+    absl::StatusOr<CurveKnotRemoval> simplified =
+        SimplifyCurveKnots(curve.view(), 1e-9);
+    ASSERT_TRUE(simplified.ok()) << simplified.status();
+    EXPECT_EQ(simplified->removals, count - 12);
+    EXPECT_LT(MaxPointDistance(simplified->curve.coordinates, expected, 1),
+              1e-15);
+    EXPECT_LT(simplified->error_bound, 1e-15);
+    EXPECT_LT(CurveDistance(curve.view(), simplified->curve.view()), 1e-15);
+  }
+}
+
 TEST(KnotRemoval, InterpolatingSplineJointsStay) {
   // A cubic through 8 points on a circle of radius 1: every interior knot
   // is a C2 joint with a jump of the third derivative of order 1.
@@ -529,6 +611,47 @@ TEST(SurfaceKnotRemoval, InsertedKnotsAreRemovedExactlyInEitherDirection) {
       }
     }
   }
+}
+
+TEST(SurfaceKnotRemoval, DegreeZeroEqualStepsJoinInEitherDirection) {
+  // Degree 0 in u, 1 in v: three columns of u-steps, the first two equal.
+  SurfaceData surface{.degree_u = 0,
+                      .degree_v = 1,
+                      .dimension = 1,
+                      .count_u = 3,
+                      .count_v = 2,
+                      .coordinates = {1, 5, 1, 5, 2, 7},
+                      .knots_u = {0, 1, 2, 3},
+                      .knots_v = {0, 0, 1, 1}};
+  for (const KnotDirections directions :
+       {KnotDirections::kU, KnotDirections::kBoth}) {
+    absl::StatusOr<SurfaceKnotRemoval> simplified =
+        SimplifySurfaceKnots(surface.bspline_view(), directions, 1e-9);
+    ASSERT_TRUE(simplified.ok()) << simplified.status();
+    EXPECT_EQ(simplified->removals_u, 1);
+    EXPECT_EQ(simplified->removals_v, 0);
+    EXPECT_THAT(simplified->surface.knots_u, ElementsAreArray({0, 2, 3}));
+    EXPECT_THAT(simplified->surface.coordinates,
+                ElementsAreArray({1, 5, 2, 7}));
+  }
+  absl::StatusOr<SurfaceKnotRemoval> removed =
+      RemoveSurfaceKnot(surface.bspline_view(), true, 2.0, 1, 1e-9);
+  ASSERT_TRUE(removed.ok()) << removed.status();
+  EXPECT_EQ(removed->removals_u, 0);
+  // Transposed: degree 0 in v.
+  SurfaceData transposed{.degree_u = 1,
+                         .degree_v = 0,
+                         .dimension = 1,
+                         .count_u = 2,
+                         .count_v = 3,
+                         .coordinates = {1, 1, 2, 5, 5, 7},
+                         .knots_u = {0, 0, 1, 1},
+                         .knots_v = {0, 1, 2, 3}};
+  absl::StatusOr<SurfaceKnotRemoval> in_v =
+      RemoveSurfaceKnot(transposed.bspline_view(), false, 1.0, 1, 1e-9);
+  ASSERT_TRUE(in_v.ok()) << in_v.status();
+  EXPECT_EQ(in_v->removals_v, 1);
+  EXPECT_THAT(in_v->surface.coordinates, ElementsAreArray({1, 2, 5, 7}));
 }
 
 TEST(SurfaceKnotRemoval, SimplifyBothDirectionsGivesBackTheOriginal) {

@@ -971,6 +971,43 @@ Patches TwoPatches() {
   return patches;
 }
 
+// Without the corner attributes the mesh is the same mesh, bit for bit,
+// with empty triangle_patch and corner_uv; its planned memory is smaller by
+// at least those arrays (52 bytes per planned triangle).
+TEST(MeshTest, SkippingCornerAttributesKeepsTheMesh) {
+  const Shapes shapes = EveryKind();
+  for (const double max_normal_angle : {0.0, 0.3}) {
+    absl::StatusOr<std::shared_ptr<const MeshPlan>> plan =
+        PlanMesh(shapes.surfaces, {.tolerance = 2e-3,
+                                   .max_normal_angle = max_normal_angle,
+                                   .max_vertices = 1 << 22});
+    ASSERT_TRUE(plan.ok()) << plan.status();
+    const absl::StatusOr<Mesh> full = TessellatePlanned(**plan);
+    const absl::StatusOr<Mesh> lean =
+        TessellatePlanned(**plan, nullptr, CornerAttributes::kSkip);
+    ASSERT_TRUE(full.ok()) << full.status();
+    ASSERT_TRUE(lean.ok()) << lean.status();
+    EXPECT_FALSE(full->corner_uv.empty());
+    Mesh expected = *full;
+    expected.triangle_patch.clear();
+    expected.corner_uv.clear();
+    ExpectSameMesh(*lean, expected);
+    const MeshMemory with = PlannedMeshMemory(**plan, CornerAttributes::kMake);
+    const MeshMemory without =
+        PlannedMeshMemory(**plan, CornerAttributes::kSkip);
+    const uint64_t attributes = PlannedMeshSize(**plan).triangles * 52;
+    EXPECT_EQ(with.plan, without.plan);
+    EXPECT_EQ(with.mesh, without.mesh + attributes);
+    EXPECT_GE(with.tessellation, without.tessellation + attributes);
+    // The mesh's own arrays are within what the plan says it takes.
+    const uint64_t made =
+        8 * (lean->vertices.size() + lean->normals.size() + lean->uv.size()) +
+        4 * (lean->patch.size() + lean->triangles.size());
+    EXPECT_LE(made, without.mesh);
+    EXPECT_LE(without.mesh, without.tessellation);
+  }
+}
+
 TEST(MeshTest, SharedReversedSideIsWelded) {
   const Patches patches = TwoPatches();
   Shapes shapes;

@@ -133,6 +133,53 @@ inline SurfaceData TorusPatch(double major, double minor) {
   return Revolution(rho, z);
 }
 
+// The rational quadratic corner (1,0), (1,1), (0,1) with weights 1, w, 1:
+// a hyperbola for w > 1 that hugs the polyline through (1,1) as w grows
+// (it runs from (1,0) to near the corner for t < 1/w and from there to
+// (0,1) for t > 1 - 1/w), so its length tends to 2 from below (a convex arc
+// inside the triangle of its chord).
+inline BezierCurveData RationalCorner(double weight) {
+  return {.dimension = 2,
+          .coordinates = {1, 0, 1, 1, 0, 1},
+          .weights = {1, weight, 1}};
+}
+
+// CornerSpeed returns |C'(t)| of RationalCorner(w) from the closed form of
+// C = (N_x, N_y) / D, in long double.
+inline long double CornerSpeed(long double w, long double t) {
+  const long double s = 1 - t;
+  const long double d = s * s + 2 * w * t * s + t * t;
+  const long double dd = 2 * (w - 1) * (1 - 2 * t);
+  const long double nx = s * s + 2 * w * t * s;
+  const long double dnx = -2 * s + 2 * w * (1 - 2 * t);
+  const long double ny = 2 * w * t * s + t * t;
+  const long double dny = 2 * w * (1 - 2 * t) + 2 * t;
+  return std::hypot((dnx * d - nx * dd) / (d * d),
+                    (dny * d - ny * dd) / (d * d));
+}
+
+// CornerLength returns the arc length of RationalCorner(w) over [0, t],
+// independently of the library: for t <= 1/2 the speed integrated by
+// composite Simpson in x = ln t (where the motion near t = 1/w is a smooth
+// step of about one unit of x) from t = 1e-30 / w (the part left out is
+// below 1e-29), in long double, accurate to about 1e-12; for t > 1/2 the
+// whole length less the length over [0, 1 - t], by the curve's symmetry.
+inline long double CornerLength(long double w, double t) {
+  if (t > 0.5) return 2 * CornerLength(w, 0.5) - CornerLength(w, 1.0 - t);
+  const long double from = std::log(1e-30L / w);
+  const long double to = std::log(static_cast<long double>(t));
+  if (!(to > from)) return 0;
+  const int steps = 2 * static_cast<int>((to - from) / 0.004L + 1);
+  const long double h = (to - from) / steps;
+  long double sum = 0;
+  for (int k = 0; k <= steps; ++k) {
+    const long double x = from + k * h;
+    const long double f = CornerSpeed(w, std::exp(x)) * std::exp(x);
+    sum += (k == 0 || k == steps ? 1 : (k % 2 == 1 ? 4 : 2)) * f;
+  }
+  return sum * h / 3;
+}
+
 // CurvePoints returns the curve's points at `parameters`.
 inline std::vector<double> CurvePoints(const Curve& curve,
                                        const std::vector<double>& parameters) {

@@ -6,9 +6,13 @@
 #include <atomic>
 #include <map>
 #include <mutex>
+#include <new>
 #include <set>
+#include <stdexcept>
 #include <thread>
 #include <vector>
+
+#include "absl/strings/match.h"
 
 namespace freeform {
 namespace {
@@ -168,6 +172,35 @@ TEST(ParallelForTest, CancellationSkipsRemainingChunks) {
       });
   EXPECT_EQ(status.code(), absl::StatusCode::kCancelled);
   EXPECT_LT(ran.load(), 1000u);
+}
+
+TEST(ParallelForTest, ChunkThatThrowsFailsTheLoopAndNoThread) {
+  // Chunks on the caller and on every helper throw (the exception types an
+  // allocation and a vector's size check raise); the loop returns INTERNAL
+  // with the text, skips what is left, and the pool still serves.
+  ThreadPool pool(3);
+  for (const size_t thrower : {0u, 5u, 99u}) {
+    std::atomic<size_t> ran{0};
+    const absl::Status status = ParallelFor(
+        100, ExecutionContext{.pool = &pool, .grain = 1, .max_helpers = 3},
+        [&](size_t begin, size_t) {
+          ran.fetch_add(1);
+          if (begin == thrower) throw std::length_error("vector::_M_default_append");
+          if (begin == thrower + 1) throw std::bad_alloc();
+        });
+    EXPECT_EQ(status.code(), absl::StatusCode::kInternal) << status;
+    EXPECT_TRUE(absl::StrContains(status.message(), "vector::") ||
+                absl::StrContains(status.message(), "bad_alloc"))
+        << status;
+    EXPECT_LE(ran.load(), 100u);
+  }
+  std::atomic<size_t> ran{0};
+  ASSERT_TRUE(ParallelFor(1000,
+                          ExecutionContext{.pool = &pool, .grain = 1,
+                                           .max_helpers = 3},
+                          [&](size_t, size_t) { ran.fetch_add(1); })
+                  .ok());
+  EXPECT_EQ(ran.load(), 1000u);
 }
 
 TEST(ParallelForTest, PassedDeadlineReportsDeadlineExceeded) {

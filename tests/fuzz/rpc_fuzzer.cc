@@ -10,7 +10,20 @@
 // - every other INVALID_ARGUMENT and RESOURCE_EXHAUSTED carries a
 //   google.rpc.BadRequest whose field violations name a field;
 // - an OK answer is one message (a stream: any number) of the response
-//   type holding only finite numbers.
+//   type holding only finite numbers;
+// - an OK answer of a query passes its oracle (query_oracles.h): a closest
+//   point at its distance, intersection points on both inputs, section
+//   vertices on the plane, lengths between a polyline's and the control
+//   polygons', ...
+// Inputs are mutated by the structure-aware mutator (request_mutator.h)
+// through LLVMFuzzerCustomMutator and LLVMFuzzerCustomCrossOver below.
+// Two environment variables change that, for the short ctest runs of
+// targets whose findings are being fixed elsewhere (tests/fuzz/
+// CMakeLists.txt, FREEFORM_FUZZ_OPEN_FINDINGS):
+// FREEFORM_FUZZ_MUTATOR=bytes mutates with libFuzzer's byte mutator only,
+// and FREEFORM_FUZZ_ORACLES=log prints an oracle's finding, saves its
+// input to $FREEFORM_FUZZ_FINDINGS (a folder, when set) and goes on
+// instead of aborting.
 // One server serves the whole process; calls run one at a time and each
 // ends (on the server too) before the next input.
 //
@@ -25,8 +38,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -34,6 +50,8 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/string_view.h"
 #include "freeform/client.h"
+#include "query_oracles.h"
+#include "request_mutator.h"
 #include "rpc.h"
 #include "server.h"
 
@@ -115,6 +133,47 @@ void Check(bool condition, absl::string_view what) {
   if (!condition) Fail(what);
 }
 
+bool EnvironmentIs(const char* name, absl::string_view value) {
+  const char* set = std::getenv(name);
+  return set != nullptr && value == set;
+}
+
+// What becomes of an oracle's finding: an abort by default, or with
+// FREEFORM_FUZZ_ORACLES=log a line on stderr and the input saved as
+// $FREEFORM_FUZZ_FINDINGS/oracle-<hash of the input>.
+class OracleFindings {
+ public:
+  OracleFindings()
+      : log_(EnvironmentIs("FREEFORM_FUZZ_ORACLES", "log")),
+        folder_(std::getenv("FREEFORM_FUZZ_FINDINGS") != nullptr
+                    ? std::getenv("FREEFORM_FUZZ_FINDINGS")
+                    : "") {}
+
+  void Report(absl::string_view finding, absl::string_view input) {
+    if (!log_) Fail(finding);
+    // The first findings only: a run that keeps finding the same wrong
+    // answer would otherwise spend its time writing.
+    if (++count_ > kMaxLogged) return;
+    std::fprintf(stderr, "\n%s: oracle finding %d (logged): %s\n",
+                 FuzzMethod().c_str(), count_, std::string(finding).c_str());
+    if (folder_.empty()) return;
+    const std::string path =
+        absl::StrCat(folder_, "/oracle-",
+                     absl::Hex(std::hash<std::string_view>()(
+                         std::string_view(input.data(), input.size()))));
+    if (std::FILE* file = std::fopen(path.c_str(), "wb")) {
+      std::fwrite(input.data(), 1, input.size(), file);
+      std::fclose(file);
+    }
+  }
+
+ private:
+  static constexpr int kMaxLogged = 200;
+  const bool log_;
+  const std::string folder_;
+  int count_ = 0;
+};
+
 std::string Describe(const grpc::Status& status) {
   return absl::StrCat("status ", status.error_code(), " \"",
                       status.error_message(), "\"");
@@ -158,6 +217,9 @@ class Harness {
     stub_ = std::make_unique<grpc::GenericStub>(server_->InProcessChannel());
   }
 
+  // The request type of the fuzzed method, for the mutator.
+  const Message& request_prototype() const { return *request_; }
+
   void Run(const uint8_t* data, size_t size) {
     std::vector<std::string> messages;
     const grpc::Status status = Call(data, size, messages);
@@ -168,7 +230,9 @@ class Harness {
     }
     switch (status.error_code()) {
       case grpc::StatusCode::OK:
-        return CheckAnswer(messages);
+        return CheckAnswer(
+            *request, messages,
+            absl::string_view(reinterpret_cast<const char*>(data), size));
       case grpc::StatusCode::INVALID_ARGUMENT:
       case grpc::StatusCode::RESOURCE_EXHAUSTED:
         return CheckFieldViolations(status);
@@ -257,7 +321,9 @@ class Harness {
     }
   }
 
-  void CheckAnswer(const std::vector<std::string>& messages) {
+  void CheckAnswer(const Message& request,
+                   const std::vector<std::string>& messages,
+                   absl::string_view input) {
     if (!method_->server_streaming()) {
       Check(messages.size() == 1, absl::StrCat("an OK unary answer of ",
                                                messages.size(), " messages"));
@@ -269,6 +335,10 @@ class Harness {
                          method_->output_type()->full_name()));
       Check(AllFinite(*answer),
             "an OK answer holds a value that is not finite");
+      if (const std::optional<std::string> wrong = fuzz::CheckQueryAnswer(
+              *method_, request, *answer, FuzzLimits())) {
+        findings_.Report(*wrong, input);
+      }
     }
   }
 
@@ -278,6 +348,7 @@ class Harness {
   std::unique_ptr<FreeformServer> server_;
   std::unique_ptr<grpc::GenericStub> stub_;
   grpc::CompletionQueue queue_;
+  OracleFindings findings_;
 };
 
 // The harness lives as long as the process (libFuzzer exits without
@@ -300,4 +371,27 @@ extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** argv) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   freeform::server::TheHarness().Run(data, size);
   return 0;
+}
+
+// libFuzzer's own byte mutator, for the share of mutations that stay at
+// the byte level (request_mutator.h).
+extern "C" size_t LLVMFuzzerMutate(uint8_t* data, size_t size, size_t max_size);
+
+extern "C" size_t LLVMFuzzerCustomMutator(uint8_t* data, size_t size,
+                                          size_t max_size, unsigned int seed) {
+  static const bool bytes_only =
+      freeform::server::EnvironmentIs("FREEFORM_FUZZ_MUTATOR", "bytes");
+  if (bytes_only) return LLVMFuzzerMutate(data, size, max_size);
+  return freeform::fuzz::MutateRequest(
+      freeform::server::TheHarness().request_prototype(), data, size, max_size,
+      seed, &LLVMFuzzerMutate);
+}
+
+extern "C" size_t LLVMFuzzerCustomCrossOver(const uint8_t* data1, size_t size1,
+                                            const uint8_t* data2, size_t size2,
+                                            uint8_t* out, size_t max_out_size,
+                                            unsigned int seed) {
+  return freeform::fuzz::CrossOverRequests(
+      freeform::server::TheHarness().request_prototype(), data1, size1, data2,
+      size2, out, max_out_size, seed);
 }

@@ -2,9 +2,13 @@
 // pass are flags freeformd accepts: each set starts a real freeformd that
 // serves a call and, where the set turns metrics on, its metrics endpoint.
 // A renamed or mistyped flag in a manifest fails here rather than at a
-// user's rollout.
+// user's rollout. The Kubernetes manifests also keep the unauthenticated
+// metrics to the pod's address and, by their NetworkPolicy, to the
+// monitoring namespace, and kustomization.yaml lists every manifest.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <regex>
@@ -97,6 +101,82 @@ TEST(DeploymentFlags, KubernetesArgumentsStartAServer) {
       ReadSourceFile("docker/k8s/deployment.yaml"), "args:", "env:");
   EXPECT_GE(flags.size(), 5u);
   ExpectServes(flags);
+}
+
+// The Kubernetes metrics listen on the pod's own address, from the
+// downward API, not on 0.0.0.0.
+TEST(DeploymentManifests, KubernetesMetricsListenOnThePodAddress) {
+  const std::string deployment = ReadSourceFile("docker/k8s/deployment.yaml");
+  const std::vector<std::string> flags =
+      FlagsBetween(deployment, "args:", "env:");
+  EXPECT_THAT(flags, ::testing::Contains("--metrics_listen=$(POD_IP):9464"));
+  const std::regex pod_ip(
+      R"(- name: POD_IP\s+valueFrom:\s+fieldRef:\s+fieldPath: status\.podIP)");
+  EXPECT_TRUE(std::regex_search(deployment, pod_ip));
+  // No Service publishes the metrics port.
+  EXPECT_EQ(ReadSourceFile("docker/k8s/service.yaml").find("9464"),
+            std::string::npos);
+}
+
+// The ingress rules of networkpolicy.yaml, each from its "- ports:" line to
+// the next.
+std::vector<std::string> IngressRules(const std::string& policy) {
+  std::vector<std::string> rules;
+  const std::string rule_start = "\n    - ports:";
+  size_t begin = policy.find(rule_start, policy.find("\n  ingress:"));
+  while (begin != std::string::npos) {
+    const size_t end = policy.find(rule_start, begin + 1);
+    rules.push_back(policy.substr(
+        begin, end == std::string::npos ? std::string::npos : end - begin));
+    begin = end;
+  }
+  return rules;
+}
+
+// The NetworkPolicy selects freeformd's pods, admits gRPC from clients and
+// the metrics port from the monitoring namespace only, and nothing else.
+TEST(DeploymentManifests, NetworkPolicyAdmitsMetricsOnlyFromMonitoring) {
+  const std::string policy = ReadSourceFile("docker/k8s/networkpolicy.yaml");
+  ASSERT_FALSE(policy.empty());
+  EXPECT_THAT(policy, ::testing::HasSubstr("kind: NetworkPolicy"));
+  EXPECT_THAT(policy,
+              ::testing::HasSubstr("podSelector:\n    matchLabels:\n"
+                                   "      app.kubernetes.io/name: freeformd"));
+  EXPECT_THAT(policy, ::testing::HasSubstr("policyTypes:\n    - Ingress"));
+  const std::vector<std::string> rules = IngressRules(policy);
+  ASSERT_EQ(rules.size(), 2u) << policy;
+  EXPECT_THAT(rules[0], ::testing::HasSubstr("port: 50051"));
+  EXPECT_EQ(rules[0].find("9464"), std::string::npos);
+  const std::string& metrics = rules[1];
+  EXPECT_THAT(metrics, ::testing::HasSubstr("port: 9464"));
+  EXPECT_EQ(metrics.find("50051"), std::string::npos);
+  // Its only source: the namespace named monitoring, every pod of it.
+  EXPECT_THAT(metrics,
+              ::testing::HasSubstr("from:\n        - namespaceSelector:\n"
+                                   "            matchLabels:\n"
+                                   "              kubernetes.io/metadata.name: "
+                                   "monitoring\n"));
+  EXPECT_EQ(metrics.find("podSelector"), std::string::npos);
+  EXPECT_EQ(metrics.find("ipBlock"), std::string::npos);
+  EXPECT_EQ(metrics.find("{}"), std::string::npos);
+}
+
+// kustomization.yaml applies every manifest of docker/k8s.
+TEST(DeploymentManifests, KustomizationListsEveryManifest) {
+  const std::string kustomization =
+      ReadSourceFile("docker/k8s/kustomization.yaml");
+  int manifests = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(
+           std::filesystem::path(FREEFORM_SOURCE_DIR) / "docker/k8s")) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".yaml" || name == "kustomization.yaml") {
+      continue;
+    }
+    ++manifests;
+    EXPECT_THAT(kustomization, ::testing::HasSubstr("\n  - " + name + "\n"))
+        << name;
+  }
+  EXPECT_GE(manifests, 4);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -45,6 +46,10 @@ TEST(FreeformdFlags, HelpAndVersionExitZero) {
   EXPECT_THAT(help.output, HasSubstr("--listen  Address to listen on"));
   EXPECT_THAT(help.output, HasSubstr("(default: 0.0.0.0:50051)"));
   EXPECT_THAT(help.output, HasSubstr("--max_simplify_moves"));
+  EXPECT_THAT(help.output, HasSubstr("--reflection  Serve gRPC server "
+                                     "reflection"));
+  EXPECT_THAT(help.output, HasSubstr("--tls_allowed_clients  Comma-separated "
+                                     "client identities"));
   EXPECT_THAT(help.output,
               HasSubstr("--metrics_listen  Address of the Prometheus metrics"));
   EXPECT_THAT(help.output, ::testing::Not(HasSubstr("No flags matched")));
@@ -235,27 +240,62 @@ TEST_F(FreeformdTest, LargeBatchStreamsAndMatchesUnary) {
   EXPECT_EQ(unary->derivatives, streamed->derivatives);
 }
 
-TEST_F(FreeformdTest, ReflectionListsTheServices) {
+// ListServices asks server reflection on `channel` for the names of the
+// services it serves.
+absl::StatusOr<std::vector<std::string>> ListServices(
+    const std::shared_ptr<grpc::Channel>& channel) {
   namespace reflection = grpc::reflection::v1alpha;
-  auto stub = reflection::ServerReflection::NewStub(client_->channel());
-  std::unique_ptr<grpc::ClientContext> context = client_->NewContext();
-  auto stream = stub->ServerReflectionInfo(context.get());
+  auto stub = reflection::ServerReflection::NewStub(channel);
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() +
+                       std::chrono::seconds(10));
+  auto stream = stub->ServerReflectionInfo(&context);
   reflection::ServerReflectionRequest request;
   request.set_list_services("");
-  ASSERT_TRUE(stream->Write(request));
+  stream->Write(request);
   stream->WritesDone();
-  reflection::ServerReflectionResponse response;
-  ASSERT_TRUE(stream->Read(&response));
   std::vector<std::string> names;
-  for (const auto& service : response.list_services_response().service()) {
-    names.push_back(service.name());
-  }
-  EXPECT_THAT(names, ::testing::IsSupersetOf({"freeform.v1.CurveService",
-                                              "freeform.v1.SurfaceService",
-                                              "grpc.health.v1.Health"}));
+  reflection::ServerReflectionResponse response;
   while (stream->Read(&response)) {
+    for (const auto& service : response.list_services_response().service()) {
+      names.push_back(service.name());
+    }
   }
-  EXPECT_TRUE(stream->Finish().ok());
+  const grpc::Status status = stream->Finish();
+  if (!status.ok()) {
+    return absl::Status(static_cast<absl::StatusCode>(status.error_code()),
+                        status.error_message());
+  }
+  return names;
+}
+
+TEST_F(FreeformdTest, ReflectionListsTheServices) {
+  absl::StatusOr<std::vector<std::string>> names =
+      ListServices(client_->channel());
+  ASSERT_TRUE(names.ok()) << names.status();
+  EXPECT_THAT(*names, ::testing::IsSupersetOf({"freeform.v1.CurveService",
+                                               "freeform.v1.SurfaceService",
+                                               "grpc.health.v1.Health"}));
+  // Once: the reflection service is registered once per server.
+  EXPECT_EQ(std::count(names->begin(), names->end(),
+                       "grpc.reflection.v1alpha.ServerReflection"),
+            1);
+}
+
+// --reflection=false: the reflection service is gone (UNIMPLEMENTED, as
+// for any method the server does not have); the rest serves as before.
+TEST(FreeformdFlags, ReflectionCanBeTurnedOff) {
+  ServerProcess server({"--reflection=false"});
+  ASSERT_GT(server.port(), 0);
+  auto client = Client::Create({.target = server.address()});
+  ASSERT_TRUE(client.ok()) << client.status();
+  EXPECT_EQ(ListServices((*client)->channel()).status().code(),
+            absl::StatusCode::kUnimplemented);
+  EXPECT_TRUE((*client)->CheckHealth().ok());
+  absl::StatusOr<CurveSamples> samples =
+      (*client)->EvaluateBezier(1, {0, 1}, {0.25});
+  ASSERT_TRUE(samples.ok()) << samples.status();
+  EXPECT_THAT(samples->derivatives[0], ElementsAre(0.25));
 }
 
 TEST_F(FreeformdTest, SigtermDrainsAndExitsZero) {
@@ -311,96 +351,6 @@ TEST(FreeformdLogFormat, UnknownFormatIsRefused) {
   ServerProcess server({"--log_format=xml"});
   EXPECT_EQ(server.port(), 0);
   EXPECT_EQ(server.WaitForExit(std::chrono::seconds(10)), 2);
-}
-
-// Certificates made by openssl for one test run: a CA, a server certificate
-// for 127.0.0.1 and a client certificate, all signed by the CA.
-class Certificates {
- public:
-  Certificates() {
-    char pattern[] = "/tmp/freeform_tls_XXXXXX";
-    directory_ = mkdtemp(pattern);
-    const std::string script = absl::StrCat(
-        "cd ", directory_, " && set -e && ",
-        "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=test-ca "
-        "-keyout ca.key -out ca.pem && ",
-        "printf 'subjectAltName=IP:127.0.0.1,DNS:localhost' > san.ext && ",
-        "openssl req -newkey rsa:2048 -nodes -subj /CN=localhost "
-        "-keyout server.key -out server.csr && ",
-        "openssl x509 -req -in server.csr -CA ca.pem -CAkey ca.key "
-        "-CAcreateserial -days 2 -extfile san.ext -out server.pem && ",
-        "openssl req -newkey rsa:2048 -nodes -subj /CN=client "
-        "-keyout client.key -out client.csr && ",
-        "openssl x509 -req -in client.csr -CA ca.pem -CAkey ca.key "
-        "-CAcreateserial -days 2 -out client.pem");
-    ok_ = RunCommand(script).exit_code == 0;
-  }
-  ~Certificates() { RunCommand(absl::StrCat("rm -rf ", directory_)); }
-
-  bool ok() const { return ok_; }
-  std::string Path(const std::string& name) const {
-    return absl::StrCat(directory_, "/", name);
-  }
-
- private:
-  std::string directory_;
-  bool ok_ = false;
-};
-
-ClientOptions TlsClientOptions(const Certificates& certificates, int port) {
-  ClientOptions options;
-  options.target = absl::StrCat("127.0.0.1:", port);
-  options.timeout = std::chrono::seconds(10);
-  options.use_tls = true;
-  options.root_ca_file = certificates.Path("ca.pem");
-  return options;
-}
-
-TEST(FreeformdTlsTest, ServesOverTls) {
-  Certificates certificates;
-  ASSERT_TRUE(certificates.ok());
-  ServerProcess server({"--tls_cert=" + certificates.Path("server.pem"),
-                        "--tls_key=" + certificates.Path("server.key")});
-  ASSERT_GT(server.port(), 0);
-  auto client = Client::Create(TlsClientOptions(certificates, server.port()));
-  ASSERT_TRUE(client.ok());
-  absl::StatusOr<CurveSamples> samples =
-      (*client)->EvaluateBezier(1, {0, 1, 2}, {0.5});
-  ASSERT_TRUE(samples.ok()) << samples.status();
-  EXPECT_THAT(samples->derivatives[0], ElementsAre(1.0));
-  // A plaintext client cannot talk to the TLS port.
-  ClientOptions plain;
-  plain.target = server.address();
-  plain.timeout = std::chrono::seconds(2);
-  plain.retry_unavailable = false;
-  auto plain_client = Client::Create(plain);
-  ASSERT_TRUE(plain_client.ok());
-  EXPECT_FALSE((*plain_client)->EvaluateBezier(1, {0, 1}, {0.5}).ok());
-}
-
-TEST(FreeformdTlsTest, MutualTlsRequiresAClientCertificate) {
-  Certificates certificates;
-  ASSERT_TRUE(certificates.ok());
-  ServerProcess server({"--tls_cert=" + certificates.Path("server.pem"),
-                        "--tls_key=" + certificates.Path("server.key"),
-                        "--tls_client_ca=" + certificates.Path("ca.pem")});
-  ASSERT_GT(server.port(), 0);
-  ClientOptions anonymous = TlsClientOptions(certificates, server.port());
-  anonymous.timeout = std::chrono::seconds(2);
-  anonymous.retry_unavailable = false;
-  auto rejected = Client::Create(anonymous);
-  ASSERT_TRUE(rejected.ok());
-  EXPECT_FALSE((*rejected)->EvaluateBezier(1, {0, 1}, {0.5}).ok());
-
-  ClientOptions identified = TlsClientOptions(certificates, server.port());
-  identified.cert_file = certificates.Path("client.pem");
-  identified.key_file = certificates.Path("client.key");
-  auto accepted = Client::Create(identified);
-  ASSERT_TRUE(accepted.ok());
-  absl::StatusOr<CurveSamples> samples =
-      (*accepted)->EvaluateBezier(1, {0, 1}, {0.25});
-  ASSERT_TRUE(samples.ok()) << samples.status();
-  EXPECT_THAT(samples->derivatives[0], ElementsAre(0.25));
 }
 
 }  // namespace

@@ -1,14 +1,20 @@
 // freeformd --metrics_listen: the real binary's Prometheus endpoint counts
 // the calls a client makes by method and code, with their latency and
 // bytes, scraped over plain HTTP.
+#include <arpa/inet.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <chrono>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "freeform/client.h"
@@ -19,6 +25,7 @@ namespace freeform {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using ::testing::Optional;
 
 constexpr char kEvaluateOk[] =
@@ -129,6 +136,90 @@ TEST(FreeformdMetrics, UnusableAddressFailsAtStart) {
                            std::istreambuf_iterator<char>());
   EXPECT_THAT(logged, HasSubstr(absl::StrCat("--metrics_listen=127.0.0.1:",
                                              first.metrics_port())));
+}
+
+// Only exactly /metrics is served, with or without a query (Prometheus'
+// scrape `params`). civetweb matches a handler's path as a case-insensitive
+// prefix after merging repeated slashes: each of these used to get the
+// metrics.
+TEST(FreeformdMetrics, OnlyTheMetricsPathIsServed) {
+  ServerProcess server({"--metrics_listen=127.0.0.1:0"});
+  ASSERT_GT(server.metrics_port(), 0);
+  for (const char* path : {"/metrics", "/metrics?name[]=freeform_calls"}) {
+    absl::StatusOr<std::string> metrics = HttpGet(server.metrics_port(), path);
+    ASSERT_TRUE(metrics.ok()) << metrics.status();
+    EXPECT_THAT(*metrics, HasSubstr("freeform_calls_total")) << path;
+  }
+  for (const char* path :
+       {"/metricsX", "//metrics", "/METRICS", "/Metrics", "/metrics/",
+        "/metrics/x", "/metrics.txt", "/./metrics", "/x/../metrics", "/"}) {
+    absl::StatusOr<HttpAnswer> answer =
+        HttpExchange(server.metrics_port(), path);
+    ASSERT_TRUE(answer.ok()) << path << ": " << answer.status();
+    EXPECT_THAT(answer->status_line, HasSubstr(" 404 ")) << path;
+    EXPECT_THAT(answer->body, Not(HasSubstr("freeform_calls_total"))) << path;
+  }
+}
+
+// ConnectToLoopback returns a socket connected to 127.0.0.1:PORT, or -1.
+int ConnectToLoopback(int port) {
+  const int socket_fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  if (socket_fd >= 0 &&
+      connect(socket_fd, reinterpret_cast<const sockaddr*>(&address),
+              sizeof(address)) != 0) {
+    close(socket_fd);
+    return -1;
+  }
+  return socket_fd;
+}
+
+// Connections that send nothing, or their request a byte every 50 ms,
+// each hold one of the endpoint's 16 workers until its 1 s request
+// timeout: 28 of them delay a scrape until the first 16 have timed out,
+// about 1 s. With civetweb's defaults in prometheus-cpp's Exposer (2
+// workers, 30 s) two idle connections stopped every scrape for 30 s.
+TEST(FreeformdMetrics, IdleAndSlowConnectionsDoNotStarveAScrape) {
+  ServerProcess server({"--metrics_listen=127.0.0.1:0"});
+  ASSERT_GT(server.metrics_port(), 0);
+  std::vector<int> idle;
+  for (int i = 0; i < 20; ++i) {
+    idle.push_back(ConnectToLoopback(server.metrics_port()));
+    ASSERT_GE(idle.back(), 0);
+  }
+  std::vector<int> slow;
+  for (int i = 0; i < 8; ++i) {
+    slow.push_back(ConnectToLoopback(server.metrics_port()));
+    ASSERT_GE(slow.back(), 0);
+  }
+  std::atomic<bool> stop{false};
+  std::thread trickle([&] {
+    constexpr char kStart[] = "GET /metrics HTTP/1.1\r\nX-Slow: ";
+    for (int socket_fd : slow) {
+      send(socket_fd, kStart, sizeof(kStart) - 1, MSG_NOSIGNAL);
+    }
+    while (!stop) {
+      for (int socket_fd : slow) send(socket_fd, "x", 1, MSG_NOSIGNAL);
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+
+  const auto start = std::chrono::steady_clock::now();
+  absl::StatusOr<std::string> metrics =
+      HttpGet(server.metrics_port(), "/metrics");
+  const auto elapsed = std::chrono::steady_clock::now() - start;
+  stop = true;
+  trickle.join();
+  for (int socket_fd : idle) close(socket_fd);
+  for (int socket_fd : slow) close(socket_fd);
+  ASSERT_TRUE(metrics.ok()) << metrics.status();
+  EXPECT_THAT(*metrics, HasSubstr("freeform_calls_total"));
+  EXPECT_LT(elapsed, std::chrono::seconds(2))
+      << std::chrono::duration<double>(elapsed).count() << " s";
 }
 
 }  // namespace

@@ -1,6 +1,17 @@
-// Memory: after a burst of maximal calls freeformd's resident
-// memory returns to within 20% of its baseline. The baseline is VmRSS
-// after a warm-up of every RPC and of maximal calls, and an idle pause
+// Memory: one admitted call stays within the budget, and after a burst of
+// maximal calls freeformd's resident memory returns to within 20% of its
+// baseline.
+//
+// LargestAdmittedMeshStaysWithinTheBudget: freeformd with a memory budget
+// of 400 MiB, one TessellateStream of the largest mesh the budget admits
+// (found by probing: a call over the budget is refused at once, an
+// admitted probe stops at its short deadline), read whole: the process's
+// peak resident memory (VmHWM, its code and idle state included) stays
+// below the budget. Every call's reservation is an upper bound of its
+// memory (tests/server/memory_bounds_test.cc measures each RPC).
+//
+// ResidentMemoryReturnsToBaselineAfterABurstOfMaximalCalls: The baseline is
+// VmRSS after a warm-up of every RPC and of maximal calls, and an idle pause
 // (the MemoryTrimmer hands freed memory back once idle, every second); the
 // check polls VmRSS for up to 10 s after the burst. The burst: 64 callers for
 // half of FREEFORM_LOAD_SECONDS, each asking for a cubic B-spline at
@@ -14,11 +25,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <thread>
 
 #include "../integration/server_process.h"
+#include "../metrics_scrape.h"
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
 #include "driver.h"
 
 namespace freeform::reliability {
@@ -38,6 +53,111 @@ std::unique_ptr<Client> Connect(const ServerProcess& server) {
   absl::StatusOr<std::unique_ptr<Client>> client = Client::Create(options);
   EXPECT_TRUE(client.ok()) << client.status();
   return client.ok() ? *std::move(client) : nullptr;
+}
+
+// A mesh stream's outcome: its status and the vertices it sent.
+struct MeshStream {
+  grpc::Status status;
+  uint64_t vertices = 0;
+};
+
+MeshStream StreamMesh(Client& client,
+                      const v1::TessellateSurfaceRequest& request,
+                      std::chrono::milliseconds deadline) {
+  std::unique_ptr<grpc::ClientContext> context = client.NewContext();
+  context->set_deadline(std::chrono::system_clock::now() + deadline);
+  std::unique_ptr<grpc::ClientReader<v1::TessellateSurfaceResponse>> reader =
+      client.surfaces().TessellateStream(context.get(), request);
+  MeshStream stream;
+  v1::TessellateSurfaceResponse chunk;
+  while (reader->Read(&chunk)) {
+    stream.vertices += chunk.vertices().coordinates_size() / 3;
+  }
+  stream.status = reader->Finish();
+  return stream;
+}
+
+// NothingReserved waits until no call of `server` holds any of its memory
+// budget (a probe stopped by its deadline may still be stopping there).
+bool NothingReserved(const ServerProcess& server) {
+  const auto give_up =
+      std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (std::chrono::steady_clock::now() < give_up) {
+    const absl::StatusOr<std::string> metrics =
+        HttpGet(server.metrics_port(), "/metrics");
+    if (metrics.ok() &&
+        MetricValue(*metrics, "freeform_memory_reserved_bytes") == 0.0) {
+      return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+TEST(Memory, LargestAdmittedMeshStaysWithinTheBudget) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "the sanitizers keep freed memory in their own allocator";
+#endif
+  constexpr uint64_t kBudget = uint64_t{400} << 20;
+  ServerProcess server({"--log_level=warn",
+                        absl::StrCat("--memory_budget=", kBudget),
+                        "--metrics_listen=127.0.0.1:0"});
+  ASSERT_GT(server.port(), 0) << "freeformd did not report its port";
+  ASSERT_GT(server.metrics_port(), 0) << "freeformd did not report metrics";
+  std::unique_ptr<Client> client = Connect(server);
+  ASSERT_NE(client, nullptr);
+  Rng rng(30);  // one fixed surface: the probes and the call share it
+  v1::TessellateSurfaceRequest request;
+  *request.add_surfaces() =
+      RandomBSplinePatch(rng, 3, 3, 40, 40, /*rational=*/false).ToSurface();
+  request.set_tolerance(1e-3);
+  request.set_normals(true);
+  // Admitted says whether a mesh of longest edge `edge` fits the budget
+  // (or the server's cap of vertices, 4 M for a stream).
+  auto admitted = [&](double edge) {
+    EXPECT_TRUE(NothingReserved(server));
+    request.set_max_edge_length(edge);
+    const MeshStream probe =
+        StreamMesh(*client, request, std::chrono::milliseconds(300));
+    const bool refused =
+        probe.status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED;
+    EXPECT_TRUE(refused || probe.status.ok() ||
+                probe.status.error_code() ==
+                    grpc::StatusCode::DEADLINE_EXCEEDED)
+        << probe.status.error_message();
+    if (refused) {
+      EXPECT_TRUE(
+          absl::StrContains(probe.status.error_message(), "--memory_budget") ||
+          absl::StrContains(probe.status.error_message(), "vertices"))
+          << probe.status.error_message();
+    }
+    return !refused;
+  };
+  // The largest admitted mesh: its edge to 1/4096 of the search's range
+  // (in log scale) between an edge the budget admits and one it refuses.
+  double fits = 0.02, refused = 0.0002;
+  ASSERT_TRUE(admitted(fits));
+  ASSERT_FALSE(admitted(refused));
+  for (int step = 0; step < 12; ++step) {
+    const double middle = std::sqrt(fits * refused);
+    (admitted(middle) ? fits : refused) = middle;
+  }
+  request.set_max_edge_length(fits);
+  ASSERT_TRUE(NothingReserved(server));
+  const long before = server.ResidentKiB("VmHWM");
+  const MeshStream mesh =
+      StreamMesh(*client, request, std::chrono::seconds(120));
+  ASSERT_TRUE(mesh.status.ok()) << mesh.status.error_message();
+  const long peak = server.ResidentKiB("VmHWM");
+  std::fprintf(stderr,
+               "memory: the largest mesh a %llu MiB budget admits (longest "
+               "edge %.6g): %llu vertices; VmHWM %ld KiB before it, %ld KiB "
+               "after\n",
+               static_cast<unsigned long long>(kBudget >> 20), fits,
+               static_cast<unsigned long long>(mesh.vertices), before, peak);
+  EXPECT_GT(mesh.vertices, 1'000'000u);
+  EXPECT_LT(static_cast<uint64_t>(peak) * 1024, kBudget);
+  EXPECT_EQ(server.StopWith(SIGTERM, std::chrono::seconds(10)), 0);
 }
 
 TEST(Memory, ResidentMemoryReturnsToBaselineAfterABurstOfMaximalCalls) {

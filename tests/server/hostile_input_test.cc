@@ -358,5 +358,89 @@ TEST_F(HostileInputTest, UnparseableBytesNameTheRequestMessage) {
               HasSubstr("not a valid freeform.v1.EvaluateCurveRequest"));
 }
 
+// 7. A refusal names the field that caused it (the second campaign).
+
+// A unit bilinear square meshed within a loose tolerance: its edges of at
+// most 1e-5 need (2 / 1e-5)^2 = 4e10 cells, far over max_vertices, which
+// the edge length alone causes (the tolerance alone needs one cell).
+TEST_F(HostileInputTest, MeshTooFineForItsEdgeLengthNamesMaxEdgeLength) {
+  const std::string square =
+      "surfaces { bezier { control_net { dimension: 3 count_u: 2 count_v: 2 "
+      "coordinates: [0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0] } } } ";
+  const auto status = [&](const std::string& options) {
+    return client_
+        ->TessellateSurfaces(
+            Parse<v1::TessellateSurfaceRequest>(square + options))
+        .status();
+  };
+  const absl::Status by_edges = status("tolerance: 0.1 max_edge_length: 1e-5");
+  EXPECT_EQ(by_edges.code(), absl::StatusCode::kResourceExhausted) << by_edges;
+  ASSERT_EQ(FieldViolationsOf(by_edges).size(), 1u) << by_edges;
+  EXPECT_EQ(FieldViolationsOf(by_edges)[0].field, "max_edge_length");
+  // A curved patch whose tolerance alone is too fine still names it, with
+  // or without an edge limit.
+  const std::string bowl =
+      "surfaces { bezier { control_net { dimension: 3 count_u: 3 count_v: 3 "
+      "coordinates: [0, 0, 1, 0, 1, 0, 0, 2, 1, 1, 0, 0, 1, 1, -1, 1, 2, 0, "
+      "2, 0, 1, 2, 1, 0, 2, 2, 1] } } } ";
+  for (const std::string options :
+       {"tolerance: 1e-13", "tolerance: 1e-13 max_edge_length: 1e-5"}) {
+    const absl::Status by_tolerance =
+        client_
+            ->TessellateSurfaces(
+                Parse<v1::TessellateSurfaceRequest>(bowl + options))
+            .status();
+    EXPECT_EQ(by_tolerance.code(), absl::StatusCode::kResourceExhausted)
+        << by_tolerance;
+    ASSERT_EQ(FieldViolationsOf(by_tolerance).size(), 1u) << by_tolerance;
+    EXPECT_EQ(FieldViolationsOf(by_tolerance)[0].field, "tolerance") << options;
+  }
+}
+
+// 400 points of the plane z = x / 2 + y / 4 over the unit square: a
+// smoothing of 1e308 (times the 400 points it overflows) is refused on
+// smoothing, with the rule; one that keeps the data fits the plane. Without
+// parameters, a singular system is blamed on the points that cause it.
+TEST_F(HostileInputTest, ScatteredFitRefusalsNameSmoothingOrPoints) {
+  v1::FitScatteredSurfaceRequest request;
+  request.mutable_points()->set_dimension(3);
+  for (int k = 0; k < 400; ++k) {
+    const double x = std::fmod(0.5 + k * 0.6180339887498949, 1.0);
+    const double y = std::fmod(0.5 + k * 0.7548776662466927, 1.0);
+    for (const double c : {x, y, x / 2 + y / 4}) {
+      request.mutable_points()->add_coordinates(c);
+    }
+    request.add_parameters(x);
+    request.add_parameters(y);
+  }
+  request.set_degree_u(2);
+  request.set_degree_v(2);
+  request.set_control_count_u(6);
+  request.set_control_count_v(6);
+  for (const double smoothing : {1e308, 1e200, 1e30}) {
+    request.set_smoothing(smoothing);
+    const absl::Status status = client_->FitScatteredSurface(request).status();
+    ExpectInvalid(status, "smoothing");
+    EXPECT_THAT(status.message(), HasSubstr("use at most")) << status;
+  }
+  request.set_smoothing(1.0);
+  const auto fit = client_->FitScatteredSurface(request);
+  ASSERT_TRUE(fit.ok()) << fit.status();
+  EXPECT_LT(fit->max_residual(), 1e-9);
+  // All points on the line x = y in (u, v): no data fixes the net off it.
+  v1::FitScatteredSurfaceRequest line;
+  line.mutable_points()->set_dimension(3);
+  for (int k = 0; k < 40; ++k) {
+    const double t = k / 39.0;
+    for (const double c : {t, t, t}) line.mutable_points()->add_coordinates(c);
+  }
+  line.set_degree_u(1);
+  line.set_degree_v(1);
+  line.set_control_count_u(2);
+  line.set_control_count_v(2);
+  line.set_smoothing(0.0);
+  ExpectInvalid(client_->FitScatteredSurface(line).status(), "points");
+}
+
 }  // namespace
 }  // namespace freeform::server

@@ -4,17 +4,33 @@
 #ifndef FREEFORM_CLIENT_FILE_H_
 #define FREEFORM_CLIENT_FILE_H_
 
+#include <cstddef>
 #include <string>
 
 #include "absl/status/statusor.h"
 
 namespace freeform {
 
+// The most bytes read of one TLS certificate chain, private key or CA
+// bundle. PEM files are a few KB; 1 MiB holds any real chain, and Debian's
+// whole CA bundle (/etc/ssl/certs/ca-certificates.crt) is about 220 KB.
+inline constexpr size_t kMaxCredentialFileBytes = size_t{1} << 20;
+
 // ReadFileToString returns the whole contents of `path`, or an error that
 // names the path and the reason ("cannot read PATH: No such file or
 // directory"): NOT_FOUND when it does not exist, FAILED_PRECONDITION when it
 // cannot be opened or read (a directory, no permission).
 absl::StatusOr<std::string> ReadFileToString(const std::string& path);
+
+// ReadRegularFile returns the contents of `path` when it is a regular file
+// (or a symbolic link to one) of at most `max_bytes` bytes. Anything else is
+// refused with FAILED_PRECONDITION naming the path, without reading more
+// than max_bytes + 1 bytes: a device, FIFO, socket or directory ("cannot
+// read /dev/zero: not a regular file (a character device)"; opening a FIFO
+// does not wait for a writer), or a longer file ("... is larger than
+// 1048576 bytes"). NOT_FOUND when it does not exist.
+absl::StatusOr<std::string> ReadRegularFile(const std::string& path,
+                                            size_t max_bytes);
 
 }  // namespace freeform
 

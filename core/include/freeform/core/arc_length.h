@@ -2,37 +2,63 @@
 // (the parameter at a given length) and samples at equal arc-length
 // spacing, for every curve kind of curve.h in any dimension.
 //
-// The length of C over [a, b] is the integral of the speed |C'(t)|. It is
-// integrated piece by piece between the curve's breakpoints
-// (CurveBreakpoints: knot spans, Hermite pieces), where the speed is smooth,
-// by adaptive Gauss-Legendre quadrature (docs/references.md, 'Arc length by
-// adaptive Gauss-Legendre quadrature'): an interval's 16-point rule is
-// compared with the sum of the rules on its two halves; when they differ by
-// at most the interval's share of the tolerance (tolerance times its width
-// over the whole interval's) the halves' sum is kept, otherwise each half is
-// refined the same way. The difference estimates the error of the coarser
-// rule, so the kept sums are far more accurate than the tolerance for smooth
-// speeds. An interval whose rules agree to rounding (64 epsilon of their
-// value) is kept as it is, and a piece is not split beyond
-// kMaxArcLengthDepth halvings or kMaxArcLengthIntervals intervals, so a
-// tolerance below what double precision resolves (about 1e-15 of the
+// The length of C over [a, b] is the integral of the speed |C'(t)|. The
+// curve is cut into its Bezier pieces (DecomposeCurve) between the
+// breakpoints, where the speed is smooth, and each piece is integrated in
+// its own parameter s in [0, 1] by adaptive Gauss-Legendre quadrature
+// (docs/references.md, 'Arc length by adaptive Gauss-Legendre
+// quadrature'): an interval's 16-point rule is compared with the sum of the
+// rules on its two halves; when they differ by at most the interval's share
+// of the tolerance (the tolerance times the piece's share of the width of
+// [a, b], times the interval's share of the piece) the halves' sum is kept,
+// otherwise each half is refined the same way. The difference estimates the
+// error of the coarser rule, so the kept sums are far more accurate than
+// the tolerance for smooth speeds. An interval whose rules agree to rounding
+// (64 epsilon of their value) is kept as it is, and a piece is not split
+// beyond kMaxArcLengthDepth halvings or kMaxArcLengthIntervals intervals,
+// so a tolerance below what double precision resolves (about 1e-15 of the
 // length) ends there with the best sum found.
+//
+// Extreme weights: a rational piece whose weights differ by a large factor
+// moves almost all of its way in a tiny part of its parameter (the corner
+// (1,0), (1,1), (0,1) with weights 1, 1e10, 1 runs from one end to the
+// corner for t < 1e-10), which a quadrature rule's nodes step over. Such a
+// piece is first halved by de Casteljau, in homogeneous form and without
+// evaluating it at parameters, until the weights of every stretch are
+// within a factor 4 of each other (a stretch's spread of 2^m takes about m
+// halvings, kMaxArcLengthWeightHalvings at most); then its speed is as
+// smooth as a polynomial's and the quadrature above applies in the
+// stretch's own parameter (docs/references.md, 'Arc length of rational
+// curves').
+//
+// Extreme scale: the curve is integrated as its copy rescaled by powers of
+// two (coordinates at most 1, weights at most 1, domain width about 1;
+// exact), so squared norms neither underflow nor overflow for curves of
+// size 1e-300 or 1e300 or knots 1e170 apart, and lengths are scaled back.
 //
 // The inverse solves L(start, t) = s for t by Newton's method, whose
 // derivative is the speed, safeguarded by bisection on the interval of the
 // quadrature table that holds s (the length is monotone in t). Where the
 // curve stands still (zero speed over an interval) every parameter of that
-// interval has the same length; the one returned lies inside it.
+// interval has the same length; the one returned lies inside it. A
+// returned parameter is a double: where the curve moves more than the
+// tolerance between adjacent doubles of t (weights so extreme that a whole
+// stretch lies within one unit in the last place of t) no parameter has
+// the length asked for within the tolerance, and the call fails with
+// INVALID_ARGUMENT naming "weights" (or, for a polynomial curve, whose
+// knots would have to be as extreme, "tolerance") and saying by how much
+// the best parameter misses.
 //
 // Errors name their field: "start", "end", "tolerance", "lengths[i]",
-// "count". Output buffers have a size known before any work (the number of
-// lengths, or `count`); a wrongly sized buffer is INVALID_ARGUMENT.
+// "count", "weights". Output buffers have a size known before any work (the
+// number of lengths, or `count`); a wrongly sized buffer is INVALID_ARGUMENT.
 //
 // All functions are thread-safe and allocate per call or per chunk.
 #ifndef FREEFORM_CORE_ARC_LENGTH_H_
 #define FREEFORM_CORE_ARC_LENGTH_H_
 
 #include <cstddef>
+#include <cstdint>
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
@@ -49,6 +75,13 @@ namespace freeform {
 // corner finer than double precision resolves, a huge curve).
 inline constexpr int kMaxArcLengthDepth = 40;
 inline constexpr size_t kMaxArcLengthIntervals = 1024;
+
+// A rational piece is halved for its weights (see the file comment) at
+// most this many times along one path, and holds at most this many values
+// of halved stretches at once: beyond either the call fails with
+// INVALID_ARGUMENT naming "weights".
+inline constexpr int kMaxArcLengthWeightHalvings = 1100;
+inline constexpr size_t kMaxArcLengthWeightValues = size_t{1} << 18;
 
 // ArcLength returns the length of `curve` over [start, end] within
 // `tolerance` (absolute, in the curve's units; see the file comment).
@@ -98,6 +131,17 @@ absl::Status EqualArcLengthParameters(const Curve& curve, double start,
                                       double tolerance,
                                       absl::Span<double> parameters,
                                       const ExecutionContext& context = {});
+
+// ArcLengthWorkValues returns an estimate, known before any work, of the
+// doubles a call on `curve` holds besides its answer when `tables` length
+// tables are built at once (one per thread of ArcLengths; one for the
+// inverse): three copies of the curve's Bezier pieces (DecomposedCurveValues:
+// the decomposition, its lifted nets and the rescaled copy of the curve),
+// and per table 48 values per piece (a kept interval holds 4, a piece keeps
+// a few at tolerances it resolves, up to kMaxArcLengthIntervals below
+// them) and, for a rational curve, kMaxArcLengthWeightValues. Saturates at
+// UINT64_MAX.
+uint64_t ArcLengthWorkValues(const Curve& curve, size_t tables);
 
 // GaussLegendreRule returns the `points` >= 1 nodes (ascending) and weights
 // of the Gauss-Legendre rule on [-1, 1], which integrates polynomials of

@@ -53,6 +53,7 @@
 #define FREEFORM_CORE_BOUNDING_BOX_H_
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -72,6 +73,16 @@ inline constexpr int kMaxBoxHalvings = 1 << 14;
 // The most work of the halvings in the search for one side: kMaxBoxHalvings
 // halvings of a bicubic piece in 3-D (48 values, 4 points along the split).
 inline constexpr size_t kMaxBoxHalvingWork = size_t{kMaxBoxHalvings} * 48 * 4;
+
+// CurveBoundingBoxBytes and SurfaceBoundingBoxBytes return an upper bound,
+// known before any work, of the memory CurveBoundingBox and
+// SurfaceBoundingBox allocate at their peak for a valid geometry: its
+// Bezier pieces while they are cut (at most three times their values) and
+// then lifted, the pieces' records, and the halves and heap of the search
+// (at most 2 kMaxBoxHalvings halves, fewer when halving a piece costs more
+// work).
+uint64_t CurveBoundingBoxBytes(const Curve& curve);
+uint64_t SurfaceBoundingBoxBytes(const Surface& surface);
 
 // An axis-aligned box: lower[j] <= x_j <= upper[j] for every point x.
 struct BoundingBox {

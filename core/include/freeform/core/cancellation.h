@@ -17,6 +17,8 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <string>
+#include <utility>
 
 #include "absl/status/status.h"
 
@@ -30,8 +32,13 @@ class CancellationToken {
   CancellationToken(const CancellationToken&) = delete;
   CancellationToken& operator=(const CancellationToken&) = delete;
 
-  // SetDeadline makes the token report DEADLINE_EXCEEDED from `deadline` on.
-  void SetDeadline(Clock::time_point deadline) { deadline_ = deadline; }
+  // SetDeadline makes the token report DEADLINE_EXCEEDED from `deadline` on,
+  // with `why` as the status message when it is not empty (e.g. whose
+  // deadline it was).
+  void SetDeadline(Clock::time_point deadline, std::string why = {}) {
+    deadline_ = deadline;
+    deadline_why_ = std::move(why);
+  }
 
   // SetPoll installs a function asked on every IsCancelled() call; when it
   // returns true the token turns CANCELLED. It must be thread-safe and cheap.
@@ -53,6 +60,7 @@ class CancellationToken {
 
   mutable std::atomic<int> state_{kRunning};
   std::optional<Clock::time_point> deadline_;
+  std::string deadline_why_;
   std::function<bool()> poll_;
 };
 

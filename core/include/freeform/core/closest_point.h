@@ -50,14 +50,35 @@
 // Certified: no point of the geometry is closer to q than the returned
 // lower bound, which is within `tolerance` of the returned distance for a
 // complete answer (up to the rounding of the hull bounds and evaluators,
-// about 1e-15 of the coordinates' scale).
+// about 1e-15 of the coordinates' scale). Each returned point is the
+// geometry evaluated at its returned parameters, and the distance is the
+// distance from q to the nearest of them, recomputed from those points (not
+// the search's own approximation of the piece).
+//
+// Extreme scale and weights: the search runs on the geometry's copy
+// rescaled by powers of two (coordinates and weights at most 1: exact), q
+// scaled with it, and distances are norms with scaled squares, so
+// geometry and queries of any size from 1e-300 to 1e300 give the same
+// answers. A query farther than 2^500 (about 3e150) times the geometry's
+// largest coordinate from the origin is at the same distance from every
+// point of the geometry to rounding: it gets the geometry's point farthest
+// along its direction, its exact distance, and complete = false. Where a
+// rational piece's weights vary so steeply that the geometry moves more
+// than the tolerance between adjacent double parameters (weights of 1e15
+// and more next to 1), the point at the nearest double parameter may lie
+// farther than the certified lower bound plus the tolerance: no parameter
+// answers the query, and the call fails (INVALID_ARGUMENT "weights", or
+// "tolerance" for polynomial geometry, saying by how much it misses).
 //
 // When the minimum is attained along a whole curve or region (the centre
 // of a circle or of a sphere patch, a point on the axis of a surface of
 // revolution) the answer is a bounded set: up to max_minima minima at least
-// `separation` apart, all at the minimum distance, with complete = false;
-// the same flag marks a query that used up max_pieces before every piece
-// was resolved (then lower_bound may be below distance - tolerance).
+// `separation` apart, all at the minimum distance, with complete = false.
+// A constant piece (all its control points equal, of any degree, degree 0
+// included) is such a stretch: on a curve max_minima of its parameters,
+// evenly spread, on a surface its one point, with complete = false. The
+// same flag marks a query that used up max_pieces before every piece was
+// resolved (then lower_bound may be below distance - tolerance).
 //
 // Triangular patches are searched through their degenerate tensor form and
 // answer barycentric (u, v) (or Cartesian points of their domain triangle).
@@ -123,7 +144,9 @@ size_t ClosestPointsValues(size_t queries, int dimension, int parameter_count,
 // CurveClosestPoints answers every query point of `queries` on a valid
 // curve. Fails with INVALID_ARGUMENT naming "queries.dimension" (not the
 // curve's dimension), "queries.coordinates..." (ValidatePoints; at least
-// one query), "tolerance", "separation", "max_minima" or "max_pieces", and
+// one query; a query whose distance exceeds the largest double),
+// "tolerance", "separation", "max_minima" or "max_pieces", "weights" or
+// "tolerance" for a minimum no double parameter reaches (see above), and
 // with the context's CANCELLED / DEADLINE_EXCEEDED.
 absl::StatusOr<ClosestPoints> CurveClosestPoints(
     const Curve& curve, const PointsView& queries,

@@ -177,6 +177,12 @@ absl::StatusOr<BezierDecomposition> DecomposeCurve(
 // answer or as working memory. Saturates at UINT64_MAX.
 uint64_t DecomposedCurveValues(const Curve& curve);
 
+// DecomposedCurvePieces returns an upper bound, known before any work, of
+// the pieces DecomposeCurve returns: one per span of a B-spline, per node
+// interval of a Hermite curve, one for a Bezier or Lagrange curve. Each
+// piece costs its records besides its values.
+uint64_t DecomposedCurvePieces(const Curve& curve);
+
 }  // namespace freeform
 
 #endif  // FREEFORM_CORE_CURVE_H_

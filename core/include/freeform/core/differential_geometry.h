@@ -52,6 +52,16 @@
 // limit ComputeUnitNormals finds (or zero) and its curvatures and
 // directions are zeros.
 //
+// Scale: curves and surfaces are evaluated as their copies rescaled by
+// powers of two (coordinates at most 1, the domain's width about 1; exact)
+// and every norm scales its squares (docs/references.md, 'Scale-safe
+// norms'), so a circle of radius 1e-200, a curve on knots 1e170 apart and
+// a cylinder of radius 1e80 have the curvatures of the unit ones over their
+// size; only a value beyond the double range itself (the Gaussian
+// curvature 1e400 of a sphere of radius 1e-200) is not representable. A
+// Gaussian curvature below 16 epsilon of the shape operator's size squared
+// is rounding and returned as 0.
+//
 // Output buffers have sizes known before any work (the *Sizes functions);
 // a buffer may be left empty when it is not wanted (except the statuses),
 // otherwise a wrong size is INVALID_ARGUMENT. Batches run in chunks on the

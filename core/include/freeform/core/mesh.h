@@ -145,13 +145,38 @@ MeshSize PlannedMeshSize(const MeshPlan& plan);
 // the plan holds them from PlanMesh on.
 uint64_t PlannedPieceValues(const MeshPlan& plan);
 
+// Whether TessellatePlanned makes Mesh::triangle_patch and
+// Mesh::corner_uv (52 bytes per triangle, about half of its memory).
+enum class CornerAttributes { kMake, kSkip };
+
 // TessellatePlanned makes the planned mesh: within the tolerance of the
 // surfaces, every edge used by at most two triangles, consistently
 // oriented, without T-junctions. Normals are the unit normals of the
-// owning surface (limits from inside at collapsed sides). Fails only with
-// the token's CANCELLED / DEADLINE_EXCEEDED.
+// owning surface (limits from inside at collapsed sides). With kSkip the
+// mesh's triangle_patch and corner_uv stay empty. Fails only with the
+// token's CANCELLED / DEADLINE_EXCEEDED.
 absl::StatusOr<Mesh> TessellatePlanned(
-    const MeshPlan& plan, const CancellationToken* cancel = nullptr);
+    const MeshPlan& plan, const CancellationToken* cancel = nullptr,
+    CornerAttributes corner_attributes = CornerAttributes::kMake);
+
+// The memory of a planned mesh (upper bounds, in bytes), known before it
+// is made: every array TessellatePlanned keeps is sized from the plan up
+// front, so these are sums of known sizes. The surfaces are not counted.
+struct MeshMemory {
+  // The plan's own: its pieces and sides, and with a normal-angle limit the
+  // surfaces' Bezier pieces.
+  uint64_t plan = 0;
+  // What TessellatePlanned allocates at its peak, the mesh it returns
+  // included.
+  uint64_t tessellation = 0;
+  // The mesh it returns.
+  uint64_t mesh = 0;
+};
+
+// PlannedMeshMemory returns the memory of `plan` and of
+// TessellatePlanned(plan, ..., corner_attributes).
+MeshMemory PlannedMeshMemory(const MeshPlan& plan,
+                             CornerAttributes corner_attributes);
 
 // TessellateSurfaces is PlanMesh followed by TessellatePlanned.
 absl::StatusOr<Mesh> TessellateSurfaces(

@@ -185,6 +185,11 @@ std::array<double, 2> SurfacePieceParameters(
 // UINT64_MAX.
 uint64_t SurfacePieceValues(const Surface& surface);
 
+// SurfacePieceCount returns an upper bound, known before any work, of the
+// pieces DecomposeSurface returns: one per span rectangle of a B-spline
+// surface, one for the other kinds.
+uint64_t SurfacePieceCount(const Surface& surface);
+
 }  // namespace freeform
 
 #endif  // FREEFORM_CORE_SURFACE_H_

@@ -11,7 +11,9 @@
 // output, and a batch run again on the same threads finds most of its output
 // in the caches it left it in. Each chunk checks the cancellation token
 // first; a cancelled batch skips the chunks not yet started and returns
-// CANCELLED or DEADLINE_EXCEEDED.
+// CANCELLED or DEADLINE_EXCEEDED. A chunk that throws (the core does not
+// throw, but an allocation can) ends no thread: the chunks not yet started
+// are skipped and ParallelFor returns INTERNAL with the exception's text.
 //
 // Results do not depend on the number of threads: chunks write disjoint
 // outputs, so a batch gives the same numbers serially and in parallel.
