@@ -212,9 +212,9 @@ bool ChordSlabApart(const Part& a, const Part& b, double tolerance) {
   return SlabApart(normal.data(), a, b, tolerance);
 }
 
-// NormalSlabApart is the slab test of a 3D surface part across the cross
-// product of its corner diagonals.
-bool NormalSlabApart(const Part& surface, const Part& other, double tolerance) {
+// CornerNormal writes the unit cross product of a 3D surface part's corner
+// diagonals; false when the part is not 3D or the product vanishes.
+bool CornerNormal(const Part& surface, double* normal) {
   if (surface.net.dimension != 3) return false;
   const int nu = surface.net.count_u;
   const int nv = surface.net.count_v;
@@ -226,13 +226,32 @@ bool NormalSlabApart(const Part& surface, const Part& other, double tolerance) {
     d1[x] = corner(nu - 1, nv - 1)[x] - corner(0, 0)[x];
     d2[x] = corner(nu - 1, 0)[x] - corner(0, nv - 1)[x];
   }
-  double normal[3] = {d1[1] * d2[2] - d1[2] * d2[1],
-                      d1[2] * d2[0] - d1[0] * d2[2],
-                      d1[0] * d2[1] - d1[1] * d2[0]};
+  normal[0] = d1[1] * d2[2] - d1[2] * d2[1];
+  normal[1] = d1[2] * d2[0] - d1[0] * d2[2];
+  normal[2] = d1[0] * d2[1] - d1[1] * d2[0];
   const double length = std::sqrt(Dot(normal, normal, 3));
   if (!(length > 0.0)) return false;
-  for (double& n : normal) n /= length;
-  return SlabApart(normal, surface, other, tolerance);
+  for (int x = 0; x < 3; ++x) normal[x] /= length;
+  return true;
+}
+
+// NormalSlabApart is the slab test of a 3D surface part across the cross
+// product of its corner diagonals.
+bool NormalSlabApart(const Part& surface, const Part& other, double tolerance) {
+  double normal[3];
+  return CornerNormal(surface, normal) &&
+         SlabApart(normal, surface, other, tolerance);
+}
+
+// Steep returns true when the chord of curve part a rises out of the plane
+// of 3D surface part b (across its corner normal) by more than kNarrowCone:
+// a curve lying along the surface there would be nearly tangent to it, so
+// such a pair is only halved, never sampled for a stretch. (The normal of a
+// large, curved part is rough; its halves are tested again.)
+bool Steep(const Part& a, const Part& b) {
+  double normal[3];
+  if (!a.cone.valid || !CornerNormal(b, normal)) return false;
+  return std::abs(Dot(a.cone.axis.data(), normal, 3)) > std::sin(kNarrowCone);
 }
 
 bool Pruned(const Part& a, const Part& b, double tolerance) {
@@ -763,7 +782,7 @@ bool PairSearch::Examine(const PartPtr& a, const PartPtr& b) {
     return b->cone.valid && b->cone.angle < kNarrowCone &&
            FindCurveStretch(*a, *b);
   }
-  return b->hull && FindSurfaceStretch(*a, *b);
+  return b->hull && !Steep(*a, *b) && FindSurfaceStretch(*a, *b);
 }
 
 absl::Status PairSearch::Run() {
