@@ -349,9 +349,10 @@ void WatchCall(grpc::CallbackServerContext& context,
 }
 
 absl::Status HandlerThrew(absl::string_view method, absl::string_view what) {
-  spdlog::error("rpc method={} threw: {} (a server bug: the call answers "
-                "INTERNAL)",
-                std::string(method), std::string(what));
+  spdlog::error(
+      "rpc method={} threw: {} (a server bug: the call answers "
+      "INTERNAL)",
+      std::string(method), std::string(what));
   return absl::InternalError(
       "the server failed on this request (a server bug: please report the "
       "request)");

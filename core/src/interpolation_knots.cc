@@ -46,8 +46,7 @@ std::vector<double> ClampedUniformKnots(int count, int p) {
   return knots;
 }
 
-absl::StatusOr<std::vector<double>> KnotsFor(absl::Span<const double> t,
-                                             int p,
+absl::StatusOr<std::vector<double>> KnotsFor(absl::Span<const double> t, int p,
                                              Parameterization parameterization,
                                              KnotRule knot_rule,
                                              const CancellationToken* cancel) {

@@ -21,8 +21,7 @@ std::vector<double> ClampedUniformKnots(int count, int p);
 // function per site): ClampedUniformKnots for kUniversal, else by the
 // KnotRule (kAveraging: eq. 9.8, N p additions, which poll `cancel`;
 // kUniform: equally spaced on [t.front(), t.back()]).
-absl::StatusOr<std::vector<double>> KnotsFor(absl::Span<const double> t,
-                                             int p,
+absl::StatusOr<std::vector<double>> KnotsFor(absl::Span<const double> t, int p,
                                              Parameterization parameterization,
                                              KnotRule knot_rule,
                                              const CancellationToken* cancel);

@@ -402,8 +402,7 @@ std::vector<uint32_t> WeldMap(const std::vector<double>& positions,
     std::array<std::array<int, 2>, 3> steps;
     std::array<int, 3> step_count;
     for (int x = 0; x < 3; ++x) {
-      const double offset =
-          p[x] - std::floor(p[x] / cell_size) * cell_size;
+      const double offset = p[x] - std::floor(p[x] / cell_size) * cell_size;
       steps[x] = {0, 0};
       step_count[x] = 1;
       if (offset <= epsilon) steps[x][step_count[x]++] = -1;

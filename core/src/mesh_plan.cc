@@ -287,8 +287,8 @@ Cells CellsFor(double second, double first, const MeshOptions& options) {
   cells.by_tolerance = NeededCells(second, options.tolerance);
   cells.cells = cells.by_tolerance;
   if (options.max_edge_length > 0.0) {
-    cells.cells = std::max(cells.cells,
-                           std::ceil(2.0 * first / options.max_edge_length));
+    cells.cells =
+        std::max(cells.cells, std::ceil(2.0 * first / options.max_edge_length));
   }
   return cells;
 }

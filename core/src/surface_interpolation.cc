@@ -141,10 +141,9 @@ absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
   surface.count_u = points.count_u;
   surface.count_v = points.count_v;
   for (const bool in_u : {true, false}) {
-    absl::StatusOr<std::vector<double>> knots =
-        KnotsFor(in_u ? result.parameters_u : result.parameters_v,
-                 in_u ? degree_u : degree_v, parameterization, knot_rule,
-                 cancel);
+    absl::StatusOr<std::vector<double>> knots = KnotsFor(
+        in_u ? result.parameters_u : result.parameters_v,
+        in_u ? degree_u : degree_v, parameterization, knot_rule, cancel);
     if (!knots.ok()) return knots.status();
     (in_u ? surface.knots_u : surface.knots_v) = *std::move(knots);
   }

@@ -58,8 +58,7 @@ inline absl::Status CheckResolvable(double tolerance,
 // that made a tessellation need more than `limit` of `what` (points,
 // vertices): the tolerance, or a limit such as max_edge_length.
 inline absl::Status TessellationTooLarge(absl::string_view field,
-                                         absl::string_view what,
-                                         size_t limit) {
+                                         absl::string_view what, size_t limit) {
   return ExhaustedFieldError(
       field, absl::StrCat("the tessellation needs more than ", limit, " ", what,
                           " at this ", field));

@@ -185,7 +185,8 @@ TEST(ParallelForTest, ChunkThatThrowsFailsTheLoopAndNoThread) {
         100, ExecutionContext{.pool = &pool, .grain = 1, .max_helpers = 3},
         [&](size_t begin, size_t) {
           ran.fetch_add(1);
-          if (begin == thrower) throw std::length_error("vector::_M_default_append");
+          if (begin == thrower)
+            throw std::length_error("vector::_M_default_append");
           if (begin == thrower + 1) throw std::bad_alloc();
         });
     EXPECT_EQ(status.code(), absl::StatusCode::kInternal) << status;
@@ -195,11 +196,11 @@ TEST(ParallelForTest, ChunkThatThrowsFailsTheLoopAndNoThread) {
     EXPECT_LE(ran.load(), 100u);
   }
   std::atomic<size_t> ran{0};
-  ASSERT_TRUE(ParallelFor(1000,
-                          ExecutionContext{.pool = &pool, .grain = 1,
-                                           .max_helpers = 3},
-                          [&](size_t, size_t) { ran.fetch_add(1); })
-                  .ok());
+  ASSERT_TRUE(
+      ParallelFor(1000,
+                  ExecutionContext{.pool = &pool, .grain = 1, .max_helpers = 3},
+                  [&](size_t, size_t) { ran.fetch_add(1); })
+          .ok());
   EXPECT_EQ(ran.load(), 1000u);
 }
 

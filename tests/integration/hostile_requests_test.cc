@@ -85,15 +85,15 @@ TEST_F(HostileRequestsTest, DegreeZeroKnotRemovalAnswers) {
     const bool joins = extra.find("knot: 2") == std::string::npos;
     EXPECT_EQ(response.removals(), joins ? 1u : 0u) << extra;
     const auto& points = response.curve().bspline().control_points();
-    EXPECT_EQ(std::vector<double>(points.coordinates().begin(),
-                                  points.coordinates().end()),
-              joins ? std::vector<double>({1, 2})
-                    : std::vector<double>({1, 1, 2}))
+    EXPECT_EQ(
+        std::vector<double>(points.coordinates().begin(),
+                            points.coordinates().end()),
+        joins ? std::vector<double>({1, 2}) : std::vector<double>({1, 1, 2}))
         << extra;
   }
   // The surface: degree 0 in u over three rows, the first two equal.
-  for (const std::string& direction :
-       {std::string("SURFACE_DIRECTION_U"), std::string("SURFACE_DIRECTION_BOTH")}) {
+  for (const std::string& direction : {std::string("SURFACE_DIRECTION_U"),
+                                       std::string("SURFACE_DIRECTION_BOTH")}) {
     v1::RemoveSurfaceKnotsResponse response;
     const grpc::Status status = surfaces_->RemoveKnots(
         Context().get(),
@@ -108,9 +108,9 @@ TEST_F(HostileRequestsTest, DegreeZeroKnotRemovalAnswers) {
     ASSERT_TRUE(status.ok()) << direction << ": " << status.error_message();
     EXPECT_EQ(response.removals_u(), 1u);
     const auto& net = response.surface().bspline().control_net();
-    EXPECT_EQ(std::vector<double>(net.coordinates().begin(),
-                                  net.coordinates().end()),
-              std::vector<double>({1, 5, 2, 7}));
+    EXPECT_EQ(
+        std::vector<double>(net.coordinates().begin(), net.coordinates().end()),
+        std::vector<double>({1, 5, 2, 7}));
   }
   ExpectAlive();
 }
@@ -135,9 +135,8 @@ TEST_F(HostileRequestsTest, CallsWithoutADeadlineStopAtTheServersLimit) {
   for (const bool client_deadline : {false, true}) {
     const auto start = std::chrono::steady_clock::now();
     v1::ElevateCurveDegreeResponse response;
-    const grpc::Status status =
-        curves_->ElevateDegree(Context(client_deadline).get(), request,
-                               &response);
+    const grpc::Status status = curves_->ElevateDegree(
+        Context(client_deadline).get(), request, &response);
     const auto elapsed = std::chrono::steady_clock::now() - start;
     EXPECT_EQ(status.error_code(), grpc::StatusCode::DEADLINE_EXCEEDED)
         << status.error_message();

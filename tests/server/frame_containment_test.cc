@@ -67,11 +67,11 @@ class ThrowingCurveService final : public v1::CurveService::CallbackService {
                 MaybeThrow(*request, kRun);
                 if (request->derivative_order() == kRunInParallelLoop) {
                   // A chunk that throws on a helper thread of the pool.
-                  absl::Status status = ParallelFor(
-                      64, {.pool = execution.pool, .grain = 1},
-                      [](size_t begin, size_t) {
-                        if (begin == 63) throw std::bad_alloc();
-                      });
+                  absl::Status status =
+                      ParallelFor(64, {.pool = execution.pool, .grain = 1},
+                                  [](size_t begin, size_t) {
+                                    if (begin == 63) throw std::bad_alloc();
+                                  });
                   if (!status.ok()) return status;
                 }
                 response->set_dimension(1);
@@ -91,8 +91,8 @@ class ThrowingCurveService final : public v1::CurveService::CallbackService {
               .plan = {.memory_bytes = kPlannedBytes, .heavy = true},
               .chunk_count = 4};
           if (request->derivative_order() == kPrepare) {
-            work.prepare = [request](const ExecutionContext&)
-                -> absl::StatusOr<size_t> {
+            work.prepare =
+                [request](const ExecutionContext&) -> absl::StatusOr<size_t> {
               MaybeThrow(*request, kPrepare);
               return 4;
             };
@@ -122,9 +122,9 @@ class FrameContainmentTest : public ::testing::Test {
     builder.RegisterService(service_.get());
     server_ = builder.BuildAndStart();
     ASSERT_NE(server_, nullptr);
-    stub_ = v1::CurveService::NewStub(grpc::CreateChannel(
-        "127.0.0.1:" + std::to_string(port),
-        grpc::InsecureChannelCredentials()));
+    stub_ = v1::CurveService::NewStub(
+        grpc::CreateChannel("127.0.0.1:" + std::to_string(port),
+                            grpc::InsecureChannelCredentials()));
   }
 
   void TearDown() override {
@@ -135,7 +135,8 @@ class FrameContainmentTest : public ::testing::Test {
   static v1::EvaluateCurveRequest Request(Thrower thrower, int values) {
     v1::EvaluateCurveRequest request;
     request.set_derivative_order(thrower);
-    for (int i = 0; i < values; ++i) request.mutable_parameters()->mutable_list()->add_values(i);
+    for (int i = 0; i < values; ++i)
+      request.mutable_parameters()->mutable_list()->add_values(i);
     return request;
   }
 
@@ -162,8 +163,8 @@ class FrameContainmentTest : public ::testing::Test {
   // The frame's counters settle once the calls' OnDone ran, just after the
   // client saw their status.
   void ExpectSettled() {
-    const auto give_up = std::chrono::steady_clock::now() +
-                         std::chrono::seconds(10);
+    const auto give_up =
+        std::chrono::steady_clock::now() + std::chrono::seconds(10);
     while ((frame_.calls_in_flight() != 0 || budget_.in_use() != 0) &&
            std::chrono::steady_clock::now() < give_up) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -188,8 +189,8 @@ TEST_F(FrameContainmentTest, UnaryStepsThatThrowAnswerInternal) {
     for (const Thrower thrower : {kPlanner, kRun, kRunInParallelLoop}) {
       const grpc::Status status = CallUnary(Request(thrower, values));
       EXPECT_EQ(status.error_code(), grpc::StatusCode::INTERNAL)
-          << "thrower " << thrower << ", " << values << " values: "
-          << status.error_message();
+          << "thrower " << thrower << ", " << values
+          << " values: " << status.error_message();
       EXPECT_NE(status.error_message().find("bug: please report"),
                 std::string::npos)
           << status.error_message();
@@ -204,8 +205,8 @@ TEST_F(FrameContainmentTest, StreamStepsThatThrowAnswerInternal) {
   for (const Thrower thrower : {kPlanner, kPrepare, kFill}) {
     for (const int values : {0, 1}) {
       int messages = 0;
-      const grpc::Status status = CallStream(Request(thrower, values),
-                                             &messages);
+      const grpc::Status status =
+          CallStream(Request(thrower, values), &messages);
       EXPECT_EQ(status.error_code(), grpc::StatusCode::INTERNAL)
           << "thrower " << thrower << ": " << status.error_message();
       // Chunks before the one that threw may have been written, not after.
