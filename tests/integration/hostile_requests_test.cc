@@ -15,6 +15,7 @@
 
 #include "freeform/v1/curve_service.grpc.pb.h"
 #include "freeform/v1/surface_service.grpc.pb.h"
+#include "long_requests.h"
 #include "server_process.h"
 
 namespace freeform {
@@ -120,18 +121,7 @@ TEST_F(HostileRequestsTest, DegreeZeroKnotRemovalAnswers) {
 // points is about 10^10 operations, legal but far longer than 0.5 s.
 TEST_F(HostileRequestsTest, CallsWithoutADeadlineStopAtTheServersLimit) {
   Start({"--max_call_time=500ms"});
-  v1::ElevateCurveDegreeRequest request;
-  v1::BSplineCurve* curve = request.mutable_curve()->mutable_bspline();
-  constexpr int kCount = 16'000, kDegree = 10;
-  curve->set_degree(kDegree);
-  curve->mutable_control_points()->set_dimension(4);
-  for (int i = 0; i < 4 * kCount; ++i) {
-    curve->mutable_control_points()->add_coordinates(std::cos(i));
-  }
-  for (int k = 0; k < kCount + kDegree + 1; ++k) {
-    curve->add_knots(std::clamp(k - kDegree, 0, kCount - kDegree));
-  }
-  request.set_by(54);
+  const v1::ElevateCurveDegreeRequest request = LongElevation();
   for (const bool client_deadline : {false, true}) {
     const auto start = std::chrono::steady_clock::now();
     v1::ElevateCurveDegreeResponse response;

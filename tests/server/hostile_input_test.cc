@@ -19,6 +19,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "in_process_server.h"
+#include "long_requests.h"
 
 namespace freeform::server {
 namespace {
@@ -141,18 +142,7 @@ TEST_F(HostileInputTest, InterpolationStopsAtTheDeadline) {
 // A degree-10 B-spline of 16,000 points in 4-D elevated by 54: about
 // 10^10 operations for an answer under every limit.
 TEST_F(HostileInputTest, ElevationStopsAtTheDeadline) {
-  v1::ElevateCurveDegreeRequest request;
-  v1::BSplineCurve* curve = request.mutable_curve()->mutable_bspline();
-  constexpr int kCount = 16'000, kDegree = 10;
-  curve->set_degree(kDegree);
-  curve->mutable_control_points()->set_dimension(4);
-  for (int i = 0; i < 4 * kCount; ++i) {
-    curve->mutable_control_points()->add_coordinates(std::cos(i));
-  }
-  for (int k = 0; k < kCount + kDegree + 1; ++k) {
-    curve->add_knots(std::clamp(k - kDegree, 0, kCount - kDegree));
-  }
-  request.set_by(54);
+  const v1::ElevateCurveDegreeRequest request = LongElevation();
   auto result = Hurried(std::chrono::seconds(1))->ElevateCurveDegree(request);
   EXPECT_EQ(result.status().code(), absl::StatusCode::kDeadlineExceeded)
       << result.status();
