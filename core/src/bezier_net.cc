@@ -13,6 +13,7 @@
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
 #include "homogeneous.h"
+#include "tessellation_checks.h"
 
 namespace freeform::internal {
 namespace {
@@ -295,20 +296,28 @@ double LargestCoordinate(absl::Span<const Pieces* const> pieces) {
   return largest;
 }
 
-int ScaleExponent(double largest) {
-  if (!(largest > 0.0) || !std::isfinite(largest)) return 0;
-  return std::ilogb(largest);
-}
-
-void ScalePieces(int exponent, Pieces& pieces) {
-  for (Net& net : pieces.nets) {
-    const size_t stride = static_cast<size_t>(net.stride());
-    for (size_t k = 0; k < net.values.size(); ++k) {
-      if (k % stride < static_cast<size_t>(net.dimension)) {
-        net.values[k] = std::ldexp(net.values[k], -exponent);
+absl::StatusOr<QueryScale> ScaleForQuery(double tolerance,
+                                         absl::Span<Pieces* const> pieces) {
+  const std::vector<const Pieces*> all(pieces.begin(), pieces.end());
+  const double largest = LargestCoordinate(all);
+  if (absl::Status status = CheckResolvableAt(tolerance, largest);
+      !status.ok()) {
+    return status;
+  }
+  if (!(largest > 0.0) || !std::isfinite(largest)) return QueryScale{};
+  const int exponent = std::ilogb(largest);
+  for (Pieces* each : pieces) {
+    for (Net& net : each->nets) {
+      const size_t stride = static_cast<size_t>(net.stride());
+      for (size_t k = 0; k < net.values.size(); ++k) {
+        if (k % stride < static_cast<size_t>(net.dimension)) {
+          net.values[k] = std::ldexp(net.values[k], -exponent);
+        }
       }
     }
   }
+  return QueryScale{.exponent = exponent,
+                    .largest = std::ldexp(largest, -exponent)};
 }
 
 absl::Status WorkBudget::Check() {

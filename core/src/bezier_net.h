@@ -85,14 +85,20 @@ absl::Status CheckTolerances(double tolerance, double separation);
 // scale that rounding is relative to.
 double LargestCoordinate(absl::Span<const Pieces* const> pieces);
 
-// ScaleExponent returns the k for which `largest` * 2^-k lies in [1, 2)
-// (0 for 0): the queries divide their geometry by 2^k, which is exact, so
-// that squared distances neither overflow nor underflow at any scale.
-int ScaleExponent(double largest);
+// The scale the subdivision queries work at: their pieces divided by
+// 2^exponent (exact), so that squared distances neither overflow nor
+// underflow; `largest` is their largest coordinate then (in [1, 2), or 0).
+struct QueryScale {
+  int exponent = 0;
+  double largest = 0.0;
+};
 
-// ScalePieces multiplies the spatial parts (w P) of every control point by
-// 2^-exponent (exact); the weights are kept.
-void ScalePieces(int exponent, Pieces& pieces);
+// ScaleForQuery checks `tolerance` against what double precision resolves
+// on all `pieces` (CheckResolvableAt, naming "tolerance"), then divides the
+// spatial parts (w P) of their control points by 2^k for k the exponent of
+// their largest coordinate (LargestCoordinate); the weights are kept.
+absl::StatusOr<QueryScale> ScaleForQuery(double tolerance,
+                                         absl::Span<Pieces* const> pieces);
 
 // WorkBudget counts the work of a search in units of about one
 // multiply-add on a double against a limit fixed before it starts, and

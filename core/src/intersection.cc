@@ -13,7 +13,6 @@
 #include "bezier_net.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
-#include "tessellation_checks.h"
 
 namespace freeform {
 namespace {
@@ -30,6 +29,9 @@ constexpr double kNarrowCone = 0.5;
 // A parameter difference below this fraction of a domain is no difference
 // when stretches are merged and points matched against them.
 constexpr double kParameterSlack = 1e-6;
+// The most Newton steps refining the nearest sample of a stretch of
+// contact.
+constexpr int kRefineContactSteps = 8;
 // Halving rounds control points by about one unit in the last place of the
 // coordinates per level: pairs are pruned only when they are apart by more
 // than the tolerance plus this fraction of the largest coordinate, so that
@@ -210,9 +212,9 @@ bool ChordSlabApart(const Part& a, const Part& b, double tolerance) {
   return SlabApart(normal.data(), a, b, tolerance);
 }
 
-// NormalSlabApart is the slab test of a 3D surface part across the cross
-// product of its corner diagonals.
-bool NormalSlabApart(const Part& surface, const Part& other, double tolerance) {
+// CornerNormal writes the unit cross product of a 3D surface part's corner
+// diagonals; false when the part is not 3D or the product vanishes.
+bool CornerNormal(const Part& surface, double* normal) {
   if (surface.net.dimension != 3) return false;
   const int nu = surface.net.count_u;
   const int nv = surface.net.count_v;
@@ -224,13 +226,32 @@ bool NormalSlabApart(const Part& surface, const Part& other, double tolerance) {
     d1[x] = corner(nu - 1, nv - 1)[x] - corner(0, 0)[x];
     d2[x] = corner(nu - 1, 0)[x] - corner(0, nv - 1)[x];
   }
-  double normal[3] = {d1[1] * d2[2] - d1[2] * d2[1],
-                      d1[2] * d2[0] - d1[0] * d2[2],
-                      d1[0] * d2[1] - d1[1] * d2[0]};
+  normal[0] = d1[1] * d2[2] - d1[2] * d2[1];
+  normal[1] = d1[2] * d2[0] - d1[0] * d2[2];
+  normal[2] = d1[0] * d2[1] - d1[1] * d2[0];
   const double length = std::sqrt(Dot(normal, normal, 3));
   if (!(length > 0.0)) return false;
-  for (double& n : normal) n /= length;
-  return SlabApart(normal, surface, other, tolerance);
+  for (int x = 0; x < 3; ++x) normal[x] /= length;
+  return true;
+}
+
+// NormalSlabApart is the slab test of a 3D surface part across the cross
+// product of its corner diagonals.
+bool NormalSlabApart(const Part& surface, const Part& other, double tolerance) {
+  double normal[3];
+  return CornerNormal(surface, normal) &&
+         SlabApart(normal, surface, other, tolerance);
+}
+
+// Steep returns true when the chord of curve part a rises out of the plane
+// of 3D surface part b (across its corner normal) by more than kNarrowCone:
+// a curve lying along the surface there would be nearly tangent to it, so
+// such a pair is only halved, never sampled for a stretch. (The normal of a
+// large, curved part is rough; its halves are tested again.)
+bool Steep(const Part& a, const Part& b) {
+  double normal[3];
+  if (!a.cone.valid || !CornerNormal(b, normal)) return false;
+  return std::abs(Dot(a.cone.axis.data(), normal, 3)) > std::sin(kNarrowCone);
 }
 
 bool Pruned(const Part& a, const Part& b, double tolerance) {
@@ -350,8 +371,10 @@ class PairSearch {
   // Solve returns the nearest points of the pair found by Newton from the
   // middle of its box, with their distance.
   std::pair<Anchor, double> Solve(const Part& a, const Part& b);
-  // Refine runs Newton on the pair's box from `at`; returns the distance.
-  double Refine(const Part& a, const Part& b, Anchor& at);
+  // Refine runs Newton (at most `max_iterations` steps) from `at` on the box
+  // of part a times [lo, hi] of the second's piece; returns the distance.
+  double Refine(const Part& a, const double* lo, const double* hi, Anchor& at,
+                int max_iterations = 60);
   void Model(const Anchor& at, LocalModel& model);
   // ProjectOnSecond moves at.x[1..] to the point of the second's piece
   // at.second_piece nearest the first's point `point` (within [lo, hi] of
@@ -364,18 +387,25 @@ class PairSearch {
   bool FindCurveStretch(const Part& a, const Part& b);
   bool FindSurfaceStretch(const Part& a, const Part& b);
   // SampleStretch checks the first input from `start` to `end` (in the
-  // pieces of a and b) against the second at samples and records it.
+  // pieces of a and b) against [lo, hi] of the second's piece at samples
+  // and records it.
   bool SampleStretch(const Part& a, const Part& b, const Anchor& start,
-                     const Anchor& end);
+                     const Anchor& end, const double* lo, const double* hi);
   void AddPoint(const Anchor& at, double distance);
-  void AddCandidate(Candidate candidate, const Part* b);
+  // AddCandidate records a candidate whose second's parameters lie in
+  // [lo, hi] of its piece (at its point when lo is null).
+  void AddCandidate(Candidate candidate, const double* lo, const double* hi);
   absl::Status Compact();
-  void Merge();
-  void Finish();
+  absl::Status Merge();
+  absl::Status Finish();
   void Extend(Anchor& anchor, double direction);
   bool OnOverlap(Anchor& at);
   Anchor Walk(Anchor from, double direction, bool on);
-  bool Inside(const Candidate& run, const std::vector<size_t>& overlaps) const;
+  // Inside returns true when the point of `run` lies inside one of the
+  // overlaps (sorted by their start, reach[i] the farthest end of the
+  // first i + 1).
+  bool Inside(const Candidate& run, const std::vector<size_t>& overlaps,
+              const std::vector<double>& reach) const;
   bool Joined(const Candidate& run, const Candidate& next);
   bool Connected(const Anchor& first, const Anchor& second);
   bool Near(Anchor& at);
@@ -456,16 +486,19 @@ void PairSearch::Model(const Anchor& at, LocalModel& model) {
   }
 }
 
-double PairSearch::Refine(const Part& a, const Part& b, Anchor& at) {
+double PairSearch::Refine(const Part& a, const double* lo, const double* hi,
+                          Anchor& at, int max_iterations) {
   const int count = 1 + SecondCount(second_);
-  const double lower[3] = {a.lo[0], b.lo[0], b.lo[1]};
-  const double upper[3] = {a.hi[0], b.hi[0], b.hi[1]};
+  const double lower[3] = {a.lo[0], lo[0], lo[1]};
+  const double upper[3] = {a.hi[0], hi[0], hi[1]};
   const double value = internal::MinimizeInBox(
-      count, lower, upper, at.x, [&](const double* x, LocalModel& model) {
+      count, lower, upper, at.x,
+      [&](const double* x, LocalModel& model) {
         Anchor trial = at;
         std::copy_n(x, 3, trial.x);
         Model(trial, model);
-      });
+      },
+      max_iterations);
   return std::sqrt(2.0 * value);
 }
 
@@ -474,7 +507,7 @@ std::pair<Anchor, double> PairSearch::Solve(const Part& a, const Part& b) {
   at.x[0] = 0.5 * (a.lo[0] + a.hi[0]);
   at.x[1] = 0.5 * (b.lo[0] + b.hi[0]);
   at.x[2] = 0.5 * (b.lo[1] + b.hi[1]);
-  const double distance = Refine(a, b, at);
+  const double distance = Refine(a, b.lo, b.hi, at);
   return {at, distance};
 }
 
@@ -554,25 +587,25 @@ bool PairSearch::Parallel(const Anchor& at) {
   return SinToSpan(scratch_a_.data() + dim, span, count, dim) <= kOverlapAngle;
 }
 
-void PairSearch::AddCandidate(Candidate candidate, const Part* b) {
+void PairSearch::AddCandidate(Candidate candidate, const double* lo,
+                              const double* hi) {
   candidate.from = Global(candidate.start);
   candidate.to = Global(candidate.end);
   if (candidate.to < candidate.from) {
     std::swap(candidate.from, candidate.to);
     std::swap(candidate.start, candidate.end);
   }
-  // The second's parameters: the part's box for a stretch, else the point.
+  // The second's parameters: the box given, else the point's.
   const size_t piece = candidate.start.second_piece;
-  const double lo[2] = {b != nullptr ? b->lo[0] : candidate.start.x[1],
-                        b != nullptr ? b->lo[1] : candidate.start.x[2]};
-  const double hi[2] = {b != nullptr ? b->hi[0] : candidate.start.x[1],
-                        b != nullptr ? b->hi[1] : candidate.start.x[2]};
+  const double* point = candidate.start.x + 1;
+  const double* box_lo = lo != nullptr ? lo : point;
+  const double* box_hi = hi != nullptr ? hi : point;
   for (int c = 0; c < 2; ++c) {
     candidate.low[c] = kInfinity;
     candidate.high[c] = -kInfinity;
   }
-  for (const double s : {lo[0], hi[0]}) {
-    for (const double t : {lo[1], hi[1]}) {
+  for (const double s : {box_lo[0], box_hi[0]}) {
+    for (const double t : {box_lo[1], box_hi[1]}) {
       double uv[2];
       SecondGlobal(piece, s, t, uv);
       for (int c = 0; c < 2; ++c) {
@@ -596,11 +629,12 @@ void PairSearch::AddPoint(const Anchor& at, double distance) {
                          .has_point = true,
                          .point = at,
                          .distance = distance},
-               nullptr);
+               nullptr, nullptr);
 }
 
 bool PairSearch::SampleStretch(const Part& a, const Part& b,
-                               const Anchor& start, const Anchor& end) {
+                               const Anchor& start, const Anchor& end,
+                               const double* lo, const double* hi) {
   const int dim = first_.dimension;
   const int count = SecondCount(second_);
   std::vector<double> from(static_cast<size_t>(dim));
@@ -612,43 +646,61 @@ bool PairSearch::SampleStretch(const Part& a, const Part& b,
   const int samples =
       2 * (a.net.count_u + b.net.count_u + (count == 2 ? b.net.count_v : 0)) +
       1;
-  // Whether the tangents agree at every sample, and at any.
-  bool all = Parallel(start) && Parallel(end);
+  // Whether the tangents agree at every sample, and at any: where they agree
+  // somewhere but not everywhere, an overlap may lie inside and the pair is
+  // halved (as soon as that shows: the ends, then the middle, then the
+  // rest).
+  bool all = Parallel(start);
   bool any = all;
+  const bool end_parallel = Parallel(end);
+  all = all && end_parallel;
+  any = any || end_parallel;
+  if (any && !all) return false;
   Anchor nearest = start;
   double nearest_distance = kInfinity;
-  Anchor at = start;
-  for (int k = 1; k <= samples; ++k) {
+  // The box of the second's parameters along the stretch.
+  double low[2], high[2];
+  for (int c = 0; c < 2; ++c) {
+    low[c] = std::min(start.x[c + 1], end.x[c + 1]);
+    high[c] = std::max(start.x[c + 1], end.x[c + 1]);
+  }
+  const int middle = (samples + 1) / 2;
+  for (int step = 0; step < samples; ++step) {
     if (budget_.exhausted()) return false;
+    const int k = step == 0 ? middle : (step <= middle - 1 ? step : step + 1);
     const double f = static_cast<double>(k) / (samples + 1);
+    Anchor at = start;
     at.x[0] = start.x[0] + f * (end.x[0] - start.x[0]);
     for (int c = 1; c <= count; ++c) {
       at.x[c] = start.x[c] + f * (end.x[c] - start.x[c]);
     }
     std::copy_n(PointOf(at), dim, from.data());
-    const double d = ProjectOnSecond(from.data(), b.lo, b.hi, at);
+    const double d = ProjectOnSecond(from.data(), lo, hi, at);
     if (d > options_.tolerance) return false;
+    for (int c = 0; c < 2; ++c) {
+      low[c] = std::min(low[c], at.x[c + 1]);
+      high[c] = std::max(high[c], at.x[c + 1]);
+    }
     const bool parallel = Parallel(at);
     all = all && parallel;
     any = any || parallel;
+    if (any && !all) return false;
     if (d < nearest_distance) {
       nearest = at;
       nearest_distance = d;
     }
   }
-  // Where the tangents agree somewhere but not everywhere, an overlap may
-  // lie inside: the pair is halved.
-  if (any && !all) return false;
   Candidate stretch{
       .start = start, .end = end, .parallel = all, .stretch = true};
   // A stretch of contact that is not an overlap has its nearest point.
   if (!all) {
-    const double refined = Refine(a, b, nearest);
     stretch.has_point = true;
     stretch.point = nearest;
-    stretch.distance = std::min(nearest_distance, refined);
+    // From within tolerance already: a crossing converges in a few steps,
+    // and a flat contact does not improve much with more.
+    stretch.distance = Refine(a, lo, hi, stretch.point, kRefineContactSteps);
   }
-  AddCandidate(std::move(stretch), &b);
+  AddCandidate(std::move(stretch), low, high);
   return true;
 }
 
@@ -681,13 +733,16 @@ bool PairSearch::FindCurveStretch(const Part& a, const Part& b) {
   if (ends.size() < 2) return false;
   std::sort(ends.begin(), ends.end(),
             [](const Anchor& x, const Anchor& y) { return x.x[0] < y.x[0]; });
-  return SampleStretch(a, b, ends.front(), ends.back());
+  return SampleStretch(a, b, ends.front(), ends.back(), b.lo, b.hi);
 }
 
-// FindSurfaceStretch checks whether curve part a lies along surface part b
-// from end to end.
+// FindSurfaceStretch checks whether curve part a lies along the surface
+// piece of part b from end to end (projected onto the whole piece, from b's
+// middle: a curve part seldom lies within one part's box).
 bool PairSearch::FindSurfaceStretch(const Part& a, const Part& b) {
   const int dim = first_.dimension;
+  const double lo[2] = {0.0, 0.0};
+  const double hi[2] = {1.0, 1.0};
   Anchor ends[2];
   for (int side = 0; side < 2; ++side) {
     Anchor& at = ends[side];
@@ -698,11 +753,11 @@ bool PairSearch::FindSurfaceStretch(const Part& a, const Part& b) {
     const double* point =
         a.points.data() +
         (side == 0 ? 0 : a.points.size() - static_cast<size_t>(dim));
-    if (ProjectOnSecond(point, b.lo, b.hi, at) > options_.tolerance) {
+    if (ProjectOnSecond(point, lo, hi, at) > options_.tolerance) {
       return false;
     }
   }
-  return SampleStretch(a, b, ends[0], ends[1]);
+  return SampleStretch(a, b, ends[0], ends[1], lo, hi);
 }
 
 // Examine returns true when the pair needs no halving: it is pruned, its
@@ -727,7 +782,7 @@ bool PairSearch::Examine(const PartPtr& a, const PartPtr& b) {
     return b->cone.valid && b->cone.angle < kNarrowCone &&
            FindCurveStretch(*a, *b);
   }
-  return b->hull && FindSurfaceStretch(*a, *b);
+  return b->hull && !Steep(*a, *b) && FindSurfaceStretch(*a, *b);
 }
 
 absl::Status PairSearch::Run() {
@@ -774,13 +829,13 @@ absl::Status PairSearch::Run() {
       }
     }
   }
-  Merge();
+  if (absl::Status status = Merge(); !status.ok()) return status;
   if (candidates_.size() > RunLimit(options_.max_results)) {
     return ExhaustedFieldError("max_results",
                                absl::StrCat("more than ", options_.max_results,
                                             " separate intersections"));
   }
-  Finish();
+  if (absl::Status status = Finish(); !status.ok()) return status;
   return budget_.Check();
 }
 
@@ -792,7 +847,7 @@ absl::Status PairSearch::Compact() {
   if (candidates_.size() < CompactionSize(options_.max_results)) {
     return absl::OkStatus();
   }
-  Merge();
+  if (absl::Status status = Merge(); !status.ok()) return status;
   if (candidates_.size() <= limit) return budget_.Check();
   return ExhaustedFieldError(
       "max_results",
@@ -811,7 +866,7 @@ const double* PairSearch::PointOf(const Anchor& at) {
 // run before it when Joined: one of the newest kMaxActiveRuns runs it
 // starts within, or one of the kRecentRuns that ended last. The runs take
 // the candidates' place (there are never more of them).
-void PairSearch::Merge() {
+absl::Status PairSearch::Merge() {
   std::vector<Candidate>& candidates = candidates_;
   constexpr size_t kMaxActiveRuns = 16;
   constexpr size_t kRecentRuns = 1;
@@ -828,6 +883,7 @@ void PairSearch::Merge() {
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
   };
   for (size_t n = 0; n < candidates.size(); ++n) {
+    if (absl::Status status = budget_.Check(); !status.ok()) return status;
     Candidate& next = candidates[n];
     for (size_t k = 0; k < active.size();) {
       if (candidates[active[k]].to + slack_s_ < next.from ||
@@ -855,6 +911,7 @@ void PairSearch::Merge() {
     active.push_back(runs++);
   }
   candidates.resize(runs);
+  return absl::OkStatus();
 }
 
 // Absorb joins candidate `next` into `run`.
@@ -880,7 +937,7 @@ void Absorb(Candidate& run, const Candidate& next) {
 // parameter and the second's, as points at a curve's seam do) and merges
 // those within max(separation, tolerance) of each other, keeping the
 // nearest point.
-void PairSearch::Finish() {
+absl::Status PairSearch::Finish() {
   const size_t dim = static_cast<size_t>(first_.dimension);
   std::vector<size_t> overlaps;  // indices of the overlap runs
   std::vector<size_t> points;    // and of the point runs
@@ -888,15 +945,29 @@ void PairSearch::Finish() {
   for (size_t k = 0; k < candidates_.size(); ++k) {
     Candidate& run = candidates_[k];
     if (!run.parallel) continue;
+    if (absl::Status status = budget_.Check(); !status.ok()) return status;
     Extend(run.start, -1.0);
     Extend(run.end, 1.0);
     run.from = Global(run.start);
     run.to = Global(run.end);
     overlaps.push_back(k);
   }
+  // The overlaps in the order of their start, and the farthest end of those
+  // up to each (Inside).
+  std::sort(overlaps.begin(), overlaps.end(), [&](size_t a, size_t b) {
+    return candidates_[a].from < candidates_[b].from;
+  });
+  std::vector<double> reach(overlaps.size());
+  for (size_t i = 0; i < overlaps.size(); ++i) {
+    reach[i] = std::max(i > 0 ? reach[i - 1] : -kInfinity,
+                        candidates_[overlaps[i]].to);
+  }
   for (size_t k = 0; k < candidates_.size(); ++k) {
     const Candidate& run = candidates_[k];
-    if (run.parallel || !run.has_point || Inside(run, overlaps)) continue;
+    if (run.parallel || !run.has_point || Inside(run, overlaps, reach)) {
+      continue;
+    }
+    if (absl::Status status = budget_.Check(); !status.ok()) return status;
     std::copy_n(PointOf(run.point), dim, coordinates.begin() + k * dim);
     points.push_back(k);
   }
@@ -935,6 +1006,7 @@ void PairSearch::Finish() {
     ++runs;
   }
   candidates_.resize(runs);
+  return absl::OkStatus();
 }
 
 // Extend moves the end `anchor` of an overlap (direction -1: its start, 1:
@@ -992,13 +1064,21 @@ Anchor PairSearch::Walk(Anchor from, double direction, bool on) {
 // Inside returns true when the point of `run` lies inside one of the
 // overlaps (the first's parameter in its interval, the second's in its box).
 bool PairSearch::Inside(const Candidate& run,
-                        const std::vector<size_t>& overlaps) const {
+                        const std::vector<size_t>& overlaps,
+                        const std::vector<double>& reach) const {
   double x[2];
   SecondGlobal(run.point.second_piece, run.point.x[1], run.point.x[2], x);
   const double s = Global(run.point);
-  for (const size_t k : overlaps) {
-    const Candidate& overlap = candidates_[k];
-    bool inside = s >= overlap.from - slack_s_ && s <= overlap.to + slack_s_;
+  // The overlaps starting before s, latest first, while one of them reaches
+  // it.
+  size_t i = static_cast<size_t>(
+      std::upper_bound(
+          overlaps.begin(), overlaps.end(), s + slack_s_,
+          [&](double value, size_t k) { return value < candidates_[k].from; }) -
+      overlaps.begin());
+  while (i-- > 0 && reach[i] + slack_s_ >= s) {
+    const Candidate& overlap = candidates_[overlaps[i]];
+    bool inside = s <= overlap.to + slack_s_;
     for (int c = 0; c < SecondCount(second_); ++c) {
       inside = inside && x[c] >= overlap.low[c] - slack_second_[c] &&
                x[c] <= overlap.high[c] + slack_second_[c];
@@ -1140,21 +1220,16 @@ auto Intersect(const Curve& first, const Second& second,
   if (!a.ok()) return a.status();
   absl::StatusOr<Pieces> b = internal::LiftPieces(second, cancel);
   if (!b.ok()) return b.status();
-  const Pieces* both[] = {&*a, &*b};
-  const double largest = internal::LargestCoordinate(both);
-  if (absl::Status status =
-          internal::CheckResolvableAt(options.tolerance, largest);
-      !status.ok()) {
-    return status;
-  }
-  const int exponent = internal::ScaleExponent(largest);
-  internal::ScalePieces(exponent, *a);
-  internal::ScalePieces(exponent, *b);
+  Pieces* const both[] = {&*a, &*b};
+  const absl::StatusOr<internal::QueryScale> scale =
+      internal::ScaleForQuery(options.tolerance, both);
+  if (!scale.ok()) return scale.status();
+  const int exponent = scale->exponent;
   IntersectionOptions scaled = options;
   scaled.tolerance = std::ldexp(options.tolerance, -exponent);
   scaled.separation = std::ldexp(options.separation, -exponent);
   const double prune_tolerance =
-      scaled.tolerance + kPruneSlack * internal::LargestCoordinate(both);
+      scaled.tolerance + kPruneSlack * scale->largest;
   PairSearch search(*a, *b, scaled, slack_s, slack_second, prune_tolerance,
                     cancel);
   if (absl::Status status = search.Run(); !status.ok()) return status;

@@ -15,7 +15,6 @@
 #include "bezier_net.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
-#include "tessellation_checks.h"
 
 namespace freeform {
 namespace {
@@ -780,16 +779,11 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   }
   absl::StatusOr<Pieces> pieces = internal::LiftPieces(surface, cancel);
   if (!pieces.ok()) return pieces.status();
-  const Pieces* all[] = {&*pieces};
-  const double largest = internal::LargestCoordinate(all);
-  if (absl::Status status =
-          internal::CheckResolvableAt(options.tolerance, largest);
-      !status.ok()) {
-    return status;
-  }
-  // In units of 2^exponent the coordinates are about 1 (exact).
-  const int exponent = internal::ScaleExponent(largest);
-  internal::ScalePieces(exponent, *pieces);
+  Pieces* const all[] = {&*pieces};
+  const absl::StatusOr<internal::QueryScale> scale =
+      internal::ScaleForQuery(options.tolerance, all);
+  if (!scale.ok()) return scale.status();
+  const int exponent = scale->exponent;
   const std::vector<double> normal = UnitNormal(plane_normal);
   const double offset = ScaledOffset(normal, plane_point, exponent);
   Sections sections{.dimension = dimension};
@@ -797,8 +791,7 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   Slicer slicer(*pieces, normal, offset,
                 std::ldexp(options.tolerance, -exponent), options, cancel);
   if (absl::Status status = slicer.Run(); !status.ok()) return status;
-  Chain chain(slicer.arcs(), dimension,
-              1e-9 * internal::LargestCoordinate(all));
+  Chain chain(slicer.arcs(), dimension, 1e-9 * scale->largest);
   chain.Write(*pieces, sections);
   for (double& x : sections.points) x = std::ldexp(x, exponent);
   WriteRegions(slicer.regions(), *pieces, sections);

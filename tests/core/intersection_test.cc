@@ -363,8 +363,7 @@ TEST(IntersectionTest, ToleranceBelowTheResolutionIsRefused) {
 // circle crosses y = 0.3, for k far past where squared lengths overflow or
 // underflow.
 TEST(IntersectionTest, AnswersDoNotDependOnTheScale) {
-  for (const int k : {0, 600, -600, 1000, -1000}) {
-    const double scale = std::ldexp(1.0, k);
+  for (const double scale : {1.0, 0x1p600, 0x1p-600, 0x1p1000, 0x1p-1000}) {
     const BSplineCurveData circle_data = testing_util::NurbsCircle(scale);
     const absl::StatusOr<Curve> circle =
         BSplineCurve::Create(circle_data.view());
@@ -374,8 +373,8 @@ TEST(IntersectionTest, AnswersDoNotDependOnTheScale) {
     const absl::StatusOr<CurveIntersections> found = IntersectCurves(
         *circle, *chord,
         {.tolerance = 1e-9 * scale, .separation = 1e-7 * scale});
-    ASSERT_TRUE(found.ok()) << "2^" << k << ": " << found.status();
-    ASSERT_EQ(found->first_parameters.size(), 2u) << "2^" << k;
+    ASSERT_TRUE(found.ok()) << scale << ": " << found.status();
+    ASSERT_EQ(found->first_parameters.size(), 2u) << scale;
     const double x = std::sqrt(1 - 0.09) * scale;
     EXPECT_NEAR(found->points[0] / scale, x / scale, 1e-12);
     EXPECT_NEAR(found->points[2] / scale, -x / scale, 1e-12);
@@ -391,15 +390,15 @@ TEST(IntersectionTest, AnswersDoNotDependOnTheScale) {
         BezierCurve::Create({{3, vertical}, {}});
     const absl::StatusOr<CurveSurfaceIntersections> hit =
         IntersectCurveSurface(*through, *square, {.tolerance = 1e-9 * scale});
-    ASSERT_TRUE(hit.ok()) << "2^" << k << ": " << hit.status();
-    ASSERT_EQ(hit->curve_parameters.size(), 1u) << "2^" << k;
+    ASSERT_TRUE(hit.ok()) << scale << ": " << hit.status();
+    ASSERT_EQ(hit->curve_parameters.size(), 1u) << scale;
     EXPECT_NEAR(hit->curve_parameters[0], 0.5, 1e-12);
   }
 }
 
 // A segment lying in the unit square is an overlap: the whole of it, or the
 // part over the square, [1/4, 3/4], of one reaching past both sides (an
-// overlap ends where one input does).
+// overlap ends where one input does); and so is an arc lying in a sphere.
 TEST(IntersectionTest, CurveLyingInASurfaceIsAnOverlap) {
   const absl::StatusOr<Surface> square = UnitSquare();
   struct Case {
@@ -418,6 +417,27 @@ TEST(IntersectionTest, CurveLyingInASurfaceIsAnOverlap) {
       EXPECT_TRUE(found->curve_parameters.empty())
           << found->curve_parameters.size() << " points, case " << c;
       ExpectOneInterval(found->curve_intervals, cases[c].start, cases[c].end);
+    }
+  }
+  // On the sphere patch of radius 2: its equator (a boundary edge), a
+  // meridian and the circle of latitude z = 1, as rational quadratic arcs.
+  const SurfaceData sphere_data = testing_util::SpherePatch(2.0);
+  const absl::StatusOr<Surface> sphere =
+      BezierSurface::Create(sphere_data.bezier_view());
+  const double r = std::sqrt(3.0);
+  const std::vector<double> weights = {1, std::sqrt(0.5), 1};
+  const std::vector<double> arcs[] = {{2, 0, 0, 2, 2, 0, 0, 2, 0},
+                                      {2, 0, 0, 2, 0, 2, 0, 0, 2},
+                                      {r, 0, 1, r, r, 1, 0, r, 1}};
+  for (const std::vector<double>& arc : arcs) {
+    const absl::StatusOr<Curve> curve =
+        BezierCurve::Create({{3, arc}, weights});
+    for (const double tolerance : {1e-6, 1e-12}) {
+      const absl::StatusOr<CurveSurfaceIntersections> found =
+          IntersectCurveSurface(*curve, *sphere, {.tolerance = tolerance});
+      ASSERT_TRUE(found.ok()) << found.status();
+      EXPECT_TRUE(found->curve_parameters.empty());
+      ExpectOneInterval(found->curve_intervals, 0.0, 1.0);
     }
   }
 }

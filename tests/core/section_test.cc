@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "freeform/core/status.h"
 #include "shapes.h"
 #include "test_util.h"
@@ -171,6 +173,13 @@ absl::StatusOr<Surface> UnitSquare() {
   return BezierSurface::Create({{3, 2, 2, net}, {}});
 }
 
+// ExpectRefused checks that `status` has `code` and names `field`.
+void ExpectRefused(const absl::Status& status, absl::StatusCode code,
+                   const std::string& field) {
+  EXPECT_EQ(status.code(), code) << status;
+  EXPECT_EQ(FieldPathOf(status), field) << status;
+}
+
 // VertexCount returns the polyline vertices and region corners of an
 // answer, what max_points caps.
 size_t VertexCount(const Sections& sections) {
@@ -280,10 +289,9 @@ TEST(SectionTest, EdgesInThePlaneAreFoundOnEverySide) {
   const absl::StatusOr<Surface> ramp =
       BSplineSurface::Create({1, 1, {3, 3, 2, net}, knots_u, knots_v, {}});
   ASSERT_TRUE(ramp.ok()) << ramp.status();
-  const std::vector<double> origin = {0, 0, 0};
-  const std::vector<double> up = {0, 0, 1};
-  const absl::StatusOr<Sections> knot =
-      IntersectSurfacePlane(*ramp, origin, up);
+  // Seen from below, as the normal's sign does not matter.
+  const absl::StatusOr<Sections> knot = IntersectSurfacePlane(
+      *ramp, std::vector<double>(3, 0.0), std::vector<double>{0, 0, -1});
   ASSERT_TRUE(knot.ok()) << knot.status();
   ASSERT_EQ(knot->offsets.size(), 2u);
   EXPECT_FALSE(knot->closed[0]);
@@ -358,8 +366,8 @@ TEST(SectionTest, ExtremeWeightsAreCutCorrectlyOrRefused) {
     const absl::StatusOr<Sections> cut =
         IntersectSurfacePlane(*patch, point, up, {.tolerance = tolerance});
     if (!cut.ok()) {
-      EXPECT_EQ(cut.status().code(), absl::StatusCode::kInvalidArgument);
-      EXPECT_EQ(FieldPathOf(cut.status()), "surface") << cut.status();
+      ExpectRefused(cut.status(), absl::StatusCode::kInvalidArgument,
+                    "surface");
       ++refused;
       continue;
     }
@@ -402,39 +410,19 @@ TEST(SectionTest, MaxPointsIsExact) {
     ASSERT_TRUE(exact.ok()) << exact.status();
     EXPECT_EQ(VertexCount(*exact), n);
     for (const size_t cap : {n - 1, size_t{1}}) {
-      const absl::Status over =
-          IntersectSurfacePlane(
-              *each.surface, each.point, each.normal,
-              {.tolerance = each.tolerance, .max_points = cap})
-              .status();
-      EXPECT_EQ(over.code(), absl::StatusCode::kResourceExhausted)
-          << "case " << c << " cap " << cap << " of " << n;
-      EXPECT_EQ(FieldPathOf(over), "max_points");
+      SCOPED_TRACE(absl::StrCat("case ", c, " cap ", cap, " of ", n));
+      ExpectRefused(IntersectSurfacePlane(
+                        *each.surface, each.point, each.normal,
+                        {.tolerance = each.tolerance, .max_points = cap})
+                        .status(),
+                    absl::StatusCode::kResourceExhausted, "max_points");
     }
   }
 }
 
-// A tolerance below 2^-48 of the largest coordinate (2 for the sphere patch
-// of radius 2) is refused at once; the quadtree's work is bounded.
-TEST(SectionTest, ToleranceAndWorkAreBounded) {
-  const SurfaceData data = testing_util::SpherePatch(2.0);
-  const absl::StatusOr<Surface> sphere =
-      BezierSurface::Create(data.bezier_view());
-  const std::vector<double> point = {0, 0, 1};
-  const std::vector<double> up = {0, 0, 1};
-  for (const double tolerance : {5e-324, 1e-15, 7e-15}) {
-    const absl::Status status =
-        IntersectSurfacePlane(*sphere, point, up, {.tolerance = tolerance})
-            .status();
-    EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument) << tolerance;
-    EXPECT_EQ(FieldPathOf(status), "tolerance");
-  }
-  const absl::Status short_of_work =
-      IntersectSurfacePlane(*sphere, point, up, {.max_work = 100}).status();
-  EXPECT_EQ(short_of_work.code(), absl::StatusCode::kResourceExhausted);
-  EXPECT_EQ(FieldPathOf(short_of_work), "max_work");
-}
-
+// Bad options are named; a tolerance below 2^-48 of the largest coordinate
+// (1 for the sphere patch of radius 1) is refused at once, and the
+// quadtree's work is bounded.
 TEST(SectionTest, ErrorsNameTheirField) {
   const SurfaceData data = testing_util::SpherePatch(1.0);
   const absl::StatusOr<Surface> sphere =
@@ -458,6 +446,15 @@ TEST(SectionTest, ErrorsNameTheirField) {
           .status();
   EXPECT_EQ(over.code(), absl::StatusCode::kResourceExhausted);
   EXPECT_EQ(FieldPathOf(over), "max_points");
+  for (const double tolerance : {5e-324, 1e-15, 3e-15}) {
+    ExpectRefused(
+        IntersectSurfacePlane(*sphere, half, up, {.tolerance = tolerance})
+            .status(),
+        absl::StatusCode::kInvalidArgument, "tolerance");
+  }
+  ExpectRefused(
+      IntersectSurfacePlane(*sphere, half, up, {.max_work = 100}).status(),
+      absl::StatusCode::kResourceExhausted, "max_work");
 }
 
 }  // namespace

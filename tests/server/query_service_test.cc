@@ -466,17 +466,15 @@ TEST_F(QueryServiceTest, SectionsThatDoublesCannotResolveAreRefused) {
   Append(bezier.mutable_weights(), {1, 1, 1, 1, 1e20, 1, 1, 1, 1});
   Append(request.mutable_plane_point(), {0, 0, 0.5});
   Append(request.mutable_plane_normal(), {0, 0, 1});
-  auto call = [&] {
-    return client_
-        ->Unary(client_->surfaces(), &v1::SurfaceService::Stub::Section,
-                request)
-        .status();
-  };
-  ExpectInvalid(call(), "surface");
+  Client& client = *client_;
+  const auto section = &v1::SurfaceService::Stub::Section;
+  ExpectInvalid(client.Unary(client.surfaces(), section, request).status(),
+                "surface");
   bezier.mutable_weights()->Set(4, 2.0);
-  EXPECT_TRUE(call().ok());
+  EXPECT_TRUE(client.Unary(client.surfaces(), section, request).ok());
   request.set_tolerance(1e-20);
-  ExpectInvalid(call(), "tolerance");
+  ExpectInvalid(client.Unary(client.surfaces(), section, request).status(),
+                "tolerance");
 }
 
 // Every query cap holds exactly: max_points of a section (the cut x = 1/2

@@ -23,14 +23,18 @@
 //     on A(s) - B(t), clamped to the pair's parameter box, finds that point
 //     or the pair is halved further;
 //   - a flat curve part (tangent cone under 0.5 rad) against a flat curve
-//     part or a surface part is checked for a stretch: from end to end
-//     (for two curves, between the end points of either that lie on the
-//     other), samples (2 (n + m) + 3 for control nets of n and m points)
-//     all within `tolerance` of the other part make the pair a stretch of
-//     contact, and an overlap when also the tangents agree within
+//     part or a surface part is checked for a stretch (for a 3D surface,
+//     only where the curve part's chord lies within 0.5 rad of the plane
+//     of the surface part's corners): from end to end (for two curves,
+//     between the end points of either that lie on the other part; for a
+//     surface, the curve part's ends projected onto the part's whole
+//     piece), samples (2 (n + m) + 3 for control nets of n and
+//     m points) all within `tolerance` of the other make the pair a stretch
+//     of contact, and an overlap when also the tangents agree within
 //     kOverlapAngle at every sample (the curve's tangent within that of the
-//     surface's tangent plane); a stretch that is not an overlap gives its
-//     nearest sample, refined by Newton, as a point;
+//     surface's tangent plane); where they agree at some samples but not
+//     all, the pair is halved instead; a stretch that is not an overlap
+//     gives its nearest sample, refined by a few Newton steps, as a point;
 //   - parts smaller than the leaf size (max(tolerance, 1e-7 of the
 //     control points' extent)) end with Newton from their middle;
 //   - otherwise the larger part is halved by de Casteljau.
