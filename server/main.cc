@@ -77,6 +77,9 @@ ABSL_FLAG(uint64_t, max_output_values, 64'000'000,
 ABSL_FLAG(uint64_t, max_closest_point_pieces, uint64_t{1} << 26,
           "Bezier pieces one ClosestPoint call may examine over all its "
           "queries (each query its share, 1 to 4096)");
+ABSL_FLAG(uint64_t, max_query_work, uint64_t{1} << 28,
+          "Work one intersection or section may do (units of about one "
+          "multiply-add; 2^28 is under a second of one core)");
 ABSL_FLAG(uint64_t, max_simplify_moves, uint64_t{1} << 35,
           "Control-point values one knot simplification may move (interior "
           "knots times the net's values; its array moves grow with the "
@@ -132,6 +135,7 @@ freeform::server::ServerOptions OptionsFromFlags() {
   limits.max_closest_point_pieces =
       absl::GetFlag(FLAGS_max_closest_point_pieces);
   limits.max_simplify_moves = absl::GetFlag(FLAGS_max_simplify_moves);
+  limits.max_query_work = absl::GetFlag(FLAGS_max_query_work);
   limits.memory_budget_bytes = absl::GetFlag(FLAGS_memory_budget);
   limits.max_call_time = absl::GetFlag(FLAGS_max_call_time);
   return options;

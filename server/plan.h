@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "freeform/core/saturating.h"
 #include "rpc.h"
 #include "service_limits.h"
 
@@ -19,14 +20,6 @@ inline CallPlan AnswerPlan(uint64_t answer_values, uint64_t work_bytes,
                            const ServiceLimits& limits) {
   return {.memory_bytes = 2 * 8 * answer_values + work_bytes + 4096,
           .heavy = answer_values + work_bytes / 8 > 4 * limits.grain};
-}
-
-// SaturatingProduct returns a * b, or UINT64_MAX when it overflows, so size
-// estimates of absurd requests fail their limit checks instead of wrapping.
-inline uint64_t SaturatingProduct(uint64_t a, uint64_t b) {
-  uint64_t product = 0;
-  if (__builtin_mul_overflow(a, b, &product)) return UINT64_MAX;
-  return product;
 }
 
 // UnaryAnswerCheck checks an answer of `values` doubles against the output

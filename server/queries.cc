@@ -20,10 +20,6 @@ namespace {
 // answers complete = false.
 constexpr uint64_t kMaxPiecesPerQuery = 4096;
 
-// The most work one intersection does (IntersectionOptions::max_work, in
-// units of about one multiply-add): 0.5-0.9 s of one core (query_bench Q4).
-constexpr uint64_t kMaxIntersectionWork = uint64_t{1} << 28;
-
 absl::StatusOr<double> Separation(bool has_value, double value,
                                   absl::string_view field) {
   if (!has_value) return kDefaultSeparation;
@@ -150,7 +146,7 @@ absl::StatusOr<IntersectionOptions> ToCore(
   return IntersectionOptions{.tolerance = *tolerance,
                              .separation = *separation,
                              .max_results = static_cast<size_t>(max_results),
-                             .max_work = kMaxIntersectionWork};
+                             .max_work = limits.max_query_work};
 }
 
 absl::Status IntersectionError(const absl::Status& status) {
@@ -162,9 +158,8 @@ absl::Status IntersectionError(const absl::Status& status) {
     return ExhaustedFieldError(
         "options.tolerance",
         absl::StrCat("the search would do more work than the server's limit "
-                     "of ",
-                     kMaxIntersectionWork,
-                     " units: the inputs stay within the tolerance of each "
+                     "(--max_query_work): the inputs stay within the "
+                     "tolerance of each "
                      "other along stretches it cannot resolve at this "
                      "tolerance, or meet too often; ",
                      FieldRuleOf(status)));

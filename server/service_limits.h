@@ -51,6 +51,11 @@ struct ServiceLimits {
   // 2^35 bounds that part to about 14 s here: planar curves up to about
   // 130,000 control points, spatial ones up to about 107,000.
   uint64_t max_simplify_moves = uint64_t{1} << 35;
+  // Most work one intersection (Intersect, IntersectCurve) or one section
+  // may do, in units of about one multiply-add (the core's max_work): 2^28
+  // is 0.2 to 0.9 s of one core here (query_bench Q4). A search that needs
+  // more is RESOURCE_EXHAUSTED naming its tolerance.
+  uint64_t max_query_work = uint64_t{1} << 28;
   // Longest time a call may run: its deadline when the client sets none or
   // a later one, so a legal but huge request cannot hold the CPU for
   // minutes. Zero means no server-side limit.

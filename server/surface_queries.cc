@@ -29,10 +29,6 @@ namespace {
 constexpr double kDefaultSectionTolerance = 1e-6;
 constexpr uint64_t kDefaultSectionPoints = uint64_t{1} << 16;
 
-// The most work the quadtree of one section does (SectionOptions::max_work,
-// in units of about one multiply-add): under a second of one core.
-constexpr uint64_t kMaxSectionWork = uint64_t{1} << 28;
-
 // SectionError maps the core's work limit to the request's tolerance (a
 // surface touching the plane, or crossing itself on it, along a stretch the
 // quadtree halves down to its depth).
@@ -40,8 +36,9 @@ absl::Status SectionError(const absl::Status& status) {
   if (FieldPathOf(status) != "max_work") return status;
   return ExhaustedFieldError(
       "tolerance",
-      absl::StrCat("the section would do more work than the server's limit of ",
-                   kMaxSectionWork, " units; ", FieldRuleOf(status)));
+      absl::StrCat("the section would do more work than the server's limit "
+                   "(--max_query_work): ",
+                   FieldRuleOf(status)));
 }
 
 absl::StatusOr<UnaryWork> PlanClosestPoint(
@@ -189,7 +186,7 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
               options =
                   SectionOptions{.tolerance = *tolerance,
                                  .max_points = static_cast<size_t>(requested),
-                                 .max_work = kMaxSectionWork,
+                                 .max_work = limits.max_query_work,
                                  .fit_tolerance = *fit_tolerance},
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<Sections> sections = IntersectSurfacePlane(

@@ -395,8 +395,7 @@ SurfaceServiceImpl::TessellateStream(
                          2 * frame_->chunks_in_flight() * chunk_bytes),
                      .heavy = true},
             .chunk_count = 0,
-            .prepare = [mesh, shared, chunk,
-                        request](const ExecutionContext& execution)
+            .prepare = [mesh, shared, chunk](const ExecutionContext& execution)
                 -> absl::StatusOr<size_t> {
               absl::StatusOr<Mesh> made =
                   TessellatePlanned(*shared->plan, execution.cancellation,

@@ -1,4 +1,5 @@
-// ReadFileToString and ReadRegularFile (freeform/client/file.h): the file
+// ReadFileToString, ReadStandardInput and ReadRegularFile
+// (freeform/client/file.h): the file
 // through POSIX read, so that a failure names its reason (errno).
 #include "freeform/client/file.h"
 
@@ -67,16 +68,34 @@ const char* KindOf(mode_t mode) {
   return "not a file";
 }
 
+// ReadBounded returns what `fd` (named `path`) holds, refusing more than
+// `max_bytes`: one byte past the limit tells.
+absl::StatusOr<std::string> ReadBounded(const std::string& path, int fd,
+                                        size_t max_bytes) {
+  std::string contents;
+  const size_t limit = max_bytes == std::numeric_limits<size_t>::max()
+                           ? max_bytes
+                           : max_bytes + 1;
+  absl::Status read = ReadAtMost(path, fd, limit, contents);
+  if (!read.ok()) return read;
+  if (contents.size() > max_bytes) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        "cannot read ", path, ": it is larger than ", max_bytes, " bytes"));
+  }
+  return contents;
+}
+
 }  // namespace
 
-absl::StatusOr<std::string> ReadFileToString(const std::string& path) {
+absl::StatusOr<std::string> ReadFileToString(const std::string& path,
+                                             size_t max_bytes) {
   const OpenedFile file(open(path.c_str(), O_RDONLY | O_CLOEXEC));
   if (file.fd() < 0) return ReadError(path, errno);
-  std::string contents;
-  absl::Status read =
-      ReadAtMost(path, file.fd(), std::numeric_limits<size_t>::max(), contents);
-  if (!read.ok()) return read;
-  return contents;
+  return ReadBounded(path, file.fd(), max_bytes);
+}
+
+absl::StatusOr<std::string> ReadStandardInput(size_t max_bytes) {
+  return ReadBounded("stdin", STDIN_FILENO, max_bytes);
 }
 
 absl::StatusOr<std::string> ReadRegularFile(const std::string& path,
@@ -97,18 +116,8 @@ absl::StatusOr<std::string> ReadRegularFile(const std::string& path,
   if (static_cast<uint64_t>(status.st_size) > max_bytes) {
     return absl::FailedPreconditionError(too_long);
   }
-  // The file may grow between fstat and read: one byte past the limit
-  // tells.
-  std::string contents;
-  const size_t limit = max_bytes == std::numeric_limits<size_t>::max()
-                           ? max_bytes
-                           : max_bytes + 1;
-  absl::Status read = ReadAtMost(path, file.fd(), limit, contents);
-  if (!read.ok()) return read;
-  if (contents.size() > max_bytes) {
-    return absl::FailedPreconditionError(too_long);
-  }
-  return contents;
+  // The file may grow between fstat and read.
+  return ReadBounded(path, file.fd(), max_bytes);
 }
 
 }  // namespace freeform

@@ -15,9 +15,11 @@
 #include "bezier_net.h"
 #include "freeform/core/curve_output.h"
 #include "freeform/core/points.h"
+#include "freeform/core/saturating.h"
 #include "freeform/core/status.h"
 #include "scaled.h"
 #include "scaled_geometry.h"
+#include "tessellation_checks.h"
 
 namespace freeform {
 namespace {
@@ -72,7 +74,34 @@ struct CurvePieces {
   }
 };
 
+// CheckResolvable refuses, naming "tolerance", a tolerance below what
+// double precision resolves on the pieces (tessellation_checks.h, in the
+// curve's units): the speed is computed to the rounding of the
+// coordinates, not of itself, so such a tolerance could only end at the
+// interval limits with a sum no better than a coarser one. Straight
+// polynomial pieces, whose speed is constant and whose rule is exact, meet
+// any tolerance.
+absl::Status CheckResolvable(const CurvePieces& pieces, double tolerance) {
+  double largest = 0.0;
+  bool straight = true;
+  std::vector<double> point;
+  for (const Net& net : pieces.nets) {
+    straight &= !net.rational && net.count_u <= 2;
+    point.resize(static_cast<size_t>(net.dimension));
+    for (int i = 0; i < net.count_u; ++i) {
+      if (!internal::Point(net, i, 0, point.data())) continue;
+      for (const double c : point) largest = std::max(largest, std::abs(c));
+    }
+  }
+  if (straight) return absl::OkStatus();
+  return internal::CheckResolvableAt(tolerance,
+                                     pieces.scaled.scale().Length(largest));
+}
+
+// LiftCurvePieces decomposes the scaled copy of `curve` into its lifted
+// Bezier pieces, and checks that `tolerance` is resolvable on them.
 absl::StatusOr<CurvePieces> LiftCurvePieces(const Curve& curve,
+                                            double tolerance,
                                             const CancellationToken* cancel) {
   CurvePieces pieces{.scaled = internal::ScaledCurve::Of(curve)};
   absl::StatusOr<BezierDecomposition> decomposition =
@@ -84,6 +113,9 @@ absl::StatusOr<CurvePieces> LiftCurvePieces(const Curve& curve,
     pieces.rational |= pieces.nets.back().rational;
   }
   pieces.breakpoints = std::move(decomposition->breakpoints);
+  if (absl::Status status = CheckResolvable(pieces, tolerance); !status.ok()) {
+    return status;
+  }
   return pieces;
 }
 
@@ -268,6 +300,22 @@ struct Pending {
   int depth;
 };
 
+// SpeedRounding returns the size of the speed |C'(s)| of a curve net as
+// its rounding sees it: its degree times its largest projected coordinate
+// (the derivative of a rational net subtracts products of the coordinates'
+// size, so its rounding is that of the coordinates, not of the speed; a
+// stretch where the curve stands still has a speed far below it). Zero
+// when a weight is not positive.
+double SpeedRounding(const Net& net) {
+  double largest = 0.0;
+  std::vector<double> point(static_cast<size_t>(net.dimension));
+  for (int i = 0; i < net.count_u; ++i) {
+    if (!internal::Point(net, i, 0, point.data())) return 0.0;
+    for (const double c : point) largest = std::max(largest, std::abs(c));
+  }
+  return (net.count_u - 1) * largest;
+}
+
 // AddSegment integrates the last segment of `table` (whose net is `net`)
 // adaptively with the share budget * (b - a) of every kept interval
 // [a, b] of its parameter.
@@ -275,6 +323,7 @@ absl::Status AddSegment(const Net& net, double budget,
                         SpeedIntegrator& integrator, CancellationPoll& poll,
                         LengthTable& table) {
   table.segments.back().first = table.lo.size();
+  const double speed_rounding = SpeedRounding(net);
   std::vector<Pending> stack = {{0.0, 1.0, integrator.Integrate(net, 0, 1), 0}};
   size_t kept = 0;
   while (!stack.empty()) {
@@ -295,8 +344,9 @@ absl::Status AddSegment(const Net& net, double budget,
     const double difference = std::abs(top.whole - sum);
     const bool settled =
         difference <= budget * (top.b - top.a) ||
-        difference <= kRoundingAgreement * sum || !std::isfinite(sum) ||
-        top.depth >= kMaxArcLengthDepth ||
+        difference <=
+            kRoundingAgreement * (sum + speed_rounding * (top.b - top.a)) ||
+        !std::isfinite(sum) || top.depth >= kMaxArcLengthDepth ||
         kept + 2 * stack.size() + 2 >= kMaxArcLengthIntervals ||
         !(top.a < mid && mid < top.b);
     if (settled) {
@@ -326,6 +376,42 @@ absl::Status WeightsError(absl::string_view why) {
       "weights",
       absl::StrCat("the weights vary too much for the arc length: ", why,
                    " (docs/references.md, 'Arc length of rational curves')"));
+}
+
+// PolygonLength returns the length of a curve net's control polygon (its
+// projected points; infinity when a weight is not positive), which bounds
+// the length of the curve: de Casteljau cuts its corners.
+double PolygonLength(const Net& net) {
+  const int dim = net.dimension;
+  double length = 0.0;
+  std::vector<double> previous(static_cast<size_t>(dim));
+  std::vector<double> point(static_cast<size_t>(dim));
+  for (int i = 0; i < net.count_u; ++i) {
+    if (!internal::Point(net, i, 0, point.data())) {
+      return std::numeric_limits<double>::infinity();
+    }
+    if (i > 0) {
+      length += internal::ScaledDistance(point.data(), previous.data(), dim);
+    }
+    std::swap(point, previous);
+  }
+  return length;
+}
+
+// LengthShare returns the share of a stretch's tolerance that its first
+// half `low` gets: the mean of its share of the parameter (1/2) and its
+// part of the two halves' polygon lengths. By parameter alone, the half of
+// a corner with weight 1e20 that holds almost all of the length got 2^-66
+// of the tolerance; by length alone, a half where the curve stands still
+// got less than the rounding of its speed (which is that of the
+// coordinates, not of the speed). Either half keeps at least half of
+// either share. One half when the lengths are not finite or both 0.
+double LengthShare(const Net& low, const Net& high) {
+  const double a = PolygonLength(low);
+  const double b = PolygonLength(high);
+  const double sum = a + b;
+  if (!(sum > 0.0) || !std::isfinite(sum)) return 0.5;
+  return 0.5 * (0.5 + a / sum);
 }
 
 // AddPiece integrates the part [u0, u1] of piece k into `table` within
@@ -388,6 +474,9 @@ absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0, double u1,
     // underflow: each keeps its weights at most 1 (scaled.h).
     internal::NormalizeWeights(low.net);
     internal::NormalizeWeights(high.net);
+    const double low_share = LengthShare(low.net, high.net);
+    low.budget = low_share * top.budget;
+    high.budget = (1.0 - low_share) * top.budget;
     held += low.net.values.size() + high.net.values.size();
     if (held > kMaxArcLengthWeightValues) {
       return WeightsError(
@@ -556,7 +645,10 @@ absl::StatusOr<double> Solve(const TableReader& reader, double length,
   }
   if (speed < 0.0) speed = reader.integrator.Speed(net, s);
   const Segment& segment = table.segments[index];
-  const double t = SegmentParameter(reader.pieces, segment, s);
+  // Within the table's interval: a piece's parameter start + u width
+  // rounds, and may fall an ulp before the table's start.
+  const double t = std::clamp(SegmentParameter(reader.pieces, segment, s),
+                              table.start, table.end);
   // The double t stands for s only to its rounding: check the length at t
   // itself unless that rounding moves it by far less than the tolerance.
   const double width =
@@ -643,7 +735,8 @@ struct Inverse {
 absl::StatusOr<Inverse> BuildInverse(const Curve& curve, double start,
                                      double end, double tolerance,
                                      const CancellationToken* cancel) {
-  absl::StatusOr<CurvePieces> pieces = LiftCurvePieces(curve, cancel);
+  absl::StatusOr<CurvePieces> pieces =
+      LiftCurvePieces(curve, tolerance, cancel);
   if (!pieces.ok()) return pieces.status();
   const double half = 0.5 * ScaledTolerance(*pieces, tolerance);
   absl::StatusOr<LengthTable> table =
@@ -682,15 +775,6 @@ absl::StatusOr<double> LengthOf(const CurvePieces& pieces, double start,
       ScaledTolerance(pieces, tolerance), false, cancel);
   if (!table.ok()) return table.status();
   return pieces.scaled.scale().Length(table->total());
-}
-
-uint64_t SaturatingProduct(uint64_t a, uint64_t b) {
-  uint64_t product = 0;
-  return __builtin_mul_overflow(a, b, &product) ? UINT64_MAX : product;
-}
-
-uint64_t SaturatingSum(uint64_t a, uint64_t b) {
-  return a > UINT64_MAX - b ? UINT64_MAX : a + b;
 }
 
 bool IsRational(const Curve& curve) {
@@ -747,7 +831,8 @@ absl::StatusOr<double> ArcLength(const Curve& curve, double start, double end,
       !status.ok()) {
     return status;
   }
-  absl::StatusOr<CurvePieces> pieces = LiftCurvePieces(curve, cancel);
+  absl::StatusOr<CurvePieces> pieces =
+      LiftCurvePieces(curve, tolerance, cancel);
   if (!pieces.ok()) return pieces.status();
   return LengthOf(*pieces, start, end, tolerance, cancel);
 }
@@ -774,7 +859,7 @@ absl::Status ArcLengths(const Curve& curve, absl::Span<const double> intervals,
     }
   }
   absl::StatusOr<CurvePieces> pieces =
-      LiftCurvePieces(curve, context.cancellation);
+      LiftCurvePieces(curve, tolerance, context.cancellation);
   if (!pieces.ok()) return pieces.status();
   return ForEachChunk(count, context, [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {

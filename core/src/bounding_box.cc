@@ -13,9 +13,11 @@
 #include "freeform/core/elevation.h"
 #include "freeform/core/geometry_data.h"
 #include "freeform/core/rational.h"
+#include "freeform/core/saturating.h"
 #include "freeform/core/status.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/triangular.h"
+#include "scaled_geometry.h"
 #include "variant_dispatch.h"
 
 namespace freeform {
@@ -360,6 +362,24 @@ absl::StatusOr<BoundingBox> BoxOf(std::vector<Net> nets, double tolerance,
   return box;
 }
 
+// Scaled returns a tolerance in the units of a scaled copy
+// (scaled_geometry.h), at most the largest double.
+double Scaled(double tolerance, const internal::ScaledValues& scale) {
+  return std::min(scale.Unlength(tolerance),
+                  std::numeric_limits<double>::max());
+}
+
+// Unscaled returns the box of a scaled copy in the geometry's own units
+// (exact: powers of two; a side beyond the largest double is infinite,
+// which still holds the geometry).
+absl::StatusOr<BoundingBox> Unscaled(absl::StatusOr<BoundingBox> box,
+                                     const internal::ScaledValues& scale) {
+  if (!box.ok()) return box;
+  for (double& side : box->lower) side = scale.Length(side);
+  for (double& side : box->upper) side = scale.Length(side);
+  return box;
+}
+
 // A Bezier curve as a net of one column.
 SurfaceData ColumnOf(BezierCurveData curve) {
   const int count =
@@ -421,7 +441,11 @@ NetShape Column(size_t points) { return {static_cast<int>(points), 1}; }
 
 }  // namespace
 
-uint64_t CurveBoundingBoxBytes(const Curve& curve) {
+namespace {
+
+// PiecesBoxBytes bounds the memory of the box of a geometry's pieces
+// (BoxBytes), without its scaled copy.
+uint64_t PiecesBoxBytes(const Curve& curve) {
   const int dimension = DimensionOf(curve);
   return std::visit(
       internal::Overloaded{
@@ -448,7 +472,7 @@ uint64_t CurveBoundingBoxBytes(const Curve& curve) {
       curve);
 }
 
-uint64_t SurfaceBoundingBoxBytes(const Surface& surface) {
+uint64_t PiecesBoxBytes(const Surface& surface) {
   return std::visit(
       internal::Overloaded{
           [](const BezierSurface& bezier) {
@@ -478,6 +502,17 @@ uint64_t SurfaceBoundingBoxBytes(const Surface& surface) {
       surface);
 }
 
+}  // namespace
+
+uint64_t CurveBoundingBoxBytes(const Curve& curve) {
+  return SaturatingSum(internal::ScaledCopyBytes(curve), PiecesBoxBytes(curve));
+}
+
+uint64_t SurfaceBoundingBoxBytes(const Surface& surface) {
+  return SaturatingSum(internal::ScaledCopyBytes(surface),
+                       PiecesBoxBytes(surface));
+}
+
 absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
                                              double tolerance,
                                              const CancellationToken* cancel) {
@@ -485,7 +520,9 @@ absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
       !status.ok()) {
     return status;
   }
-  absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve, cancel);
+  const internal::ScaledCurve scaled = internal::ScaledCurve::Of(curve);
+  absl::StatusOr<BezierDecomposition> pieces =
+      DecomposeCurve(scaled.curve(), cancel);
   if (!pieces.ok()) return pieces.status();
   std::vector<SurfaceData> nets;
   nets.reserve(pieces->segments.size());
@@ -493,7 +530,9 @@ absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
     nets.push_back(ColumnOf(std::move(segment)));
   }
   std::vector<BezierCurveData>().swap(pieces->segments);
-  return BoxOf(std::move(nets), tolerance, cancel);
+  return Unscaled(
+      BoxOf(std::move(nets), Scaled(tolerance, scaled.scale()), cancel),
+      scaled.scale());
 }
 
 absl::StatusOr<BoundingBox> SurfaceBoundingBox(
@@ -504,14 +543,20 @@ absl::StatusOr<BoundingBox> SurfaceBoundingBox(
   }
   // A triangular patch is halved as a triangle (BisectTriangularPatch), a
   // tensor surface as its Bezier pieces.
-  if (const auto* patch = std::get_if<TriangularPatch>(&surface)) {
-    return BoxOf(std::vector<TriangularPatchData>{PatchOf(patch->view())},
-                 tolerance, cancel);
+  const internal::ScaledSurface scaled = internal::ScaledSurface::Of(surface);
+  const double scaled_tolerance = Scaled(tolerance, scaled.scale());
+  if (const auto* patch = std::get_if<TriangularPatch>(&scaled.surface())) {
+    return Unscaled(
+        BoxOf(std::vector<TriangularPatchData>{PatchOf(patch->view())},
+              scaled_tolerance, cancel),
+        scaled.scale());
   }
   absl::StatusOr<SurfaceDecomposition> pieces =
-      DecomposeSurface(surface, cancel);
+      DecomposeSurface(scaled.surface(), cancel);
   if (!pieces.ok()) return pieces.status();
-  return BoxOf(std::move(pieces->pieces.patches), tolerance, cancel);
+  return Unscaled(
+      BoxOf(std::move(pieces->pieces.patches), scaled_tolerance, cancel),
+      scaled.scale());
 }
 
 }  // namespace freeform

@@ -820,7 +820,40 @@ struct Finisher {
   absl::Status CertificationError(size_t r, double distance,
                                   double lower) const;
   absl::Status DistanceOverflow(size_t r, int dim) const;
+  // KeepMinimaWithin drops the minima of query r farther than `distance`
+  // plus the tolerance at their double parameters (weights so steep that
+  // the search's point moved when its parameter was rounded), marking the
+  // answer incomplete when it dropped one.
+  void KeepMinimaWithin(size_t r, double distance, ClosestPoints& answer) const;
 };
+
+void Finisher::KeepMinimaWithin(size_t r, double distance,
+                                ClosestPoints& answer) const {
+  const size_t count = static_cast<size_t>(answer.counts[r]);
+  const size_t dim = static_cast<size_t>(answer.dimension);
+  const size_t pc = static_cast<size_t>(answer.parameter_count);
+  const size_t slot = r * static_cast<size_t>(answer.max_minima);
+  double* points = answer.points.data() + slot * dim;
+  double* parameters = answer.parameters.data() + slot * pc;
+  constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
+  const double limit =
+      distance + options.tolerance + 64.0 * kEpsilon * distance;
+  size_t kept = 0;
+  for (size_t k = 0; k < count; ++k) {
+    if (!(internal::ScaledDistance(points + k * dim, queries.point(r),
+                                   static_cast<int>(dim)) <= limit)) {
+      continue;
+    }
+    if (kept != k) {
+      std::copy_n(points + k * dim, dim, points + kept * dim);
+      std::copy_n(parameters + k * pc, pc, parameters + kept * pc);
+    }
+    ++kept;
+  }
+  if (kept == count) return;
+  answer.counts[r] = static_cast<int>(kept);
+  answer.complete[r] = 0;
+}
 
 absl::Status Finisher::DistanceOverflow(size_t r, int dim) const {
   const double* q = queries.point(r);
@@ -878,6 +911,7 @@ absl::Status Finisher::Finish(size_t r, ClosestPoints& answer) const {
                                points + k * static_cast<size_t>(dim), q, dim));
   }
   if (!std::isfinite(distance)) return DistanceOverflow(r, dim);
+  KeepMinimaWithin(r, distance, answer);
   constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
   const double lower =
       far[r] != 0 ? distance * (1.0 - 16.0 * kEpsilon)

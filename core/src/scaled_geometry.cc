@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "scaled.h"
+#include "variant_dispatch.h"
 
 namespace freeform::internal {
 namespace {
@@ -26,12 +27,28 @@ std::vector<double> Scaled(absl::Span<const double> values, int e) {
   return result;
 }
 
-// ScaleCoordinates fills the coordinates (exponent e) and the weights.
+// ScaleCoordinates fills the coordinates (exponent e) and the weights
+// (exponent f). A control point of weight 0 is a direction, whose
+// homogeneous point (P, 0) is not w P: dividing the other weights by 2^f
+// divides their homogeneous points by 2^f, so a direction is divided by
+// 2^(e + f) to stay the same geometry (by 2^e alone it would count 2^f times
+// as much). When that overflows the copy does not validate (the geometry
+// itself is used).
 void ScaleCoordinates(absl::Span<const double> coordinates,
                       absl::Span<const double> weights, ScaledValues& values) {
   values.coordinate_exponent = LargestExponent(coordinates);
   values.coordinates = Scaled(coordinates, values.coordinate_exponent);
-  values.weights = Scaled(weights, LargestExponent(weights));
+  const int weight_exponent = LargestExponent(weights);
+  values.weights = Scaled(weights, weight_exponent);
+  if (weights.empty()) return;
+  const size_t dimension = coordinates.size() / weights.size();
+  for (size_t i = 0; i < weights.size(); ++i) {
+    if (weights[i] != 0.0) continue;
+    for (size_t x = 0; x < dimension; ++x) {
+      double& value = values.coordinates[i * dimension + x];
+      value = std::ldexp(value, -weight_exponent);
+    }
+  }
 }
 
 // ScaleKnots fills `knots` scaled by the power of two at or above the
@@ -213,6 +230,79 @@ SurfaceSamples ScaledSurface::Samples(const SurfaceSamples& samples,
   const absl::Span<const double> all(storage);
   return SurfaceSamples::Grid(all.subspan(0, samples.u.size()),
                               all.subspan(samples.u.size()));
+}
+
+namespace {
+
+// The bytes of a copy holding `values` doubles twice in `blocks` heap
+// blocks each, with glibc's header and rounding per block.
+uint64_t CopyBytes(uint64_t values, uint64_t blocks) {
+  return 2 * (8 * values + 32 * blocks) + sizeof(ScaledValues);
+}
+
+}  // namespace
+
+uint64_t ScaledCopyBytes(const Curve& curve) {
+  return std::visit(
+      Overloaded{[](const BezierCurve& bezier) {
+                   const BezierCurveView& view = bezier.view();
+                   return CopyBytes(view.control_points.coordinates.size() +
+                                        view.weights.size(),
+                                    2) +
+                          sizeof(Curve);
+                 },
+                 [](const BSplineCurve& bspline) {
+                   const BSplineCurveView& view = bspline.view();
+                   return CopyBytes(view.control_points.coordinates.size() +
+                                        view.weights.size() + view.knots.size(),
+                                    3) +
+                          sizeof(Curve);
+                 },
+                 [](const LagrangeCurve& lagrange) {
+                   const LagrangeCurveView& view = lagrange.view();
+                   return CopyBytes(view.points.coordinates.size() +
+                                        view.nodes.size(),
+                                    2) +
+                          sizeof(Curve);
+                 },
+                 [](const HermiteCurve& hermite) {
+                   const HermiteCurveView& view = hermite.view();
+                   return CopyBytes(view.points.coordinates.size() +
+                                        view.tangents.coordinates.size() +
+                                        view.nodes.size(),
+                                    3) +
+                          sizeof(Curve);
+                 }},
+      curve);
+}
+
+uint64_t ScaledCopyBytes(const Surface& surface) {
+  return std::visit(
+      Overloaded{[](const BezierSurface& bezier) {
+                   const BezierSurfaceView& view = bezier.view();
+                   return CopyBytes(view.control_net.coordinates.size() +
+                                        view.weights.size(),
+                                    2) +
+                          sizeof(Surface);
+                 },
+                 [](const BSplineSurface& bspline) {
+                   const BSplineSurfaceView& view = bspline.view();
+                   return CopyBytes(view.control_net.coordinates.size() +
+                                        view.weights.size() +
+                                        view.knots_u.size() +
+                                        view.knots_v.size(),
+                                    4) +
+                          sizeof(Surface);
+                 },
+                 [](const TriangularPatch& patch) {
+                   const TriangularPatchView& view = patch.view();
+                   return CopyBytes(view.control_points.coordinates.size() +
+                                        view.weights.size() +
+                                        view.domain_triangle.size(),
+                                    3) +
+                          sizeof(Surface);
+                 }},
+      surface);
 }
 
 }  // namespace freeform::internal

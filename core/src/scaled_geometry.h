@@ -17,6 +17,7 @@
 #define FREEFORM_CORE_SRC_SCALED_GEOMETRY_H_
 
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -96,6 +97,13 @@ class ScaledSurface {
   ScaledValues values_;
   std::optional<Surface> surface_;
 };
+
+// ScaledCopyBytes bounds, before any work, the memory a ScaledCurve or
+// ScaledSurface of the geometry holds: its values twice (the scaled values
+// and the copy's own) and the blocks that hold them, or one copy of the
+// geometry when the scaled one does not validate.
+uint64_t ScaledCopyBytes(const Curve& curve);
+uint64_t ScaledCopyBytes(const Surface& surface);
 
 }  // namespace freeform::internal
 

@@ -15,6 +15,7 @@
 #include "bezier_net.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
+#include "tessellation_checks.h"
 
 namespace freeform {
 namespace {
@@ -634,6 +635,15 @@ void Chain::Walk(size_t start_end, const Pieces& pieces, Sections& sections) {
     }
     end = next;
   }
+  if (closed) {
+    // The last vertex is the first one's partner, within the slack: a
+    // closed polyline repeats its first vertex exactly (the proto's
+    // promise), so its last point is the first's.
+    const size_t d = static_cast<size_t>(dimension_);
+    const size_t first = sections.offsets.back() * d;
+    std::copy_n(sections.points.begin() + first, d,
+                sections.points.end() - d);
+  }
   sections.closed.push_back(closed ? 1 : 0);
   sections.offsets.push_back(sections.points.size() /
                              static_cast<size_t>(dimension_));
@@ -723,6 +733,18 @@ void WriteRegions(const std::vector<size_t>& regions, const Pieces& pieces,
   }
 }
 
+// FitError is the failure of the fit of polyline k: the approximation's
+// refusals name its own inputs (parameters, points), which are not fields
+// of the request, so they name fit_tolerance, the option that asked for it;
+// a stop by the token passes as it is.
+absl::Status FitError(const absl::Status& status, size_t k) {
+  if (status.code() != absl::StatusCode::kInvalidArgument) return status;
+  return InvalidFieldError(
+      "fit_tolerance",
+      absl::StrCat("polyline ", k,
+                   " cannot be fitted within it: ", status.message()));
+}
+
 // FitPolyline returns the B-spline of polyline k within `tolerance` of its
 // vertices (see SectionOptions::fit_tolerance).
 absl::StatusOr<BSplineCurveData> FitPolyline(const Sections& sections, size_t k,
@@ -749,13 +771,33 @@ absl::StatusOr<BSplineCurveData> FitPolyline(const Sections& sections, size_t k,
   }
   const PointsView points{sections.dimension, vertices};
   const int degree = std::min(3, count - 1);
-  absl::StatusOr<CurveApproximation> fit;
-  for (int controls = std::min(count, 2 * (degree + 1));;
+  // Least squares with ever more control points; with one per vertex, the
+  // interpolant (averaged knots, which meet the Schoenberg-Whitney
+  // condition).
+  for (int controls = std::min(count, 2 * (degree + 1)); controls < count;
        controls = std::min(count, 2 * controls)) {
-    fit = ApproximateCurve(points, degree, controls,
-                           Parameterization::kChordLength, {}, cancel);
-    if (!fit.ok()) return fit.status();
-    if (fit->max_residual <= tolerance || controls == count) break;
+    absl::StatusOr<CurveApproximation> fit = ApproximateCurve(
+        points, degree, controls, Parameterization::kChordLength, {}, cancel);
+    // Least squares with nearly a control per vertex can place a knot span
+    // without a vertex (singular): the interpolant below cannot.
+    if (!fit.ok() &&
+        fit.status().code() != absl::StatusCode::kInvalidArgument) {
+      return fit.status();
+    }
+    if (!fit.ok()) break;
+    if (fit->max_residual <= tolerance) return std::move(fit->curve);
+  }
+  absl::StatusOr<CurveInterpolation> fit = InterpolateCurve(
+      points, {.degree = degree,
+               .parameterization = Parameterization::kChordLength,
+               .cancel = cancel});
+  if (!fit.ok()) return FitError(fit.status(), k);
+  if (!(fit->max_residual <= tolerance)) {
+    return InvalidFieldError(
+        "fit_tolerance", absl::StrCat("polyline ", k,
+                                      " cannot be fitted within it: its "
+                                      "interpolant is still ",
+                                      fit->max_residual, " off at a vertex"));
   }
   return std::move(fit->curve);
 }
@@ -784,6 +826,14 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
       internal::ScaleForQuery(options.tolerance, all);
   if (!scale.ok()) return scale.status();
   const int exponent = scale->exponent;
+  if (options.fit_tolerance > 0.0) {
+    if (absl::Status status = internal::CheckResolvableAt(
+            options.fit_tolerance, std::ldexp(scale->largest, exponent),
+            "fit_tolerance");
+        !status.ok()) {
+      return status;
+    }
+  }
   const std::vector<double> normal = UnitNormal(plane_normal);
   const double offset = ScaledOffset(normal, plane_point, exponent);
   Sections sections{.dimension = dimension};

@@ -30,14 +30,15 @@ inline absl::Status ValidateTolerance(double tolerance) {
 // is then near the resolution of a double); the size bounds count on it.
 inline constexpr int kMaxSubdivisionDepth = 50;
 
-// CheckResolvableAt refuses, naming "tolerance", a tolerance below
+// CheckResolvableAt refuses, naming `field`, a tolerance below
 // kResolution times `size`, the largest magnitude of a coordinate of the
 // geometry: double precision does not resolve it there, so no subdivision
 // could meet it, and trying would only end at a work or size limit.
-inline absl::Status CheckResolvableAt(double tolerance, double size) {
+inline absl::Status CheckResolvableAt(double tolerance, double size,
+                                      absl::string_view field = "tolerance") {
   if (tolerance >= kResolution * size) return absl::OkStatus();
   return InvalidFieldError(
-      "tolerance", absl::StrCat(tolerance,
+      field, absl::StrCat(tolerance,
                                 " is below what double precision resolves on "
                                 "geometry of size ",
                                 size, " (about ", kResolution * size, ")"));

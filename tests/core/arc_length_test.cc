@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -160,6 +161,8 @@ TEST(ArcLength, EveryKindMatchesExtrapolatedPolyline) {
   const std::vector<double> tangents = RandomValues(rng, 4 * 2);
   const std::vector<double> nodes = {0.0, 0.5, 1.75, 2.0};
   const std::vector<double> power = RandomValues(rng, 4 * 2);
+  const std::vector<double> direction_points = {0, 0, 1, 1, 2, 0, 3, 1};
+  const std::vector<double> direction_weights = {1, 0, 3, 1};
   struct Case {
     const char* name;
     Curve curve;
@@ -182,7 +185,13 @@ TEST(ArcLength, EveryKindMatchesExtrapolatedPolyline) {
                               .tangents = {2, tangents},
                               .nodes = nodes}),
        nodes},
-      {"power form", *BezierCurve::FromPowerForm({2, power}), {0.0, 1.0}}};
+      {"power form", *BezierCurve::FromPowerForm({2, power}), {0.0, 1.0}},
+      // The second control point is the direction (1, 1) (weight 0): the
+      // length runs on a copy whose weights are divided by 4.
+      {"rational Bezier with a direction",
+       *BezierCurve::Create({.control_points = {2, direction_points},
+                             .weights = direction_weights}),
+       {0.0, 1.0}}};
   for (int s = 3; s <= 9; ++s) {
     if (cases[1].cuts.empty() || knots[s] != cases[1].cuts.back()) {
       cases[1].cuts.push_back(knots[s]);
@@ -246,6 +255,25 @@ TEST(ParametersAtArcLengths, FromAStartInsideTheDomain) {
   const std::vector<double> point = Points(circle, parameter);
   EXPECT_NEAR(point[0], std::cos(std::numbers::pi / 2 + 1.0), 1e-11);
   EXPECT_NEAR(point[1], std::sin(std::numbers::pi / 2 + 1.0), 1e-11);
+}
+
+// Length 0 from a start inside a piece is the start itself, never before
+// it: the fuzzer's Hermite curve from 1e-6 got 9.99999999918e-07 (the
+// piece's parameter, breakpoint + u width, rounded below the start).
+TEST(ParametersAtArcLengths, NeverBeforeTheStart) {
+  const std::vector<double> points = {0, 0, 1, 1, 2, 0};
+  const std::vector<double> tangents = {1, 0, 0, 0, -1, 0};
+  const std::vector<double> nodes = {-1, 1, 3};
+  const Curve curve = *HermiteCurve::Create(
+      {.points = {2, points}, .tangents = {2, tangents}, .nodes = nodes});
+  const std::vector<double> lengths = {0, 0.1, 0.2};
+  std::vector<double> parameters(3);
+  ASSERT_TRUE(ParametersAtArcLengths(curve, 1e-6, lengths, 1e-8,
+                                     absl::MakeSpan(parameters))
+                  .ok());
+  EXPECT_EQ(parameters[0], 1e-6);
+  EXPECT_GT(parameters[1], 1e-6);
+  EXPECT_GT(parameters[2], parameters[1]);
 }
 
 // Equal arc-length samples of the circle have equal chords
@@ -345,7 +373,34 @@ TEST(ArcLength, ErrorsNameTheirField) {
 // nodes for large w. Its length, below 2 and tending to 2, is the closed
 // form of its speed integrated independently in long double (CornerLength),
 // over the whole curve and over stretches of the first leg, which doubles
-// near t = 0 resolve at any weight.
+// near t = 0 resolve at any weight. It is at most the control polygon's 2
+// to rounding (for w = 1e15 it is 2 - 9e-16, four units in the last place
+// below 2, and the sum of its intervals, each settled at the rounding of
+// its speed, may land a few units above: 2.2e-15 above for w = 1e300,
+// whose halvings for the weights give about a thousand stretches).
+// A tolerance below what double precision resolves on the curve (2^-48 of
+// its largest coordinate) is refused at once, as Tessellate refuses it; a
+// straight segment, whose rule is exact, meets any tolerance.
+TEST(ArcLength, ToleranceBelowTheResolutionIsRefused) {
+  const BSplineCurveData data = NurbsCircle(1.0);
+  const Curve circle = *BSplineCurve::Create(data.view());
+  for (const double tolerance : {5e-324, 1e-20, 1e-15}) {
+    EXPECT_EQ(FieldPathOf(ArcLength(circle, 0.0, 1.0, tolerance).status()),
+              "tolerance")
+        << tolerance;
+    std::vector<double> parameters(3);
+    EXPECT_EQ(FieldPathOf(EqualArcLengthParameters(
+                  circle, 0.0, 1.0, 3, tolerance, absl::MakeSpan(parameters))),
+              "tolerance")
+        << tolerance;
+  }
+  EXPECT_NEAR(*ArcLength(circle, 0.0, 1.0, 1e-14), 2.0 * std::numbers::pi,
+              1e-14);
+  const std::vector<double> segment = {0.0, 0.0, 3.0, 4.0};
+  const Curve line = *BezierCurve::Create({.control_points = {2, segment}});
+  EXPECT_DOUBLE_EQ(*ArcLength(line, 0.0, 1.0, 5e-324), 5.0);
+}
+
 TEST(ArcLength, RationalCornerWithExtremeWeightsHasItsLength) {
   for (const double w : {1.0, 1e5, 1e10, 1e15, 1e50, 1e150, 1e300}) {
     const BezierCurveData data = RationalCorner(w);
@@ -354,7 +409,7 @@ TEST(ArcLength, RationalCornerWithExtremeWeightsHasItsLength) {
     ASSERT_TRUE(length.ok()) << length.status();
     EXPECT_NEAR(*length, static_cast<double>(CornerLength(w, 1.0)), 2e-10)
         << "w = " << w;
-    EXPECT_LT(*length, 2.0);
+    EXPECT_LE(*length, 2.0 + 1e-14) << "w = " << w << ": " << *length - 2.0;
     for (const double t : {0.3 / w, 1.0 / w, 4.0 / w, 0.25}) {
       if (t > 0.25) continue;
       const absl::StatusOr<double> part = ArcLength(corner, 0.0, t, 1e-10);

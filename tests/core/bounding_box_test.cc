@@ -152,6 +152,51 @@ TEST(CurveBoundingBox, ToleranceBelowRoundingEnds) {
   }
 }
 
+// The box is computed on the geometry rescaled by a power of two
+// (scaled_geometry.h), so a copy scaled by 2^k has the box scaled by 2^k
+// exactly. The Bezier form of a Lagrange curve of degree 14 through points
+// up to 4e300 (the fuzzer's) overflowed: its box missed the curve's points
+// at 3e301 by a factor of 10.
+TEST(CurveBoundingBox, EveryScaleHasTheScaledBox) {
+  std::mt19937_64 rng(5);
+  const std::vector<double> points = RandomValues(rng, 15 * 3);
+  const Curve unit = *LagrangeCurve::Create({.points = {3, points}});
+  const absl::StatusOr<BoundingBox> box = CurveBoundingBox(unit, kTolerance);
+  ASSERT_TRUE(box.ok()) << box.status();
+  for (const int k : {-1000, -500, 500, 1000}) {
+    std::vector<double> scaled = points;
+    for (double& c : scaled) c = std::ldexp(c, k);
+    const Curve curve = *LagrangeCurve::Create({.points = {3, scaled}});
+    const absl::StatusOr<BoundingBox> big =
+        CurveBoundingBox(curve, std::ldexp(kTolerance, k));
+    ASSERT_TRUE(big.ok()) << k << ": " << big.status();
+    for (int j = 0; j < 3; ++j) {
+      EXPECT_EQ(big->lower[j], std::ldexp(box->lower[j], k)) << k;
+      EXPECT_EQ(big->upper[j], std::ldexp(box->upper[j], k)) << k;
+    }
+  }
+  std::vector<double> fuzzed(15 * 3, 0.0);
+  const double tail[] = {1.0000000020372682e300, 1e300, 0, 2e300, 0, 1e300,
+                         2e300, 0, 1e300, 3e300, 1e300, 1e300,
+                         3e300, 1e300, 1e300, 3e300, 1e300, 1e300,
+                         3e300, 1e300, 1e300, 3e300, 1e300, 1e300,
+                         4e300, 2.172923689948439e-11, 0,
+                         4e300, 2.172923689948439e-11, 0};
+  std::copy(std::begin(tail), std::end(tail), fuzzed.begin() + 15);
+  const Curve huge = *LagrangeCurve::Create({.points = {3, fuzzed}});
+  const absl::StatusOr<BoundingBox> huge_box = CurveBoundingBox(huge, 1e-9);
+  ASSERT_TRUE(huge_box.ok()) << huge_box.status();
+  const ParameterDomain domain = DomainOf(huge);
+  const std::vector<double> samples =
+      CurvePoints(huge, EvenlySpaced(domain.start, domain.end, 20001));
+  for (size_t r = 0; r < samples.size(); r += 3) {
+    for (int j = 0; j < 3; ++j) {
+      ASSERT_LE(samples[r + j], huge_box->upper[j]) << r / 3 << " " << j;
+      ASSERT_GE(samples[r + j], huge_box->lower[j]) << r / 3 << " " << j;
+    }
+  }
+}
+
 TEST(CurveBoundingBox, EveryKindContainsDenseSamplesAndIsTight) {
   std::mt19937_64 rng(21);
   const std::vector<double> bezier_points = RandomValues(rng, 7 * 3);

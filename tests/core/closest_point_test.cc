@@ -732,7 +732,18 @@ TEST(ClosestPointTest, ExtremeWeightsAreAnsweredOrRefused) {
                   1e-15);
       EXPECT_LE(answer->distances[0], CornerSampleDistance(w, q.data()) + 1e-9)
           << "w = " << w << ", q = (" << q[0] << ", " << q[1] << ")";
-      EXPECT_TRUE(answer->complete[0]);
+      // Every returned minimum is at the distance (within the tolerance).
+      for (int k = 0; k < answer->counts[0]; ++k) {
+        EXPECT_LE(Distance(answer->points.data() + 2 * k, q.data(), 2),
+                  answer->distances[0] + 1e-8)
+            << "w = " << w << ", r = " << r << ", minimum " << k;
+      }
+      // (0.9, 0.9) has a second minimum, (0.9, 1) on the second leg, which
+      // no double parameter reaches from w = 1e15 on: the answer holds the
+      // first leg's and says it is incomplete (it returned (0, 1), 0.9
+      // away, as a second minimum).
+      EXPECT_EQ(answer->complete[0] != 0, !(w >= 1e15 && r == 2))
+          << "w = " << w << ", r = " << r;
       EXPECT_LE(answer->lower_bounds[0], answer->distances[0]);
       EXPECT_GE(answer->lower_bounds[0], answer->distances[0] - 1e-9);
     }
@@ -775,6 +786,56 @@ TEST(ClosestPointTest, ExtremeWeightsOnSurfacesAreAnsweredOrRefused) {
     } else {
       EXPECT_EQ(FieldPathOf(other.status()), "weights") << other.status();
     }
+  }
+}
+
+// A control point of weight 0 is a direction: its homogeneous point is
+// (P, 0). The queries search a copy with the weights divided by a power of
+// two, and a direction divided only like the points there moved the
+// geometry: the fuzzer's biquadratic with the middle weight 0 (weights up to
+// 2) had a point 0.45 from the query while the search certified 0.66.
+TEST(ClosestPointTest, ZeroWeightsAreDirectionsInTheScaledCopy) {
+  const std::vector<double> net = {0, 0, 0, 2.0000114440917969,
+                                   0, 0, 4, 0,
+                                   0, 0, 2, 0,
+                                   2, 2, 0, 4,
+                                   2, 2, 0, 4,
+                                   0, 2, 4, 4.0000000000022737,
+                                   4, 4, 4};
+  const std::vector<double> weights = {1, 2, 1, 0.5, 0, 0.5, 1, 2, 1};
+  const Surface patch = *BezierSurface::Create(
+      {.control_net = {3, 3, 3, net}, .weights = weights});
+  const std::vector<double> queries = {0.5, 9.918212890625e-05, 0.5, 3,
+                                       3,   3.0000019073477207};
+  const absl::StatusOr<ClosestPoints> answer =
+      SurfaceClosestPoints(patch, {3, queries});
+  ASSERT_TRUE(answer.ok()) << answer.status();
+  const SurfaceReference dense(patch);
+  for (size_t r = 0; r < 2; ++r) {
+    const double* q = queries.data() + 3 * r;
+    const double expected = dense.Nearest(q);
+    EXPECT_LE(answer->distances[r], expected + 1e-9) << r;
+    EXPECT_LE(answer->lower_bounds[r], expected) << r;
+    EXPECT_TRUE(answer->complete[r]) << r;
+  }
+  // A conic whose middle control point is the direction (1, 1): the search
+  // runs on a copy whose weights are divided by 4, where that direction
+  // must be divided by 4 too.
+  const std::vector<double> conic_points = {0, 0, 1, 1, 2, 0};
+  const std::vector<double> conic_weights = {1, 0, 3};
+  const Curve conic = *BezierCurve::Create(
+      {.control_points = {2, conic_points}, .weights = conic_weights});
+  const std::vector<double> near = {1.2, 0.5, 0.3, 0.1, 1.9, -0.2};
+  const absl::StatusOr<ClosestPoints> on_conic =
+      CurveClosestPoints(conic, {2, near});
+  ASSERT_TRUE(on_conic.ok()) << on_conic.status();
+  const std::vector<double> samples = Grid(0.0, 1.0, 4000);
+  const std::vector<double> points = CurvePoints(conic, samples);
+  for (size_t r = 0; r < 3; ++r) {
+    const double expected =
+        CurveReference(conic, samples, points, near.data() + 2 * r);
+    EXPECT_LE(on_conic->distances[r], expected + 1e-9) << r;
+    EXPECT_LE(on_conic->lower_bounds[r], expected) << r;
   }
 }
 

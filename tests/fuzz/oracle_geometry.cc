@@ -22,9 +22,66 @@ double PieceStart(absl::Span<const double> breakpoints, double x) {
   return after == breakpoints.begin() ? breakpoints.front() : *(after - 1);
 }
 
+// Below this a homogeneous coordinate w x, and the products of the
+// evaluator's basis with it, lose their last bits to gradual underflow
+// (2^52 times the smallest normal double).
+constexpr double kUnderflow = 0x1p-970;
+
+// UnderflowOf returns the largest |x| of the control points' coordinates
+// (`dim` per point, with their weights, or none) whose homogeneous value
+// w x lies below kUnderflow; 0 when none does.
+double UnderflowOf(size_t dim, absl::Span<const double> coordinates,
+                   absl::Span<const double> weights) {
+  double underflow = 0.0;
+  for (size_t k = 0; k < coordinates.size(); ++k) {
+    const double w = weights.empty() ? 1.0 : weights[k / dim];
+    const double x = coordinates[k];
+    if (x != 0.0 && std::isfinite(x) && std::abs(w * x) < kUnderflow) {
+      underflow = std::max(underflow, std::abs(x));
+    }
+  }
+  return underflow;
+}
+
+// GeometryUnderflow is UnderflowOf the geometry's own control points (its
+// Bezier pieces are projected from homogeneous values that may have
+// underflowed already).
+double GeometryUnderflow(const Curve& curve) {
+  const size_t dim = static_cast<size_t>(DimensionOf(curve));
+  if (const auto* c = std::get_if<BezierCurve>(&curve)) {
+    return UnderflowOf(dim, c->view().control_points.coordinates,
+                       c->view().weights);
+  }
+  if (const auto* c = std::get_if<BSplineCurve>(&curve)) {
+    return UnderflowOf(dim, c->view().control_points.coordinates,
+                       c->view().weights);
+  }
+  if (const auto* c = std::get_if<LagrangeCurve>(&curve)) {
+    return UnderflowOf(dim, c->view().points.coordinates, {});
+  }
+  const auto& hermite = std::get<HermiteCurve>(curve);
+  return UnderflowOf(dim, hermite.view().points.coordinates, {});
+}
+
+double GeometryUnderflow(const Surface& surface) {
+  const size_t dim = static_cast<size_t>(DimensionOf(surface));
+  if (const auto* s = std::get_if<BezierSurface>(&surface)) {
+    return UnderflowOf(dim, s->view().control_net.coordinates,
+                       s->view().weights);
+  }
+  if (const auto* s = std::get_if<BSplineSurface>(&surface)) {
+    return UnderflowOf(dim, s->view().control_net.coordinates,
+                       s->view().weights);
+  }
+  const auto& patch = std::get<TriangularPatch>(surface);
+  return UnderflowOf(dim, patch.view().control_points.coordinates,
+                     patch.view().weights);
+}
+
 // The measures of a set of Bezier pieces (coordinates, weights).
 struct PieceMeasures {
   double scale = 0.0;
+  double underflow = 0.0;
   bool positive_weights = true;
   bool polynomial = true;
   std::vector<double> lower, upper;
@@ -43,6 +100,7 @@ struct PieceMeasures {
       lower[k % dim] = std::min(lower[k % dim], x);
       upper[k % dim] = std::max(upper[k % dim], x);
     }
+    underflow = std::max(underflow, UnderflowOf(dim, coordinates, weights));
     for (double w : weights) {
       if (!(w > 0.0)) positive_weights = false;
       if (w != weights.front()) polynomial = false;
@@ -139,6 +197,8 @@ absl::StatusOr<OracleCurve> OracleCurve::Create(
     measures.Add(piece.dimension, piece.coordinates, piece.weights);
   }
   oracle.scale_ = measures.scale;
+  oracle.underflow_ =
+      std::max(measures.underflow, GeometryUnderflow(oracle.curve_));
   oracle.positive_weights_ = measures.positive_weights;
   oracle.polynomial_ = measures.polynomial;
   oracle.hull_lower_ = std::move(measures.lower);
@@ -240,6 +300,8 @@ absl::StatusOr<OracleSurface> OracleSurface::Create(
     measures.Add(patch.dimension, patch.coordinates, patch.weights);
   }
   oracle.scale_ = measures.scale;
+  oracle.underflow_ =
+      std::max(measures.underflow, GeometryUnderflow(oracle.surface_));
   oracle.positive_weights_ = measures.positive_weights;
   oracle.hull_lower_ = std::move(measures.lower);
   oracle.hull_upper_ = std::move(measures.upper);

@@ -101,6 +101,10 @@ class OracleCurve {
   int dimension() const { return DimensionOf(curve_); }
   ParameterDomain domain() const { return DomainOf(curve_); }
   double scale() const { return scale_; }
+  // The largest coordinate of a control point whose homogeneous value
+  // w x underflows (below 2^-970): the evaluator may lose all of it, so its
+  // points are only that accurate there (0 when none does).
+  double underflow() const { return underflow_; }
   // True when every piece has positive weights (or none): the curve then
   // lies in the convex hull of its pieces' control points.
   bool positive_weights() const { return positive_weights_; }
@@ -137,6 +141,7 @@ class OracleCurve {
   Curve curve_;
   BezierDecomposition pieces_;
   double scale_ = 0.0;
+  double underflow_ = 0.0;
   bool positive_weights_ = true;
   bool polynomial_ = true;
   bool continuous_ = true;
@@ -151,6 +156,7 @@ class OracleSurface {
 
   int dimension() const { return DimensionOf(surface_); }
   double scale() const { return scale_; }
+  double underflow() const { return underflow_; }  // as OracleCurve's
   bool positive_weights() const { return positive_weights_; }
 
   // Evaluate returns the points at the (u, v) pairs `uv`, or the
@@ -176,6 +182,7 @@ class OracleSurface {
 
   Surface surface_;
   double scale_ = 0.0;
+  double underflow_ = 0.0;
   bool positive_weights_ = true;
   std::vector<double> breakpoints_[2];
   double triangle_magnitude_ = 0.0;

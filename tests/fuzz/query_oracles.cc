@@ -699,6 +699,7 @@ Finding CheckSampleByArcLength(const v1::SampleByArcLengthRequest& request,
 struct BoxGeometry {
   int dimension = 0;
   double scale = 0.0;
+  double underflow = 0.0;  // OracleCurve::underflow
 
   bool positive_weights = true;
   std::function<double(int)> hull_lower, hull_upper;
@@ -714,7 +715,7 @@ Finding CheckBox(const v1::BoundingBoxResponse& answer, double tolerance,
                         answer.dimension(), " with ", answer.lower_size(),
                         " lower and ", answer.upper_size(), " upper values");
   }
-  const double margin = ValueMargin(geometry.scale);
+  const double margin = ValueMargin(geometry.scale) + geometry.underflow;
   const std::string box =
       absl::StrCat("BoundingBox ", PointText(SpanOf(answer.lower())), " - ",
                    PointText(SpanOf(answer.upper())), " (tolerance ",
@@ -757,6 +758,7 @@ Finding CheckCurveBox(const v1::CurveBoundingBoxRequest& request,
   const BoxGeometry geometry{
       .dimension = curve->dimension(),
       .scale = curve->scale(),
+      .underflow = curve->underflow(),
       .positive_weights = curve->positive_weights(),
       .hull_lower = [&](int j) { return curve->HullLower(j); },
       .hull_upper = [&](int j) { return curve->HullUpper(j); },
@@ -781,6 +783,7 @@ Finding CheckSurfaceBox(const v1::SurfaceBoundingBoxRequest& request,
   const BoxGeometry geometry{
       .dimension = surface->dimension(),
       .scale = surface->scale(),
+      .underflow = surface->underflow(),
       .positive_weights = surface->positive_weights(),
       .hull_lower = [&](int j) { return surface->HullLower(j); },
       .hull_upper = [&](int j) { return surface->HullUpper(j); },

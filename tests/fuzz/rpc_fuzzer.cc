@@ -92,6 +92,11 @@ ServiceLimits FuzzLimits() {
   // rational net whose weights defeat the hull bounds took about a
   // millisecond under the sanitizers).
   limits.max_closest_point_pieces = 1024;
+  // An intersection or section does at most 2^22 units of work, 1/64 of the
+  // server's default: the comparison tracing of the fuzz build runs these
+  // loops 15 to 50 times slower, and 2^28 units took past the 5 s deadline
+  // (a quadtree 0.2 s in release); the bound itself is what is checked.
+  limits.max_query_work = uint64_t{1} << 22;
   return limits;
 }
 

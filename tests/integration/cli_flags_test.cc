@@ -51,6 +51,21 @@ TEST(CliFlags, AMissingFileNamesItsReason) {
                         "directory"));
 }
 
+// An endless input ends with an error after kMaxInputBytes (256 MiB), from
+// a file or from stdin; it was read until the memory ran out.
+TEST(CliFlags, AnEndlessInputIsRefusedAtItsLimit) {
+  const CommandResult file = RunCli("eval --file /dev/zero");
+  EXPECT_EQ(file.exit_code, 2) << file.output;
+  EXPECT_THAT(file.output, HasSubstr("cannot read /dev/zero: it is larger "
+                                     "than 268435456 bytes"));
+  const CommandResult piped = RunCommand(
+      absl::StrCat("head -c 300000000 /dev/zero | ", FREEFORM_CLI_PATH,
+                   " eval 2>&1"));
+  EXPECT_EQ(piped.exit_code, 2) << piped.output;
+  EXPECT_THAT(piped.output,
+              HasSubstr("cannot read stdin: it is larger than 268435456"));
+}
+
 TEST(CliFlags, MalformedJsonNamesLineAndColumn) {
   const std::string file = WriteTempFile("{\n  \"curve\": {,\n}\n");
   const CommandResult result = RunCli("eval --file " + file);

@@ -936,7 +936,7 @@ std::vector<RpcCase> SurfaceCases() {
                 *request.mutable_curve()->mutable_bspline();
             curve.set_degree(3);
             curve.mutable_control_points()->set_dimension(3);
-            constexpr int kCount = 400;
+            constexpr int kCount = 2'000;
             for (int i = 0; i < kCount; ++i) {
               const double s = static_cast<double>(i) / (kCount - 1);
               curve.mutable_control_points()->add_coordinates(

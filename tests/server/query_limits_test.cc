@@ -72,6 +72,63 @@ TEST_F(QueryLimitsTest, IntersectionStopsAtTheDeadline) {
   EXPECT_TRUE(Drains(Scaled(std::chrono::seconds(2))));
 }
 
+// --max_query_work bounds one search: two wiggly splines of 200 points
+// cross a few hundred times, which the default limit lets through and 2^16
+// units do not (RESOURCE_EXHAUSTED naming the tolerance and the flag);
+// the section of a wave net likewise.
+TEST_F(QueryLimitsTest, QueryWorkIsBoundedByTheServersLimit) {
+  v1::IntersectCurvesRequest crossing;
+  *crossing.mutable_first() = WigglySpline(200, 2, 3);
+  *crossing.mutable_second() = WigglySpline(200, 2, 5);
+  v1::SectionSurfaceRequest section;
+  v1::BSplineSurface& wave = *section.mutable_surface()->mutable_bspline();
+  wave.set_degree_u(3);
+  wave.set_degree_v(3);
+  wave.mutable_control_net()->set_dimension(3);
+  wave.mutable_control_net()->set_count_u(30);
+  wave.mutable_control_net()->set_count_v(30);
+  for (int i = 0; i < 30; ++i) {
+    for (int j = 0; j < 30; ++j) {
+      for (const double c : {i / 29.0, j / 29.0, std::sin(i * 0.7 + j)}) {
+        wave.mutable_control_net()->add_coordinates(c);
+      }
+    }
+  }
+  for (int k = 0; k < 34; ++k) {
+    wave.add_knots_u(std::clamp(k - 3, 0, 27));
+    wave.add_knots_v(std::clamp(k - 3, 0, 27));
+  }
+  for (const double c : {0.0, 0.0, 0.0}) section.add_plane_point(c);
+  for (const double c : {0.0, 0.0, 1.0}) section.add_plane_normal(c);
+  const auto both = [&] {
+    return std::pair{
+        client_->Unary(client_->curves(), &v1::CurveService::Stub::Intersect,
+                       crossing),
+        client_->Unary(client_->surfaces(),
+                       &v1::SurfaceService::Stub::Section, section)};
+  };
+  {
+    const auto [intersection, cut] = both();
+    ASSERT_TRUE(intersection.ok()) << intersection.status();
+    EXPECT_GT(intersection->first_parameters_size(), 0);
+    ASSERT_TRUE(cut.ok()) << cut.status();
+    EXPECT_GT(cut->polylines_size(), 0);
+  }
+  ServiceLimits limits;
+  limits.max_query_work = uint64_t{1} << 16;
+  StartServer(limits);
+  const auto [intersection, cut] = both();
+  ASSERT_EQ(intersection.status().code(), absl::StatusCode::kResourceExhausted)
+      << intersection.status();
+  EXPECT_EQ(FieldViolationsOf(intersection.status()).at(0).field,
+            "options.tolerance");
+  EXPECT_THAT(std::string(intersection.status().message()),
+              ::testing::HasSubstr("--max_query_work"));
+  ASSERT_EQ(cut.status().code(), absl::StatusCode::kResourceExhausted)
+      << cut.status();
+  EXPECT_EQ(FieldViolationsOf(cut.status()).at(0).field, "tolerance");
+}
+
 TEST_F(QueryLimitsTest, BatchesBeyondTheLimitsAreRefusedByField) {
   ServiceLimits limits;
   limits.max_control_points = 1000;

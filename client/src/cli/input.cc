@@ -58,17 +58,15 @@ class SyntaxCheck : public nlohmann::json_sax<nlohmann::json> {
 
 absl::StatusOr<std::string> ReadInput(const std::string& file,
                                       absl::string_view what) {
-  if (!file.empty() && file != "-") return ReadFileToString(file);
+  if (!file.empty() && file != "-") {
+    return ReadFileToString(file, kMaxInputBytes);
+  }
   if (isatty(STDIN_FILENO)) {
     std::cerr << "freeform: reading " << what
               << " from stdin; pass --file FILE or pipe it in (end with "
                  "Ctrl-D)\n";
   }
-  std::string text(std::istreambuf_iterator<char>(std::cin), {});
-  if (std::cin.bad()) {
-    return absl::FailedPreconditionError("cannot read stdin");
-  }
-  return text;
+  return ReadStandardInput(kMaxInputBytes);
 }
 
 std::string LineAndColumn(absl::string_view text, size_t offset) {

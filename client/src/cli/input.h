@@ -16,9 +16,16 @@
 
 namespace freeform::cli {
 
+// The most bytes of input read: four times the server's default message
+// limit (64 MiB), room for any request it would accept in JSON or CSV
+// (about 3 bytes of text per byte of message), so that `--file /dev/zero`
+// or an endless pipe ends with an error instead of filling the memory.
+inline constexpr size_t kMaxInputBytes = size_t{256} << 20;
+
 // ReadInput returns the contents of `file`, or of stdin for "" and "-"
 // (telling on stderr that it reads `what` there when stdin is a terminal).
-// A file that cannot be read is an error naming the reason.
+// A file that cannot be read, or holds more than kMaxInputBytes, is an
+// error naming the reason.
 absl::StatusOr<std::string> ReadInput(const std::string& file,
                                       absl::string_view what = "the request");
 

@@ -5,6 +5,7 @@
 #define FREEFORM_CLIENT_FILE_H_
 
 #include <cstddef>
+#include <limits>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -16,11 +17,19 @@ namespace freeform {
 // whole CA bundle (/etc/ssl/certs/ca-certificates.crt) is about 220 KB.
 inline constexpr size_t kMaxCredentialFileBytes = size_t{1} << 20;
 
-// ReadFileToString returns the whole contents of `path`, or an error that
-// names the path and the reason ("cannot read PATH: No such file or
-// directory"): NOT_FOUND when it does not exist, FAILED_PRECONDITION when it
-// cannot be opened or read (a directory, no permission).
-absl::StatusOr<std::string> ReadFileToString(const std::string& path);
+// ReadFileToString returns the whole contents of `path` (any file that
+// reads: a pipe or process substitution too), or an error that names the
+// path and the reason ("cannot read PATH: No such file or directory"):
+// NOT_FOUND when it does not exist, FAILED_PRECONDITION when it cannot be
+// opened or read (a directory, no permission) or holds more than
+// `max_bytes` ("... is larger than N bytes", after reading max_bytes + 1).
+absl::StatusOr<std::string> ReadFileToString(
+    const std::string& path,
+    size_t max_bytes = std::numeric_limits<size_t>::max());
+
+// ReadStandardInput returns what stdin holds, refused like
+// ReadFileToString past `max_bytes`.
+absl::StatusOr<std::string> ReadStandardInput(size_t max_bytes);
 
 // ReadRegularFile returns the contents of `path` when it is a regular file
 // (or a symbolic link to one) of at most `max_bytes` bytes. Anything else is

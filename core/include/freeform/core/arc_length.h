@@ -14,10 +14,15 @@
 // otherwise each half is refined the same way. The difference estimates the
 // error of the coarser rule, so the kept sums are far more accurate than
 // the tolerance for smooth speeds. An interval whose rules agree to rounding
-// (64 epsilon of their value) is kept as it is, and a piece is not split
-// beyond kMaxArcLengthDepth halvings or kMaxArcLengthIntervals intervals,
-// so a tolerance below what double precision resolves (about 1e-15 of the
-// length) ends there with the best sum found.
+// (64 epsilon of their value plus the rounding of the speed, which is that
+// of the coordinates times the degree: a stretch where the curve stands
+// still cannot do better) is kept as it is, and a piece is not split
+// beyond kMaxArcLengthDepth halvings or kMaxArcLengthIntervals intervals.
+// A tolerance below what double precision resolves on the curve, 2^-48
+// times its largest control point coordinate (the speed is computed to the
+// rounding of the coordinates), is refused at once naming "tolerance",
+// as Tessellate refuses it, unless every piece is a straight polynomial
+// segment (whose rule is exact).
 //
 // Extreme weights: a rational piece whose weights differ by a large factor
 // moves almost all of its way in a tiny part of its parameter (the corner
@@ -26,7 +31,10 @@
 // piece is first halved by de Casteljau, in homogeneous form and without
 // evaluating it at parameters, until the weights of every stretch are
 // within a factor 4 of each other (a stretch's spread of 2^m takes about m
-// halvings, kMaxArcLengthWeightHalvings at most); then its speed is as
+// halvings, kMaxArcLengthWeightHalvings at most; each half gets the mean
+// of its share of the parameter and its share of the two halves' control
+// polygon lengths of the stretch's tolerance, so that the half where the
+// curve runs gets most of it); then its speed is as
 // smooth as a polynomial's and the quadrature above applies in the
 // stretch's own parameter (docs/references.md, 'Arc length of rational
 // curves').

@@ -68,7 +68,11 @@
 // and more next to 1), the point at the nearest double parameter may lie
 // farther than the certified lower bound plus the tolerance: no parameter
 // answers the query, and the call fails (INVALID_ARGUMENT "weights", or
-// "tolerance" for polynomial geometry, saying by how much it misses).
+// "tolerance" for polynomial geometry, saying by how much it misses). A
+// further minimum that no double parameter reaches while the nearest one
+// is answered (the second leg of such a corner) is left out, and the
+// answer says complete = false: every returned minimum is within the
+// tolerance of the returned distance at its returned parameters.
 //
 // When the minimum is attained along a whole curve or region (the centre
 // of a circle or of a sphere patch, a point on the axis of a surface of
