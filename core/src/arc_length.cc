@@ -84,14 +84,9 @@ struct CurvePieces {
 absl::Status CheckResolvable(const CurvePieces& pieces, double tolerance) {
   double largest = 0.0;
   bool straight = true;
-  std::vector<double> point;
   for (const Net& net : pieces.nets) {
     straight &= !net.rational && net.count_u <= 2;
-    point.resize(static_cast<size_t>(net.dimension));
-    for (int i = 0; i < net.count_u; ++i) {
-      if (!internal::Point(net, i, 0, point.data())) continue;
-      for (const double c : point) largest = std::max(largest, std::abs(c));
-    }
+    largest = std::max(largest, internal::LargestNetCoordinate(net));
   }
   if (straight) return absl::OkStatus();
   return internal::CheckResolvableAt(tolerance,
@@ -304,16 +299,9 @@ struct Pending {
 // its rounding sees it: its degree times its largest projected coordinate
 // (the derivative of a rational net subtracts products of the coordinates'
 // size, so its rounding is that of the coordinates, not of the speed; a
-// stretch where the curve stands still has a speed far below it). Zero
-// when a weight is not positive.
+// stretch where the curve stands still has a speed far below it).
 double SpeedRounding(const Net& net) {
-  double largest = 0.0;
-  std::vector<double> point(static_cast<size_t>(net.dimension));
-  for (int i = 0; i < net.count_u; ++i) {
-    if (!internal::Point(net, i, 0, point.data())) return 0.0;
-    for (const double c : point) largest = std::max(largest, std::abs(c));
-  }
-  return (net.count_u - 1) * largest;
+  return (net.count_u - 1) * internal::LargestNetCoordinate(net);
 }
 
 // AddSegment integrates the last segment of `table` (whose net is `net`)
@@ -382,19 +370,14 @@ absl::Status WeightsError(absl::string_view why) {
 // projected points; infinity when a weight is not positive), which bounds
 // the length of the curve: de Casteljau cuts its corners.
 double PolygonLength(const Net& net) {
-  const int dim = net.dimension;
-  double length = 0.0;
-  std::vector<double> previous(static_cast<size_t>(dim));
-  std::vector<double> point(static_cast<size_t>(dim));
-  for (int i = 0; i < net.count_u; ++i) {
-    if (!internal::Point(net, i, 0, point.data())) {
-      return std::numeric_limits<double>::infinity();
-    }
-    if (i > 0) {
-      length += internal::ScaledDistance(point.data(), previous.data(), dim);
-    }
-    std::swap(point, previous);
+  std::vector<double> points;
+  if (!internal::Project(net, points)) {
+    return std::numeric_limits<double>::infinity();
   }
+  double length = 0.0;
+  double unused = 0.0;
+  internal::PolygonLengths(points, net.dimension, net.count_u, 1, length,
+                           unused);
   return length;
 }
 

@@ -280,17 +280,23 @@ absl::Status CheckTolerances(double tolerance, double separation) {
   return absl::OkStatus();
 }
 
+double LargestNetCoordinate(const Net& net) {
+  double largest = 0.0;
+  std::vector<double> point(static_cast<size_t>(net.dimension));
+  for (int i = 0; i < net.count_u; ++i) {
+    for (int j = 0; j < net.count_v; ++j) {
+      if (!Point(net, i, j, point.data())) continue;
+      for (const double x : point) largest = std::max(largest, std::abs(x));
+    }
+  }
+  return largest;
+}
+
 double LargestCoordinate(absl::Span<const Pieces* const> pieces) {
   double largest = 0.0;
   for (const Pieces* each : pieces) {
-    std::vector<double> point(static_cast<size_t>(each->dimension));
     for (const Net& net : each->nets) {
-      for (int i = 0; i < net.count_u; ++i) {
-        for (int j = 0; j < net.count_v; ++j) {
-          if (!Point(net, i, j, point.data())) continue;
-          for (const double x : point) largest = std::max(largest, std::abs(x));
-        }
-      }
+      largest = std::max(largest, LargestNetCoordinate(net));
     }
   }
   return largest;

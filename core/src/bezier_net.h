@@ -80,6 +80,10 @@ bool Point(const Net& net, int i, int j, double* point);
 // "tolerance" and a finite "separation" >= 0.
 absl::Status CheckTolerances(double tolerance, double separation);
 
+// LargestNetCoordinate returns the largest magnitude of a coordinate of the
+// net's projected control points of positive weight (0 for none).
+double LargestNetCoordinate(const Net& net);
+
 // LargestCoordinate returns the largest magnitude of a coordinate of the
 // Cartesian control points (those of positive weight) of all `pieces`: the
 // scale that rounding is relative to.

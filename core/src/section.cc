@@ -641,8 +641,7 @@ void Chain::Walk(size_t start_end, const Pieces& pieces, Sections& sections) {
     // promise), so its last point is the first's.
     const size_t d = static_cast<size_t>(dimension_);
     const size_t first = sections.offsets.back() * d;
-    std::copy_n(sections.points.begin() + first, d,
-                sections.points.end() - d);
+    std::copy_n(sections.points.begin() + first, d, sections.points.end() - d);
   }
   sections.closed.push_back(closed ? 1 : 0);
   sections.offsets.push_back(sections.points.size() /

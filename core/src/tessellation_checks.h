@@ -39,9 +39,9 @@ inline absl::Status CheckResolvableAt(double tolerance, double size,
   if (tolerance >= kResolution * size) return absl::OkStatus();
   return InvalidFieldError(
       field, absl::StrCat(tolerance,
-                                " is below what double precision resolves on "
-                                "geometry of size ",
-                                size, " (about ", kResolution * size, ")"));
+                          " is below what double precision resolves on "
+                          "geometry of size ",
+                          size, " (about ", kResolution * size, ")"));
 }
 
 // CheckResolvable is CheckResolvableAt for geometry of the size of

@@ -176,12 +176,36 @@ TEST(CurveBoundingBox, EveryScaleHasTheScaledBox) {
     }
   }
   std::vector<double> fuzzed(15 * 3, 0.0);
-  const double tail[] = {1.0000000020372682e300, 1e300, 0, 2e300, 0, 1e300,
-                         2e300, 0, 1e300, 3e300, 1e300, 1e300,
-                         3e300, 1e300, 1e300, 3e300, 1e300, 1e300,
-                         3e300, 1e300, 1e300, 3e300, 1e300, 1e300,
-                         4e300, 2.172923689948439e-11, 0,
-                         4e300, 2.172923689948439e-11, 0};
+  const double tail[] = {1.0000000020372682e300,
+                         1e300,
+                         0,
+                         2e300,
+                         0,
+                         1e300,
+                         2e300,
+                         0,
+                         1e300,
+                         3e300,
+                         1e300,
+                         1e300,
+                         3e300,
+                         1e300,
+                         1e300,
+                         3e300,
+                         1e300,
+                         1e300,
+                         3e300,
+                         1e300,
+                         1e300,
+                         3e300,
+                         1e300,
+                         1e300,
+                         4e300,
+                         2.172923689948439e-11,
+                         0,
+                         4e300,
+                         2.172923689948439e-11,
+                         0};
   std::copy(std::begin(tail), std::end(tail), fuzzed.begin() + 15);
   const Curve huge = *LagrangeCurve::Create({.points = {3, fuzzed}});
   const absl::StatusOr<BoundingBox> huge_box = CurveBoundingBox(huge, 1e-9);

@@ -58,9 +58,8 @@ TEST(CliFlags, AnEndlessInputIsRefusedAtItsLimit) {
   EXPECT_EQ(file.exit_code, 2) << file.output;
   EXPECT_THAT(file.output, HasSubstr("cannot read /dev/zero: it is larger "
                                      "than 268435456 bytes"));
-  const CommandResult piped = RunCommand(
-      absl::StrCat("head -c 300000000 /dev/zero | ", FREEFORM_CLI_PATH,
-                   " eval 2>&1"));
+  const CommandResult piped = RunCommand(absl::StrCat(
+      "head -c 300000000 /dev/zero | ", FREEFORM_CLI_PATH, " eval 2>&1"));
   EXPECT_EQ(piped.exit_code, 2) << piped.output;
   EXPECT_THAT(piped.output,
               HasSubstr("cannot read stdin: it is larger than 268435456"));

@@ -46,7 +46,8 @@ TEST(FreeformdFlags, HelpAndVersionExitZero) {
   EXPECT_THAT(help.output, HasSubstr("--listen  Address to listen on"));
   EXPECT_THAT(help.output, HasSubstr("(default: 0.0.0.0:50051)"));
   EXPECT_THAT(help.output, HasSubstr("--max_simplify_moves"));
-  EXPECT_THAT(help.output, HasSubstr("--max_query_work  Work one intersection"));
+  EXPECT_THAT(help.output,
+              HasSubstr("--max_query_work  Work one intersection"));
   EXPECT_THAT(help.output, HasSubstr("--reflection  Serve gRPC server "
                                      "reflection"));
   EXPECT_THAT(help.output, HasSubstr("--tls_allowed_clients  Comma-separated "

@@ -104,8 +104,8 @@ TEST_F(QueryLimitsTest, QueryWorkIsBoundedByTheServersLimit) {
     return std::pair{
         client_->Unary(client_->curves(), &v1::CurveService::Stub::Intersect,
                        crossing),
-        client_->Unary(client_->surfaces(),
-                       &v1::SurfaceService::Stub::Section, section)};
+        client_->Unary(client_->surfaces(), &v1::SurfaceService::Stub::Section,
+                       section)};
   };
   {
     const auto [intersection, cut] = both();
