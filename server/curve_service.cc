@@ -86,8 +86,8 @@ absl::StatusOr<Evaluation<Curve>> CurveEvaluation(
       !status.ok()) {
     return status;
   }
-  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits, "curve",
-                                             request.bezier_algorithm());
+  absl::StatusOr<Curve> curve = PrepareCurveToEvaluate(
+      request.curve(), limits, "curve", request.bezier_algorithm());
   const int dimension = curve.ok() ? DimensionOf(*curve) : 0;
   return Resolve(std::move(curve), dimension, request.parameters(),
                  request.derivative_order(), limits);

@@ -4,10 +4,12 @@
 #include <limits>
 #include <string>
 #include <utility>
+#include <variant>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "convert.h"
+#include "freeform/core/lagrange.h"
 #include "freeform/core/status.h"
 
 namespace freeform::server {
@@ -299,10 +301,10 @@ absl::StatusOr<ControlNetView> PrepareNet(const v1::ControlNet& message,
                         .coordinates = SpanOf(message.coordinates())};
 }
 
-absl::StatusOr<Curve> PrepareCurve(const v1::Curve& message,
-                                   const ServiceLimits& limits,
-                                   absl::string_view field,
-                                   v1::BezierAlgorithm algorithm) {
+absl::StatusOr<Curve> PrepareCurveToEvaluate(const v1::Curve& message,
+                                             const ServiceLimits& limits,
+                                             absl::string_view field,
+                                             v1::BezierAlgorithm algorithm) {
   switch (message.kind_case()) {
     case v1::Curve::kBezier:
       return Prefixed(BezierOf(message.bezier(), ToCore(algorithm), limits),
@@ -324,6 +326,21 @@ absl::StatusOr<Curve> PrepareCurve(const v1::Curve& message,
   }
   return InvalidFieldError(
       field, "set one curve kind: bezier, bspline, lagrange, hermite, power");
+}
+
+absl::StatusOr<Curve> PrepareCurve(const v1::Curve& message,
+                                   const ServiceLimits& limits,
+                                   absl::string_view field) {
+  absl::StatusOr<Curve> curve =
+      PrepareCurveToEvaluate(message, limits, field, v1::BEZIER_ALGORITHM_AUTO);
+  if (!curve.ok()) return curve.status();
+  if (const auto* lagrange = std::get_if<LagrangeCurve>(&*curve)) {
+    if (absl::Status status = CheckLagrangeBezierForm(lagrange->view());
+        !status.ok()) {
+      return PrefixFieldPath(status, Join(field, "lagrange"));
+    }
+  }
+  return curve;
 }
 
 absl::StatusOr<CurveBasis> PrepareBasis(const v1::Basis& message,

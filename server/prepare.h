@@ -22,12 +22,21 @@
 
 namespace freeform::server {
 
-// PrepareCurve validates a curve of any kind; `algorithm` applies to Bezier
-// and power forms. Power-form curves become Bezier curves.
-absl::StatusOr<Curve> PrepareCurve(
-    const v1::Curve& message, const ServiceLimits& limits,
-    absl::string_view field = "curve",
-    v1::BezierAlgorithm algorithm = v1::BEZIER_ALGORITHM_AUTO);
+// PrepareCurveToEvaluate validates a curve of any kind for evaluation;
+// `algorithm` applies to Bezier and power forms. Power-form curves become
+// Bezier curves.
+absl::StatusOr<Curve> PrepareCurveToEvaluate(const v1::Curve& message,
+                                             const ServiceLimits& limits,
+                                             absl::string_view field,
+                                             v1::BezierAlgorithm algorithm);
+
+// PrepareCurve validates a curve for every other RPC, which work on its
+// Bezier pieces: as PrepareCurveToEvaluate, and a Lagrange curve must have
+// a Bezier form that double precision holds (CheckLagrangeBezierForm,
+// "<field>.lagrange.nodes").
+absl::StatusOr<Curve> PrepareCurve(const v1::Curve& message,
+                                   const ServiceLimits& limits,
+                                   absl::string_view field = "curve");
 
 // PrepareBasis validates a set of blending functions.
 absl::StatusOr<CurveBasis> PrepareBasis(const v1::Basis& message,

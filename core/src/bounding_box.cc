@@ -23,7 +23,8 @@
 namespace freeform {
 namespace {
 
-// The box is widened by this fraction of the largest control coordinate.
+// Each side of the box is widened by this fraction of the largest control
+// coordinate on its axis.
 constexpr double kMargin = 0x1p-44;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
@@ -332,17 +333,28 @@ absl::StatusOr<double> Extreme(LiftedPieces<Shape>& pieces, int j, double sign,
   }
 }
 
+// AxisScales returns, for each axis, the largest |coordinate| of the
+// pieces' control points on it: a coordinate's rounding is relative to its
+// own axis, so a huge x widens neither y nor z.
+template <typename Net>
+std::vector<double> AxisScales(const std::vector<Net>& nets) {
+  const size_t dimension = static_cast<size_t>(nets.front().dimension);
+  std::vector<double> scales(dimension, 0.0);
+  for (const Net& net : nets) {
+    for (size_t c = 0; c < net.coordinates.size(); ++c) {
+      double& scale = scales[c % dimension];
+      scale = std::max(scale, std::abs(net.coordinates[c]));
+    }
+  }
+  return scales;
+}
+
 // BoxOf returns the box of the geometry made of the Bezier pieces `nets`.
 template <typename Net>
 absl::StatusOr<BoundingBox> BoxOf(std::vector<Net> nets, double tolerance,
                                   const CancellationToken* cancel) {
   const int dimension = nets.front().dimension;
-  double scale = 0.0;
-  for (const Net& net : nets) {
-    for (const double c : net.coordinates) scale = std::max(scale, std::abs(c));
-  }
-  const double margin = kMargin * scale;
-  const double reachable = std::max(tolerance, margin);
+  const std::vector<double> scales = AxisScales(nets);
   // A side that is not finite makes the box unbounded: the sides not yet
   // searched are left infinite, which still contains the geometry.
   BoundingBox box{.lower = std::vector<double>(dimension, -kInfinity),
@@ -351,6 +363,8 @@ absl::StatusOr<BoundingBox> BoxOf(std::vector<Net> nets, double tolerance,
   auto pieces = Lift(nets);
   std::vector<double> scratch;
   for (int j = 0; j < dimension; ++j) {
+    const double margin = kMargin * scales[static_cast<size_t>(j)];
+    const double reachable = std::max(tolerance, margin);
     for (const double sign : {1.0, -1.0}) {
       absl::StatusOr<double> extreme =
           Extreme(pieces, j, sign, reachable, poll, scratch);

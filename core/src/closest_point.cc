@@ -317,6 +317,7 @@ class Search {
   bool Examine(Node node, CancellationPoll& poll, absl::Status& status);
   void MarkIfFlat(const Node& node, const Candidate& found);
   void Push(Node node);
+  bool AlreadyPolished(const Candidate& candidate);
   void Report(size_t r, ClosestPoints& answer);
   double* PointOf(const Candidate& candidate);
   Net Spare();
@@ -338,6 +339,8 @@ class Search {
   std::vector<Net> spare_;
   std::vector<Candidate> candidates_;
   std::vector<Candidate> polished_;
+  // The points of polished_ (surfaces only), dimension values each.
+  std::vector<double> polished_points_;
   double best_ = kInfinity;
   double lower_ = kInfinity;
   // A resolved part lies at one distance from the query to rounding: the
@@ -646,6 +649,31 @@ absl::Status Search::Run(const double* query, size_t r, CancellationPoll& poll,
   return absl::OkStatus();
 }
 
+// AlreadyPolished says whether a surface candidate would only repeat a
+// polished minimum: one at least as close, on the same piece, whose point
+// is within the separation of the candidate's, so that the two would be
+// reported as one minimum. Neighbouring parts of a search converge to the
+// same minimum, and polishing each of them (kPolishNewtonSteps evaluations)
+// cost half of a degree-9 triangle's search that found 1024 of them. On a
+// curve two such points may still be two minima (their parameters differ:
+// a self-intersection), so curves polish every candidate.
+bool Search::AlreadyPolished(const Candidate& candidate) {
+  if (pieces_.parameter_count != 2 || polished_.empty()) return false;
+  const int dim = pieces_.dimension;
+  const double* point = PointOf(candidate);
+  for (size_t k = 0; k < polished_.size(); ++k) {
+    if (polished_[k].piece != candidate.piece ||
+        polished_[k].distance > candidate.distance) {
+      continue;
+    }
+    if (PointDistance(point, &polished_points_[k * static_cast<size_t>(dim)],
+                      dim) <= options_.separation) {
+      return true;
+    }
+  }
+  return false;
+}
+
 // Report polishes the candidates within tolerance of the best on their
 // whole piece and writes the distinct ones, closest first.
 void Search::Report(size_t r, ClosestPoints& answer) {
@@ -653,6 +681,7 @@ void Search::Report(size_t r, ClosestPoints& answer) {
   const double one[2] = {1.0, 1.0};
   const double limit = best_ + options_.tolerance;
   polished_.clear();
+  polished_points_.clear();
   const Candidate* last = nullptr;  // the last candidate polished
   for (const Candidate& candidate : candidates_) {
     if (!(candidate.distance <= limit)) continue;
@@ -662,10 +691,17 @@ void Search::Report(size_t r, ClosestPoints& answer) {
       continue;
     }
     last = &candidate;
+    if (candidate.polish && AlreadyPolished(candidate)) continue;
     const Candidate polished =
         candidate.polish ? Newton(candidate, zero, one, kPolishNewtonSteps)
                          : candidate;
-    if (std::isfinite(polished.distance)) polished_.push_back(polished);
+    if (!std::isfinite(polished.distance)) continue;
+    polished_.push_back(polished);
+    if (pieces_.parameter_count == 2) {
+      const double* point = PointOf(polished);
+      polished_points_.insert(polished_points_.end(), point,
+                              point + pieces_.dimension);
+    }
   }
   // Stable: minima at one distance (a flat part's) keep their order.
   std::stable_sort(polished_.begin(), polished_.end(),

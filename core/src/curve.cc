@@ -205,11 +205,13 @@ absl::StatusOr<BezierDecomposition> DecomposeCurve(
           [](const LagrangeCurve& lagrange)
               -> absl::StatusOr<BezierDecomposition> {
             const ParameterDomain domain = lagrange.domain();
-            return SinglePiece(
-                {.dimension = lagrange.dimension(),
-                 .coordinates = LagrangeToBezier(lagrange.view()),
-                 .weights = {}},
-                domain.start, domain.end);
+            absl::StatusOr<std::vector<double>> coordinates =
+                LagrangeToBezier(lagrange.view());
+            if (!coordinates.ok()) return coordinates.status();
+            return SinglePiece({.dimension = lagrange.dimension(),
+                                .coordinates = *std::move(coordinates),
+                                .weights = {}},
+                               domain.start, domain.end);
           },
           [](const HermiteCurve& hermite)
               -> absl::StatusOr<BezierDecomposition> {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "double_double.h"
 #include "freeform/core/status.h"
 #include "validated.h"
 
@@ -258,65 +259,241 @@ void LagrangeBasis(absl::Span<const double> nodes,
 
 namespace {
 
-// BezierHalfFromTaylor writes control points b_0..b_top of the curve seen
-// from one end of its domain: `from` = t_0 with `step` = h gives b_j, and
-// `from` = t_n with `step` = -h gives b_{n-j} (the reversed curve), at
-// out[index(j)].
-template <typename Index>
-void BezierHalfFromTaylor(const LagrangeCurveView& curve,
-                          absl::Span<const double> nodes,
-                          absl::Span<const double> weights, double from,
-                          double step, int top, Index index,
-                          std::vector<double>& out) {
-  const size_t count = nodes.size();
-  const int n = static_cast<int>(count) - 1;
-  const size_t d = static_cast<size_t>(curve.points.dimension);
-  std::vector<double> basis((static_cast<size_t>(top) + 1) * count);
-  std::vector<double> scratch(static_cast<size_t>(top) + 1);
-  LagrangeBasis(nodes, weights, from, top, absl::MakeSpan(scratch),
-                absl::MakeSpan(basis));
-  // a_k = C^(k)(from) step^k / k!.
-  std::vector<double> taylor((static_cast<size_t>(top) + 1) * d, 0.0);
-  double factor = 1.0;
-  for (int k = 0; k <= top; ++k) {
-    double* a = &taylor[static_cast<size_t>(k) * d];
-    for (size_t i = 0; i < count; ++i) {
-      const double weight = factor * basis[static_cast<size_t>(k) * count + i];
-      const double* point = curve.points.point(i);
-      for (size_t x = 0; x < d; ++x) a[x] += weight * point[x];
+using internal::DoubleDouble;
+using internal::TwoSum;
+
+// The bound on the conversion's rounding, relative to the magnitudes of
+// BernsteinBasisOfLagrange (below): each factor's two coefficients come from
+// exact node differences and one division, each step of the product and of
+// the final sum costs a few double-double operations of relative error
+// 4 * 2^-106 (double_double.h), and n steps and a sum of n + 1 terms
+// accumulate n of them, to first order.
+double RelativeRounding(int n) { return 8.0 * (n + 2) * 0x1p-104; }
+
+// Below this size, a double-double product loses its low word (underflow):
+// its error is absolute, at most 2^-1074 per operation.
+constexpr double kUnderflowFloor = 0x1p-968;
+
+// Rule of the conversion: its error bound is at most 2^-53 of the largest
+// point coordinate, half an ulp of it, as much as the result's own
+// rounding.
+constexpr double kAllowedError = 0x1p-53;
+
+// BernsteinBasisOfLagrange computes, for each i, the scaled Bernstein
+// coefficients C(n, k) [B_k] L_i of the Lagrange basis polynomial L_i on
+// [t_0, t_n] mapped to [0, 1], as the product over j != i of the linear
+// factors (t - t_j) / (t_i - t_j), whose Bernstein coefficients are
+// -(t_j - t_0) / (t_i - t_j) and (t_n - t_j) / (t_i - t_j). In the scaled
+// (homogeneous) basis a product by a linear factor is a convolution:
+// h_k = g_0 f_k + g_1 f_(k-1). Alongside, in double, the same product of
+// the factors' absolute values: an upper bound of the magnitude each
+// rounding error is relative to (Farouki & Rajan, "On the numerical
+// condition of polynomials in Bernstein form", 1987: Bernstein arithmetic
+// is componentwise stable), so that the error of the result is known.
+class BernsteinBasisOfLagrange {
+ public:
+  BernsteinBasisOfLagrange(absl::Span<const double> nodes, bool exact)
+      : nodes_(nodes), exact_(exact), n_(nodes.size() - 1) {}
+
+  // Compute sets Coefficients() (when exact) and Magnitudes() for L_i.
+  void Compute(size_t i) {
+    coefficients_.assign(n_ + 1, DoubleDouble{});
+    magnitudes_.assign(n_ + 1, 0.0);
+    coefficients_[0] = {1.0, 0.0};
+    magnitudes_[0] = 1.0;
+    size_t degree = 0;
+    for (size_t j = 0; j <= n_; ++j) {
+      if (j == i) continue;
+      const DoubleDouble width = TwoSum(nodes_[i], -nodes_[j]);
+      const DoubleDouble low = -TwoSum(nodes_[j], -nodes_[0]) / width;
+      const DoubleDouble high = TwoSum(nodes_[n_], -nodes_[j]) / width;
+      ++degree;
+      Multiply(degree, low, high);
     }
-    factor *= step / (k + 1);
   }
-  // b_j = sum_{k<=j} (C(j, k) / C(n, k)) a_k; the ratio is
-  // prod_{i<k} (j - i) / (n - i).
-  for (int j = 0; j <= top; ++j) {
-    double* b = &out[index(j) * d];
-    double ratio = 1.0;
-    for (int k = 0; k <= j; ++k) {
-      const double* a = &taylor[static_cast<size_t>(k) * d];
-      for (size_t x = 0; x < d; ++x) b[x] += ratio * a[x];
-      ratio *= static_cast<double>(j - k) / (n - k);
+
+  absl::Span<const DoubleDouble> Coefficients() const { return coefficients_; }
+  absl::Span<const double> Magnitudes() const { return magnitudes_; }
+
+ private:
+  // Multiply by the linear factor (low, high), the product being of
+  // `degree`.
+  void Multiply(size_t degree, const DoubleDouble& low,
+                const DoubleDouble& high) {
+    const double low_size = std::abs(low.hi);
+    const double high_size = std::abs(high.hi);
+    for (size_t k = degree; k > 0; --k) {
+      magnitudes_[k] =
+          low_size * magnitudes_[k] + high_size * magnitudes_[k - 1];
+      if (exact_) {
+        coefficients_[k] = low * coefficients_[k] + high * coefficients_[k - 1];
+      }
+    }
+    magnitudes_[0] *= low_size;
+    if (exact_) coefficients_[0] = low * coefficients_[0];
+  }
+
+  absl::Span<const double> nodes_;
+  bool exact_;
+  size_t n_;
+  std::vector<DoubleDouble> coefficients_;
+  std::vector<double> magnitudes_;
+};
+
+// ScaledBinomials returns C(n, k), k = 0..n, exactly (Pascal's rule, in
+// double-double: exact below 2^106).
+std::vector<DoubleDouble> ScaledBinomials(size_t n) {
+  std::vector<DoubleDouble> row(n + 1);
+  row[0] = {1.0, 0.0};
+  for (size_t m = 1; m <= n; ++m) {
+    row[m] = {1.0, 0.0};
+    for (size_t k = m - 1; k > 0; --k) row[k] = row[k] + row[k - 1];
+  }
+  return row;
+}
+
+// PointSizes returns max_x |P_i,x| for each point and, last, the largest.
+std::vector<double> PointSizes(const PointsView& points) {
+  std::vector<double> sizes(points.size() + 1, 0.0);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double* point = points.point(i);
+    for (int x = 0; x < points.dimension; ++x) {
+      sizes[i] = std::max(sizes[i], std::abs(point[x]));
+    }
+    sizes.back() = std::max(sizes.back(), sizes[i]);
+  }
+  return sizes;
+}
+
+// ConversionErrorBound returns an upper bound, relative to the largest
+// point coordinate, of the rounding of the Bezier points: for each k,
+// sum_i (magnitude_ik / C(n, k)) |P_i| times RelativeRounding, plus the
+// absolute errors of underflow.
+class ConversionErrorBound {
+ public:
+  ConversionErrorBound(const PointsView& points,
+                       absl::Span<const DoubleDouble> binomials)
+      : sizes_(PointSizes(points)),
+        binomials_(binomials),
+        sums_(binomials.size(), 0.0) {}
+
+  void Add(size_t i, absl::Span<const double> magnitudes) {
+    const double size = Relative(sizes_[i]);
+    for (size_t k = 0; k < sums_.size(); ++k) {
+      sums_[k] += magnitudes[k] / binomials_[k].hi * size;
+      largest_magnitude_ = std::max(largest_magnitude_, magnitudes[k]);
     }
   }
+
+  double Relative() const {
+    const int n = static_cast<int>(sums_.size()) - 1;
+    const double largest = *std::max_element(sums_.begin(), sums_.end());
+    // 2 covers the rounding of the bound's own double arithmetic.
+    return 2.0 * (RelativeRounding(n) * largest +
+                  (n + 1.0) * (n + 1.0) * kUnderflowFloor *
+                      std::max(1.0, largest_magnitude_));
+  }
+
+ private:
+  double Relative(double size) const {
+    return sizes_.back() > 0.0 ? size / sizes_.back() : 0.0;
+  }
+
+  std::vector<double> sizes_;
+  absl::Span<const DoubleDouble> binomials_;
+  std::vector<double> sums_;
+  double largest_magnitude_ = 0.0;
+};
+
+absl::Status BezierFormError(double relative, int degree) {
+  return InvalidFieldError(
+      "nodes",
+      absl::StrCat(
+          "the Bezier form of this degree-", degree,
+          " interpolant cannot be computed to double precision from these "
+          "nodes: the conversion's error bound is ",
+          relative,
+          " of the largest point coordinate, above 2^-53; the interpolation "
+          "is too ill-conditioned: use fewer nodes, or nodes clustered "
+          "toward the ends like Chebyshev points"));
+}
+
+// PowerOfTwoAbove returns 2^e with max / 2^e in [0.5, 1), 1 for max = 0.
+double PowerOfTwoAbove(double max) {
+  if (!(max > 0.0)) return 1.0;
+  int exponent = 0;
+  std::frexp(max, &exponent);
+  return std::ldexp(1.0, exponent);
 }
 
 }  // namespace
 
-std::vector<double> LagrangeToBezier(const LagrangeCurveView& curve) {
-  const std::vector<double> nodes = LagrangeNodes(curve);
+absl::Status CheckLagrangeBezierForm(const LagrangeCurveView& curve) {
   const int n = curve.degree();
-  std::vector<double> out(curve.points.coordinates.size(), 0.0);
-  if (n == 0)
-    return {curve.points.coordinates.begin(), curve.points.coordinates.end()};
-  const std::vector<double> weights = BarycentricWeights(nodes);
-  const double h = nodes.back() - nodes.front();
-  const int front = n / 2;  // b_0..b_front from t_0, the rest from t_n
-  BezierHalfFromTaylor(
-      curve, nodes, weights, nodes.front(), h, front,
-      [](int j) { return static_cast<size_t>(j); }, out);
-  BezierHalfFromTaylor(
-      curve, nodes, weights, nodes.back(), -h, n - front - 1,
-      [n](int j) { return static_cast<size_t>(n - j); }, out);
+  if (n <= 0) return absl::OkStatus();
+  const std::vector<double> nodes = LagrangeNodes(curve);
+  const std::vector<DoubleDouble> binomials =
+      ScaledBinomials(static_cast<size_t>(n));
+  BernsteinBasisOfLagrange basis(nodes, /*exact=*/false);
+  ConversionErrorBound bound(curve.points, binomials);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    basis.Compute(i);
+    bound.Add(i, basis.Magnitudes());
+  }
+  if (!(bound.Relative() <= kAllowedError)) {
+    return BezierFormError(bound.Relative(), n);
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<std::vector<double>> LagrangeToBezier(
+    const LagrangeCurveView& curve) {
+  const int n = curve.degree();
+  if (n <= 0) {
+    return std::vector<double>(curve.points.coordinates.begin(),
+                               curve.points.coordinates.end());
+  }
+  const std::vector<double> nodes = LagrangeNodes(curve);
+  const size_t d = static_cast<size_t>(curve.points.dimension);
+  const std::vector<DoubleDouble> binomials =
+      ScaledBinomials(static_cast<size_t>(n));
+  BernsteinBasisOfLagrange basis(nodes, /*exact=*/true);
+  ConversionErrorBound bound(curve.points, binomials);
+  // The points scaled by a power of two to below 1 (exactly, but for
+  // coordinates 2^-1022 below the largest), so that no sum overflows.
+  const double scale = PowerOfTwoAbove(PointSizes(curve.points).back());
+  std::vector<DoubleDouble> sums(nodes.size() * d);
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    basis.Compute(i);
+    bound.Add(i, basis.Magnitudes());
+    const absl::Span<const DoubleDouble> coefficients = basis.Coefficients();
+    const double* point = curve.points.point(i);
+    for (size_t x = 0; x < d; ++x) {
+      const DoubleDouble coordinate{point[x] / scale, 0.0};
+      for (size_t k = 0; k < nodes.size(); ++k) {
+        sums[k * d + x] = sums[k * d + x] + coefficients[k] * coordinate;
+      }
+    }
+  }
+  if (!(bound.Relative() <= kAllowedError)) {
+    return BezierFormError(bound.Relative(), n);
+  }
+  std::vector<double> out(sums.size());
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    for (size_t x = 0; x < d; ++x) {
+      out[k * d + x] = (sums[k * d + x] / binomials[k]).ToDouble() * scale;
+      if (!std::isfinite(out[k * d + x])) {
+        return InvalidFieldError(
+            "points",
+            "the Bezier points of this interpolant overflow double "
+            "precision: scale the points");
+      }
+    }
+  }
+  // The ends are the end points, exactly.
+  std::copy_n(curve.points.point(0), d, out.begin());
+  std::copy_n(curve.points.point(static_cast<size_t>(n)), d,
+              out.begin() + static_cast<std::ptrdiff_t>(n * d));
   return out;
 }
 

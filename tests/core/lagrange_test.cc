@@ -643,7 +643,9 @@ TEST(LagrangeToBezierTest, ParabolaThroughThreePoints) {
   const std::vector<double> nodes = {0, 1, 2};
   const LagrangeCurveView curve{.points = {.dimension = 2, .coordinates = xy},
                                 .nodes = nodes};
-  EXPECT_THAT(LagrangeToBezier(curve),
+  const absl::StatusOr<std::vector<double>> bezier = LagrangeToBezier(curve);
+  ASSERT_TRUE(bezier.ok()) << bezier.status();
+  EXPECT_THAT(*bezier,
               Pointwise(DoubleNear(1e-15), {0.0, 0.0, 1.0, 0.0, 2.0, 4.0}));
 }
 
@@ -662,7 +664,10 @@ TEST(LagrangeToBezierTest, AgreesWithLagrangeEvaluation) {
     }
     const LagrangeCurveView curve{
         .points = {.dimension = 3, .coordinates = points}, .nodes = nodes};
-    const std::vector<double> bezier = LagrangeToBezier(curve);
+    const absl::StatusOr<std::vector<double>> converted =
+        LagrangeToBezier(curve);
+    ASSERT_TRUE(converted.ok()) << converted.status();
+    const std::vector<double>& bezier = *converted;
     // The conversion is backward stable: its error scales with the size of
     // the Bezier points, which grows with the degree for random data.
     double scale = 1.0;
@@ -693,6 +698,95 @@ TEST(LagrangeToBezierTest, AgreesWithLagrangeEvaluation) {
       }
     }
   }
+}
+
+// The Bernstein form of s^m of degree n is b_k = C(k, m) / C(n, m) (the
+// power-to-Bernstein conversion). Sampled at uniform nodes i / n with n a
+// power of two, the data are exact, so the conversion must give the
+// binomial ratios to the rounding of the result, for condition numbers of
+// 1e6 (17 nodes) to 7e12 (33 nodes), which double arithmetic turned into
+// errors of 4e-10 and 4e-3.
+TEST(LagrangeToBezierTest, MonomialsComeOutAsBinomialRatios) {
+  for (int n : {4, 8, 16, 32}) {
+    const std::vector<double> nodes = UniformNodes(n, 0.0, 1.0);
+    for (int m : {1, 2, 5, 10}) {
+      if (m > n) continue;
+      std::vector<double> points;
+      for (double t : nodes) points.push_back(std::pow(t, m));  // exact
+      const LagrangeCurveView curve{
+          .points = {.dimension = 1, .coordinates = points}, .nodes = nodes};
+      const absl::StatusOr<std::vector<double>> bezier =
+          LagrangeToBezier(curve);
+      ASSERT_TRUE(bezier.ok()) << bezier.status() << " n=" << n;
+      for (int k = 0; k <= n; ++k) {
+        double expected = 0.0;
+        if (k >= m) {
+          expected = 1.0;
+          for (int i = 0; i < m; ++i) {
+            expected *= static_cast<double>(k - i) / (n - i);
+          }
+        }
+        EXPECT_NEAR((*bezier)[k], expected, 4 * kEpsilon)
+            << "n=" << n << " m=" << m << " k=" << k;
+      }
+    }
+  }
+}
+
+// A straight line through 17 uniform nodes (like a fuzz finding of issue
+// 30, whose Taylor-series conversion put the Bezier points 1.6e-8 off the
+// interpolant) has its Bezier points evenly spaced on the line.
+TEST(LagrangeToBezierTest, ALineOfDegreeSixteenStaysOnItsLine) {
+  const int n = 16;
+  std::vector<double> points;
+  for (int i = 0; i <= n; ++i) {
+    points.push_back(1.0 - 8.5 * i / n);  // exact
+    points.push_back(1.0);
+  }
+  const LagrangeCurveView curve{
+      .points = {.dimension = 2, .coordinates = points}, .nodes = {}};
+  const absl::StatusOr<std::vector<double>> bezier = LagrangeToBezier(curve);
+  ASSERT_TRUE(bezier.ok()) << bezier.status();
+  for (int k = 0; k <= n; ++k) {
+    EXPECT_NEAR((*bezier)[2 * k], 1.0 - 8.5 * k / n, 4 * 8.5 * kEpsilon);
+    EXPECT_NEAR((*bezier)[2 * k + 1], 1.0, 4 * kEpsilon);
+  }
+}
+
+// Where double-double arithmetic cannot reach double precision, the
+// conversion refuses, naming the nodes, and CheckLagrangeBezierForm says
+// the same without converting: 41 uniform nodes, and three nodes of which
+// two are 1e-100 of the span apart (a constant curve whose Bezier points
+// came out 1e15 off).
+TEST(LagrangeToBezierTest, IllConditionedNodesAreRefused) {
+  const std::vector<double> uniform_points(41, 1.0);
+  const std::vector<double> clustered_points = {-1e15, -1e15, -1e15};
+  const std::vector<double> clustered_nodes = {0.34281158056984895,
+                                               1.3298537883676098, 1e100};
+  const LagrangeCurveView curves[] = {
+      {.points = {.dimension = 1, .coordinates = uniform_points}, .nodes = {}},
+      {.points = {.dimension = 1, .coordinates = clustered_points},
+       .nodes = clustered_nodes}};
+  for (const LagrangeCurveView& curve : curves) {
+    const absl::StatusOr<std::vector<double>> bezier = LagrangeToBezier(curve);
+    ASSERT_FALSE(bezier.ok());
+    EXPECT_EQ(bezier.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_EQ(FieldPathOf(bezier.status()), "nodes");
+    EXPECT_THAT(bezier.status().message(), HasSubstr("ill-conditioned"));
+    const absl::Status check = CheckLagrangeBezierForm(curve);
+    EXPECT_EQ(check, bezier.status());
+  }
+  // Degree 31 on uniform nodes still passes, as does any degree 0 or 1.
+  const std::vector<double> line = {0.0, 1.0};
+  EXPECT_TRUE(
+      CheckLagrangeBezierForm(
+          {.points = {.dimension = 1, .coordinates = line}, .nodes = {}})
+          .ok());
+  const std::vector<double> points32(32, 1.0);
+  EXPECT_TRUE(
+      CheckLagrangeBezierForm(
+          {.points = {.dimension = 1, .coordinates = points32}, .nodes = {}})
+          .ok());
 }
 
 }  // namespace

@@ -85,10 +85,12 @@ struct PieceMeasures {
   bool positive_weights = true;
   bool polynomial = true;
   std::vector<double> lower, upper;
+  std::vector<double> axis_scale;  // largest |coordinate| per axis
 
   explicit PieceMeasures(int dimension)
       : lower(static_cast<size_t>(dimension), kInf),
-        upper(static_cast<size_t>(dimension), -kInf) {}
+        upper(static_cast<size_t>(dimension), -kInf),
+        axis_scale(static_cast<size_t>(dimension), 0.0) {}
 
   void Add(int dimension, absl::Span<const double> coordinates,
            absl::Span<const double> weights) {
@@ -97,6 +99,7 @@ struct PieceMeasures {
       const double x = coordinates[k];
       if (!std::isfinite(x)) continue;
       scale = std::max(scale, std::abs(x));
+      axis_scale[k % dim] = std::max(axis_scale[k % dim], std::abs(x));
       lower[k % dim] = std::min(lower[k % dim], x);
       upper[k % dim] = std::max(upper[k % dim], x);
     }
@@ -203,6 +206,7 @@ absl::StatusOr<OracleCurve> OracleCurve::Create(
   oracle.polynomial_ = measures.polynomial;
   oracle.hull_lower_ = std::move(measures.lower);
   oracle.hull_upper_ = std::move(measures.upper);
+  oracle.axis_scale_ = std::move(measures.axis_scale);
   return oracle;
 }
 
@@ -305,6 +309,15 @@ absl::StatusOr<OracleSurface> OracleSurface::Create(
   oracle.positive_weights_ = measures.positive_weights;
   oracle.hull_lower_ = std::move(measures.lower);
   oracle.hull_upper_ = std::move(measures.upper);
+  oracle.axis_scale_ = std::move(measures.axis_scale);
+  if (const auto* triangle = std::get_if<TriangularPatch>(&oracle.surface_)) {
+    // The core boxes a triangle as itself, not as its degenerate tensor
+    // form (whose rational hull is tighter): its own points set the scale.
+    PieceMeasures own(oracle.dimension());
+    own.Add(oracle.dimension(), triangle->view().control_points.coordinates,
+            triangle->view().weights);
+    oracle.axis_scale_ = std::move(own.axis_scale);
+  }
   oracle.breakpoints_[0] = pieces->pieces.breakpoints_u;
   oracle.breakpoints_[1] = pieces->pieces.breakpoints_v;
   oracle.triangle_magnitude_ = LargestMagnitude(pieces->domain_triangle);

@@ -134,6 +134,10 @@ class OracleCurve {
   // The smallest and largest coordinate j of the pieces' control points.
   double HullLower(int j) const { return hull_lower_[static_cast<size_t>(j)]; }
   double HullUpper(int j) const { return hull_upper_[static_cast<size_t>(j)]; }
+  // AxisScale is the largest |coordinate| on axis j of the control points
+  // the core's BoundingBox works on (bounding_box.h: its margin on that
+  // axis is 2^-44 of it).
+  double AxisScale(int j) const { return axis_scale_[static_cast<size_t>(j)]; }
 
  private:
   explicit OracleCurve(Curve curve) : curve_(std::move(curve)) {}
@@ -146,6 +150,7 @@ class OracleCurve {
   bool polynomial_ = true;
   bool continuous_ = true;
   std::vector<double> hull_lower_, hull_upper_;
+  std::vector<double> axis_scale_;
 };
 
 class OracleSurface {
@@ -172,6 +177,10 @@ class OracleSurface {
   std::vector<double> Samples() const;
   double HullLower(int j) const { return hull_lower_[static_cast<size_t>(j)]; }
   double HullUpper(int j) const { return hull_upper_[static_cast<size_t>(j)]; }
+  // AxisScale is the largest |coordinate| on axis j of the control points
+  // the core's BoundingBox works on (bounding_box.h: its margin on that
+  // axis is 2^-44 of it).
+  double AxisScale(int j) const { return axis_scale_[static_cast<size_t>(j)]; }
 
  private:
   explicit OracleSurface(Surface surface) : surface_(std::move(surface)) {}
@@ -187,6 +196,7 @@ class OracleSurface {
   std::vector<double> breakpoints_[2];
   double triangle_magnitude_ = 0.0;
   std::vector<double> hull_lower_, hull_upper_;
+  std::vector<double> axis_scale_;
 };
 
 }  // namespace freeform::fuzz

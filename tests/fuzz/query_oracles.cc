@@ -703,8 +703,14 @@ struct BoxGeometry {
 
   bool positive_weights = true;
   std::function<double(int)> hull_lower, hull_upper;
+  // The box's documented slack beyond the geometry on axis j: twice its
+  // margin, 2^-44 of the largest control coordinate on that axis
+  // (bounding_box.h).
+  std::function<double(int)> axis_scale;
   std::vector<double> sample_points;
 };
+
+constexpr double kBoxMargin = 0x1p-44;
 
 Finding CheckBox(const v1::BoundingBoxResponse& answer, double tolerance,
                  const BoxGeometry& geometry) {
@@ -734,8 +740,10 @@ Finding CheckBox(const v1::BoundingBoxResponse& answer, double tolerance,
   }
   if (!geometry.positive_weights) return std::nullopt;
   for (int j = 0; j < dim; ++j) {
-    if (answer.lower(j) < geometry.hull_lower(j) - tolerance - margin ||
-        answer.upper(j) > geometry.hull_upper(j) + tolerance + margin) {
+    const double slack =
+        tolerance + margin + 2.0 * kBoxMargin * geometry.axis_scale(j);
+    if (answer.lower(j) < geometry.hull_lower(j) - slack ||
+        answer.upper(j) > geometry.hull_upper(j) + slack) {
       return absl::StrCat(
           box, "coordinate ", j, " reaches beyond the control points' range [",
           Num(geometry.hull_lower(j)), ", ", Num(geometry.hull_upper(j)), "]");
@@ -762,6 +770,7 @@ Finding CheckCurveBox(const v1::CurveBoundingBoxRequest& request,
       .positive_weights = curve->positive_weights(),
       .hull_lower = [&](int j) { return curve->HullLower(j); },
       .hull_upper = [&](int j) { return curve->HullUpper(j); },
+      .axis_scale = [&](int j) { return curve->AxisScale(j); },
       .sample_points = *std::move(samples)};
   return CheckBox(answer,
                   Tolerance(request.has_tolerance(), request.tolerance(),
@@ -787,6 +796,7 @@ Finding CheckSurfaceBox(const v1::SurfaceBoundingBoxRequest& request,
       .positive_weights = surface->positive_weights(),
       .hull_lower = [&](int j) { return surface->HullLower(j); },
       .hull_upper = [&](int j) { return surface->HullUpper(j); },
+      .axis_scale = [&](int j) { return surface->AxisScale(j); },
       .sample_points = *std::move(samples)};
   return CheckBox(answer,
                   Tolerance(request.has_tolerance(), request.tolerance(),

@@ -253,6 +253,65 @@ TEST_F(CurveKindsTest, InvalidCurvesNameTheField) {
                 "curve.power.coefficients.coordinates[1]");
 }
 
+// A Lagrange curve whose Bezier form double precision cannot hold (41
+// uniform nodes; nodes 1e-100 of their span apart, a fuzz finding of issue
+// 30 that got minima 1e15 off) is refused by the RPCs that work on Bezier
+// pieces, naming its nodes, and still evaluated, which needs no Bezier
+// form; 17 uniform nodes of a line decompose into points on the line.
+TEST_F(CurveKindsTest, LagrangeCurvesOutsideDoublePrecisionAreRefused) {
+  v1::Curve uniform;
+  for (int i = 0; i <= 40; ++i) {
+    uniform.mutable_lagrange()->mutable_points()->add_coordinates(1.0);
+  }
+  uniform.mutable_lagrange()->mutable_points()->set_dimension(1);
+  v1::Curve clustered;
+  SetPoints(clustered.mutable_lagrange()->mutable_points(), 1,
+            {-1e15, -1e15, -1e15});
+  Append(clustered.mutable_lagrange()->mutable_nodes(),
+         {0.34281158056984895, 1.3298537883676098, 1e100});
+  for (const v1::Curve& curve : {uniform, clustered}) {
+    v1::CurveClosestPointRequest closest;
+    *closest.mutable_curve() = curve;
+    SetPoints(closest.mutable_queries(), 1, {0.5});
+    ExpectInvalid(
+        client_->Unary(&v1::CurveService::Stub::ClosestPoint, closest).status(),
+        "curve.lagrange.nodes");
+    v1::DecomposeCurveRequest decompose;
+    *decompose.mutable_curve() = curve;
+    ExpectInvalid(client_->DecomposeCurve(decompose).status(),
+                  "curve.lagrange.nodes");
+    v1::IntersectCurvesRequest intersect;
+    *intersect.mutable_first() = FullCircle();
+    *intersect.mutable_second() = curve;
+    ExpectInvalid(
+        client_->Unary(&v1::CurveService::Stub::Intersect, intersect).status(),
+        "second.lagrange.nodes");
+    absl::StatusOr<CurveSamples> values = Evaluate(curve, {0.5});
+    ASSERT_TRUE(values.ok()) << values.status();
+    // A constant curve evaluates to its constant (to its rounding: the
+    // ladder is backward stable).
+    const double constant = curve.lagrange().points().coordinates(0);
+    EXPECT_THAT(values->derivatives[0],
+                ElementsAre(DoubleNear(constant, 1e-12 * std::abs(constant))));
+  }
+
+  v1::DecomposeCurveRequest line;
+  for (int i = 0; i <= 16; ++i) {
+    line.mutable_curve()->mutable_lagrange()->mutable_points()->add_coordinates(
+        1.0 - 8.5 * i / 16);
+  }
+  line.mutable_curve()->mutable_lagrange()->mutable_points()->set_dimension(1);
+  absl::StatusOr<v1::DecomposeCurveResponse> pieces =
+      client_->DecomposeCurve(line);
+  ASSERT_TRUE(pieces.ok()) << pieces.status();
+  ASSERT_EQ(pieces->segments_size(), 1);
+  const v1::Points& points = pieces->segments(0).bezier().control_points();
+  ASSERT_EQ(points.coordinates_size(), 17);
+  for (int k = 0; k <= 16; ++k) {
+    EXPECT_NEAR(points.coordinates(k), 1.0 - 8.5 * k / 16, 1e-14);
+  }
+}
+
 TEST_F(CurveKindsTest, KnotAndWeightRulesNameTheField) {
   // Degree against the number of control points: a cubic needs four.
   v1::Curve curve;

@@ -20,9 +20,10 @@
 // tolerance) halvings.
 //
 // Accuracy contract: the box contains every point of the geometry (as far
-// as double arithmetic can tell: it is widened by the margin 2^-44 of the
-// control points' largest coordinate, about 6e-14 of it, which covers the
-// rounding of the subdivision and of the evaluators), and no side is
+// as double arithmetic can tell: each side is widened by the margin 2^-44
+// of the control points' largest coordinate on its axis, about 6e-14 of it,
+// which covers the rounding of the subdivision and of the evaluators), and
+// no side is
 // farther than `tolerance` plus twice that margin from a point of the
 // geometry. A tolerance below the margin is met as the margin: hull bounds
 // cannot come closer than rounding, and chasing them would split without

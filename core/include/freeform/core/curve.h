@@ -166,8 +166,10 @@ std::vector<double> CurveBreakpoints(const Curve& curve);
 // reparameterized to [0, 1] (the breakpoints are CurveBreakpoints): a
 // Bezier or power-form curve is its own piece, a B-spline curve is
 // DecomposeBSplineCurve, a Hermite curve DecomposeHermiteCurve and a
-// Lagrange curve LagrangeToBezier. Fails only with the token's CANCELLED /
-// DEADLINE_EXCEEDED.
+// Lagrange curve LagrangeToBezier. Fails with the token's CANCELLED /
+// DEADLINE_EXCEEDED, and with LagrangeToBezier's INVALID_ARGUMENT for a
+// Lagrange curve whose Bezier form double precision cannot hold ("nodes",
+// "points").
 absl::StatusOr<BezierDecomposition> DecomposeCurve(
     const Curve& curve, const CancellationToken* cancel = nullptr);
 
