@@ -43,8 +43,11 @@ void ProjectAllowingDirections(const PointArray& points, bool rational,
   for (size_t i = 0; i < count; ++i) {
     const double* h = points.at(i);
     const double w = std::abs(h[dim]) <= zero ? 0.0 : h[dim];
-    const double scale = w == 0.0 ? 1.0 : 1.0 / w;
-    for (int x = 0; x < dim; ++x) coordinates[i * dim + x] = scale * h[x];
+    // A quotient, not a product by 1 / w: below 2^-1024 (a subnormal
+    // weight) the reciprocal overflows and 0 * inf would be NaN.
+    for (int x = 0; x < dim; ++x) {
+      coordinates[i * dim + x] = w == 0.0 ? h[x] : h[x] / w;
+    }
     weights[i] = w;
   }
 }

@@ -794,6 +794,40 @@ TEST(ClosestPointTest, ExtremeWeightsOnSurfacesAreAnsweredOrRefused) {
 // two, and a direction divided only like the points there moved the
 // geometry: the fuzzer's biquadratic with the middle weight 0 (weights up to
 // 2) had a point 0.45 from the query while the search certified 0.66.
+// A subnormal weight (below 2^-1024, whose reciprocal overflows) still
+// weighs a point: a degree-0 rational B-spline is its control points
+// whatever their weights, and a quadratic's end is its end point. A fuzz
+// finding of issue 30: the Bezier pieces took w P times 1 / w, which was
+// 0 * inf, and the first step vanished (distance 1 for 0).
+TEST(ClosestPointTest, SubnormalWeightsKeepTheirPoints) {
+  const std::vector<double> points = {0, 0, 0, 1, 0, 0, 3, 2, 0, 4, 0, 0};
+  const std::vector<double> knots = {0, 0.25, 0.5, 0.75, 1};
+  const std::vector<double> origin = {0, 0, 0};
+  for (double weight : {1e-310, 4.9406564584124654e-324}) {
+    const std::vector<double> weights = {weight, 1, 1, 1};
+    const Curve steps = *BSplineCurve::Create({.degree = 0,
+                                               .control_points = {3, points},
+                                               .knots = knots,
+                                               .weights = weights});
+    const absl::StatusOr<ClosestPoints> answer =
+        CurveClosestPoints(steps, {3, origin});
+    ASSERT_TRUE(answer.ok()) << answer.status();
+    EXPECT_EQ(answer->distances[0], 0.0) << weight;
+    EXPECT_EQ(answer->parameters[0], 0.0) << weight;
+
+    const std::vector<double> clamped = {0, 0, 0, 0.5, 1, 1, 1};
+    const Curve quadratic =
+        *BSplineCurve::Create({.degree = 2,
+                               .control_points = {3, points},
+                               .knots = clamped,
+                               .weights = weights});
+    const absl::StatusOr<ClosestPoints> end =
+        CurveClosestPoints(quadratic, {3, origin});
+    ASSERT_TRUE(end.ok()) << end.status();
+    EXPECT_LE(end->distances[0], 1e-9) << weight;
+  }
+}
+
 TEST(ClosestPointTest, ZeroWeightsAreDirectionsInTheScaledCopy) {
   const std::vector<double> net = {0, 0, 0, 2.0000114440917969,
                                    0, 0, 4, 0,
