@@ -7,6 +7,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform::server {
 namespace {
@@ -68,27 +69,16 @@ absl::StatusOr<ParameterSet> ParameterSet::Resolve(
   switch (parameters.kind_case()) {
     case v1::Parameters::kList: {
       const auto& values = parameters.list().values();
-      if (absl::Status status = CheckCount(static_cast<size_t>(values.size()),
-                                           max_count, "list.values");
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(CheckCount(static_cast<size_t>(values.size()), max_count,
+                                 "list.values"));
       set.list_ = absl::MakeConstSpan(values.data(), values.size());
-      if (absl::Status status =
-              ValidateInRange(set.list_, lo, hi, "list.values");
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(ValidateInRange(set.list_, lo, hi, "list.values"));
       set.count_ = set.list_.size();
       return set;
     }
     case v1::Parameters::kRange: {
       const v1::UniformRange& range = parameters.range();
-      if (absl::Status status =
-              CheckCount(range.count(), max_count, "range.count");
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(CheckCount(range.count(), max_count, "range.count"));
       absl::StatusOr<double> start =
           RangeEnd(range.has_start(), range.start(), lo, lo, hi, "range.start");
       if (!start.ok()) return start.status();
@@ -163,9 +153,14 @@ Parameterization ToCore(v1::Parameterization parameterization) {
       return Parameterization::kCentripetal;
     case v1::PARAMETERIZATION_UNIVERSAL:
       return Parameterization::kUniversal;
-    default:
-      return Parameterization::kChordLength;
+    case v1::PARAMETERIZATION_UNSPECIFIED:
+    case v1::PARAMETERIZATION_CHORD_LENGTH:
+    case v1::Parameterization_INT_MIN_SENTINEL_DO_NOT_USE_:
+    case v1::Parameterization_INT_MAX_SENTINEL_DO_NOT_USE_:
+      break;
   }
+  // Chord length, the default; an unknown value was refused before.
+  return Parameterization::kChordLength;
 }
 
 KnotRule ToCore(v1::KnotRule rule) {
@@ -174,9 +169,14 @@ KnotRule ToCore(v1::KnotRule rule) {
       return KnotRule::kUniform;
     case v1::KNOT_RULE_AT_PARAMETERS:
       return KnotRule::kAtParameters;
-    default:
-      return KnotRule::kAveraging;
+    case v1::KNOT_RULE_UNSPECIFIED:
+    case v1::KNOT_RULE_AVERAGING:
+    case v1::KnotRule_INT_MIN_SENTINEL_DO_NOT_USE_:
+    case v1::KnotRule_INT_MAX_SENTINEL_DO_NOT_USE_:
+      break;
   }
+  // Averaging, the default; an unknown value was refused before.
+  return KnotRule::kAveraging;
 }
 
 }  // namespace freeform::server

@@ -12,6 +12,7 @@
 #include "freeform/core/fitting.h"
 #include "freeform/core/knot_removal.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
@@ -38,21 +39,14 @@ absl::StatusOr<UnaryWork> PlanBSplineRemove(
                          static_cast<uint64_t>(bspline.dimension()),
                          view.degree, view.rational()) +
       2;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "curve");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "curve"));
   if (!request.has_knot()) {
     const uint64_t count = view.control_points.size();
-    if (absl::Status status = CheckSimplifyWork(
-            count - static_cast<uint64_t>(view.degree) - 1,
-            SaturatingProduct(count,
-                              static_cast<uint64_t>(bspline.dimension()) +
-                                  (view.rational() ? 1 : 0)),
-            limits, "curve.bspline.control_points");
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CheckSimplifyWork(
+        count - static_cast<uint64_t>(view.degree) - 1,
+        SaturatingProduct(count, static_cast<uint64_t>(bspline.dimension()) +
+                                     (view.rational() ? 1 : 0)),
+        limits, "curve.bspline.control_points"));
   }
   // The work: the curve being reduced, the original's homogeneous points
   // and the candidates' refined points, a few copies of the input each.
@@ -101,17 +95,9 @@ absl::StatusOr<UnaryWork> PlanFit(const v1::FitCurveRequest& request,
   absl::StatusOr<PointsView> points =
       PreparePoints(request.points(), limits, "points");
   if (!points.ok()) return points.status();
-  if (absl::Status status =
-          CheckDegreeLimit(request.degree(), limits, "degree");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckEnum(request.parameterization(), v1::Parameterization_IsValid,
-                    "parameterization");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDegreeLimit(request.degree(), limits, "degree"));
+  RETURN_IF_ERROR(CheckEnum(request.parameterization(),
+                            v1::Parameterization_IsValid, "parameterization"));
   if (request.parameter_corrections() >
       static_cast<uint32_t>(kMaxParameterCorrections)) {
     return InvalidFieldError(
@@ -134,10 +120,7 @@ absl::StatusOr<UnaryWork> PlanFit(const v1::FitCurveRequest& request,
   const uint64_t values =
       BSplineCurveValues(controls, dimension, static_cast<int>(degree), false) +
       count + 3;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "points"));
   const uint64_t work = 8 * (count * (2 * dimension + degree + 6) +
                              controls * (3 * (degree + 1) + 3 * dimension + 4));
   return UnaryWork{

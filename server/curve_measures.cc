@@ -16,6 +16,7 @@
 #include "freeform/core/arc_length.h"
 #include "freeform/core/differential_geometry.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "plan.h"
 #include "prepare.h"
 #include "queries.h"
@@ -135,10 +136,7 @@ absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
   if (!tolerance.ok()) return tolerance.status();
   const uint64_t count =
       std::max<uint64_t>(1, static_cast<uint64_t>(request.intervals_size()));
-  if (absl::Status status = CheckCount(count, limits, "intervals");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCount(count, limits, "intervals"));
   const ParameterDomain domain = DomainOf(*curve);
   std::vector<double> intervals;
   intervals.reserve(2 * count);
@@ -177,15 +175,9 @@ absl::StatusOr<UnaryWork> PlanParametersAtArcLength(
   if (count == 0) {
     return InvalidFieldError("lengths", "needs at least one length");
   }
-  if (absl::Status status = CheckCount(count, limits, "lengths");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCount(count, limits, "lengths"));
   const uint64_t values = count * ParameterAndPointValues(*curve);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "lengths");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "lengths"));
   const double start =
       request.has_start() ? request.start() : DomainOf(*curve).start;
   absl::StatusOr<uint64_t> work = ArcLengthWork(*curve, 1, limits);
@@ -220,14 +212,9 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
     return InvalidFieldError("count",
                              absl::StrCat("must be at least 2, got ", count));
   }
-  if (absl::Status status = CheckCount(count, limits, "count"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCount(count, limits, "count"));
   const uint64_t values = count * ParameterAndPointValues(*curve);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "count");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "count"));
   const std::pair<double, double> ends =
       EndsOf(request.interval(), DomainOf(*curve));
   const double start = ends.first, end = ends.second;
@@ -240,14 +227,11 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
               &response](const ExecutionContext& execution) -> absl::Status {
         const absl::Span<double> parameters = UninitializedArray(
             *response.mutable_parameters(), static_cast<size_t>(count));
-        if (absl::Status status =
-                LengthError(EqualArcLengthParameters(
-                                curve, start, end, static_cast<size_t>(count),
-                                tolerance, parameters, execution),
-                            request, true);
-            !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(LengthError(
+            EqualArcLengthParameters(curve, start, end,
+                                     static_cast<size_t>(count), tolerance,
+                                     parameters, execution),
+            request, true));
         return PointsAt(curve, parameters, *response.mutable_points(),
                         execution);
       }};
@@ -283,10 +267,7 @@ absl::StatusOr<UnaryWork> PlanCurvature(
   const uint64_t values = uint64_t{sizes.tangents} + sizes.normals +
                           sizes.binormals + sizes.curvatures + sizes.torsions +
                           sizes.statuses;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   return UnaryWork{
       .plan = AnswerPlan(
           values, 8 * values + ScaledCopyBytes(*curve, *parameters), limits),
@@ -309,11 +290,8 @@ absl::StatusOr<UnaryWork> PlanCurvature(
                             : UninitializedArray(*response.mutable_torsions(),
                                                  sizes.torsions),
             .statuses = absl::MakeSpan(statuses)};
-        if (absl::Status status =
-                EvaluateFrenetFrames(curve, parameters, output, execution);
-            !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(
+            EvaluateFrenetFrames(curve, parameters, output, execution));
         response.mutable_statuses()->Reserve(static_cast<int>(statuses.size()));
         for (const CurvePointStatus status : statuses) {
           response.add_statuses(static_cast<v1::CurvePointStatus>(status));
@@ -341,10 +319,7 @@ absl::StatusOr<UnaryWork> PlanRotationMinimizingFrames(
       RotationMinimizingSizes(dimension, parameters->size());
   const uint64_t values =
       uint64_t{sizes.tangents} + sizes.references + sizes.third;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   return UnaryWork{
       .plan = AnswerPlan(
           values, 8 * values + ScaledCopyBytes(*curve, *parameters), limits),

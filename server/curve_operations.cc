@@ -8,6 +8,7 @@
 #include "freeform/core/elevation.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
@@ -30,10 +31,7 @@ absl::Status CheckBy(uint32_t by, int degree, const ServiceLimits& limits) {
 absl::StatusOr<UnaryWork> PlanBezierElevate(
     const BezierCurve& bezier, const v1::ElevateCurveDegreeRequest& request,
     const ServiceLimits& limits, v1::ElevateCurveDegreeResponse& response) {
-  if (absl::Status status = CheckBy(request.by(), bezier.degree(), limits);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckBy(request.by(), bezier.degree(), limits));
   const int by = static_cast<int>(request.by());
   const BezierCurveView view = bezier.view();
   const uint64_t values = (view.control_points.size() + by) *
@@ -52,26 +50,17 @@ absl::StatusOr<UnaryWork> PlanBezierElevate(
 absl::StatusOr<UnaryWork> PlanBSplineElevate(
     const BSplineCurve& bspline, const v1::ElevateCurveDegreeRequest& request,
     const ServiceLimits& limits, v1::ElevateCurveDegreeResponse& response) {
-  if (absl::Status status = CheckBy(request.by(), bspline.degree(), limits);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckBy(request.by(), bspline.degree(), limits));
   const int by = static_cast<int>(request.by());
   const BSplineCurveView view = bspline.view();
   // Every distinct knot gains `by` copies: at most (n + 2) by more points.
   const uint64_t count =
       view.control_points.size() + (view.control_points.size() + 1) * by;
-  if (absl::Status status = CheckPointLimit(count, limits, "by");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPointLimit(count, limits, "by"));
   const uint64_t values =
       count * (static_cast<uint64_t>(bspline.dimension()) + 2) +
       view.knots.size();
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "by");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "by"));
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
       .run = [view, by,
@@ -166,9 +155,14 @@ SplineEnd ToCore(v1::SplineEndCondition end) {
       return SplineEnd::kClamped;
     case v1::SPLINE_END_CONDITION_PERIODIC:
       return SplineEnd::kPeriodic;
-    default:
-      return SplineEnd::kNotAKnot;
+    case v1::SPLINE_END_CONDITION_UNSPECIFIED:
+    case v1::SPLINE_END_CONDITION_NOT_A_KNOT:
+    case v1::SplineEndCondition_INT_MIN_SENTINEL_DO_NOT_USE_:
+    case v1::SplineEndCondition_INT_MAX_SENTINEL_DO_NOT_USE_:
+      break;
   }
+  // Not-a-knot, the default; an unknown value was refused before.
+  return SplineEnd::kNotAKnot;
 }
 
 // Writes an interpolation's result into the response.
@@ -186,17 +180,10 @@ absl::Status InterpolateWithBSpline(const v1::InterpolateCurveRequest& request,
                                     const CancellationToken* cancel,
                                     v1::InterpolateCurveResponse& response) {
   const v1::BSplineInterpolation& method = request.bspline();
-  if (absl::Status status =
-          CheckEnum(method.parameterization(), v1::Parameterization_IsValid,
-                    "parameterization");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckEnum(method.knot_rule(), v1::KnotRule_IsValid, "knot_rule");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckEnum(method.parameterization(),
+                            v1::Parameterization_IsValid, "parameterization"));
+  RETURN_IF_ERROR(
+      CheckEnum(method.knot_rule(), v1::KnotRule_IsValid, "knot_rule"));
   CurveInterpolationOptions options;
   options.degree = static_cast<int>(method.degree());
   options.parameterization = ToCore(method.parameterization());
@@ -218,12 +205,8 @@ absl::Status InterpolateWithCubicSpline(
     const v1::InterpolateCurveRequest& request, const PointsView& points,
     const CancellationToken* cancel, v1::InterpolateCurveResponse& response) {
   const v1::CubicSplineInterpolation& method = request.cubic_spline();
-  if (absl::Status status =
-          CheckEnum(method.end_condition(), v1::SplineEndCondition_IsValid,
-                    "end_condition");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckEnum(method.end_condition(),
+                            v1::SplineEndCondition_IsValid, "end_condition"));
   absl::StatusOr<CurveInterpolation> result = InterpolateCubicSpline(
       points, SpanOf(method.parameters()), ToCore(method.end_condition()),
       SpanOf(method.start_derivative().coordinates()),
@@ -238,12 +221,8 @@ absl::Status ApproximateWithLeastSquares(
     const v1::InterpolateCurveRequest& request, const PointsView& points,
     const CancellationToken* cancel, v1::InterpolateCurveResponse& response) {
   const v1::LeastSquaresApproximation& method = request.least_squares();
-  if (absl::Status status =
-          CheckEnum(method.parameterization(), v1::Parameterization_IsValid,
-                    "parameterization");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckEnum(method.parameterization(),
+                            v1::Parameterization_IsValid, "parameterization"));
   absl::StatusOr<CurveApproximation> result = ApproximateCurve(
       points, static_cast<int>(method.degree()),
       static_cast<int>(method.control_point_count()),
@@ -269,11 +248,8 @@ absl::Status Interpolate(const v1::InterpolateCurveRequest& request,
                          v1::InterpolateCurveResponse& response) {
   switch (request.method_case()) {
     case v1::InterpolateCurveRequest::kBspline:
-      if (absl::Status status = CheckDegreeLimit(request.bspline().degree(),
-                                                 limits, "bspline.degree");
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(CheckDegreeLimit(request.bspline().degree(), limits,
+                                       "bspline.degree"));
       return WithMethodPrefix(
           InterpolateWithBSpline(request, points, cancel, response), "bspline");
     case v1::InterpolateCurveRequest::kCubicSpline:
@@ -281,11 +257,8 @@ absl::Status Interpolate(const v1::InterpolateCurveRequest& request,
           InterpolateWithCubicSpline(request, points, cancel, response),
           "cubic_spline");
     case v1::InterpolateCurveRequest::kLeastSquares:
-      if (absl::Status status = CheckDegreeLimit(
-              request.least_squares().degree(), limits, "least_squares.degree");
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(CheckDegreeLimit(request.least_squares().degree(), limits,
+                                       "least_squares.degree"));
       return WithMethodPrefix(
           ApproximateWithLeastSquares(request, points, cancel, response),
           "least_squares");
@@ -299,17 +272,11 @@ absl::Status Interpolate(const v1::InterpolateCurveRequest& request,
 absl::StatusOr<UnaryWork> PlanInterpolate(
     const v1::InterpolateCurveRequest& request, const ServiceLimits& limits,
     v1::InterpolateCurveResponse& response) {
-  if (absl::Status status =
-          CheckDimensionLimit(request.points().dimension(), limits, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      CheckDimensionLimit(request.points().dimension(), limits, "points"));
   const PointsView points = ViewOf(request.points());
   const uint64_t count = points.size();
-  if (absl::Status status = CheckPointLimit(count, limits, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPointLimit(count, limits, "points"));
   if (request.has_least_squares() &&
       request.least_squares().control_point_count() > count) {
     return InvalidFieldError(
@@ -330,10 +297,7 @@ absl::StatusOr<UnaryWork> PlanInterpolate(
   const uint64_t values = (count + 8) * (dimension + 3);
   const uint64_t work =
       8 * (count + 8) * (3 * (degree + 1) + 3 * dimension + 8);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "points"));
   return UnaryWork{
       .plan = AnswerPlan(values, work, limits),
       .run = [points, &request, &limits,

@@ -3,11 +3,13 @@
 // curve, so every curve kind is handled (or refused by name) explicitly.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "curve_service.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/tessellation.h"
 #include "geometry_out.h"
@@ -32,18 +34,12 @@ absl::StatusOr<UnaryWork> PlanBezierSplit(const BezierCurve& bezier,
   if (cuts == 0) {
     return InvalidFieldError("parameters", "needs at least one parameter");
   }
-  if (absl::Status status = CheckPointLimit(cuts, limits, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPointLimit(cuts, limits, "parameters"));
   const BezierCurveView view = bezier.view();
   const uint64_t values = SaturatingProduct(
       cuts + 1, CurveValues(view.control_points.size(), bezier.dimension(),
                             view.rational()));
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
       .run = [bezier, &request,
@@ -85,17 +81,11 @@ absl::StatusOr<UnaryWork> PlanBSplineInsert(
   const BSplineCurveView view = bspline.view();
   const uint64_t count =
       view.control_points.size() + static_cast<uint64_t>(request.knots_size());
-  if (absl::Status status = CheckPointLimit(count, limits, "knots");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPointLimit(count, limits, "knots"));
   const uint64_t values =
       CurveValues(count, bspline.dimension(), view.rational()) + count +
       static_cast<uint64_t>(view.degree) + 1;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "knots");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "knots"));
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
       .run = [view, &request,
@@ -136,10 +126,7 @@ absl::StatusOr<UnaryWork> PlanDecompose(
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
   const uint64_t values = DecomposedCurveValues(*curve);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "curve");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "curve"));
   // Cutting holds the knot-refined control points beside the pieces, which
   // then live beside the answer; every segment has its records.
   return UnaryWork{
@@ -174,7 +161,7 @@ absl::StatusOr<UnaryWork> PlanSubdivide(const v1::SubdivideRequest& request,
   absl::StatusOr<PointsView> polygon =
       PreparePoints(request.polygon(), limits, "polygon");
   if (!polygon.ok()) return polygon.status();
-  SubdivisionScheme scheme;
+  std::optional<SubdivisionScheme> scheme;
   switch (request.scheme()) {
     case v1::SUBDIVISION_SCHEME_CHAIKIN:
       scheme = SubdivisionScheme::kChaikin;
@@ -182,10 +169,15 @@ absl::StatusOr<UnaryWork> PlanSubdivide(const v1::SubdivideRequest& request,
     case v1::SUBDIVISION_SCHEME_UNIFORM_BSPLINE:
       scheme = SubdivisionScheme::kUniformBSpline;
       break;
-    default:
-      return InvalidFieldError(
-          "scheme", absl::StrCat("choose CHAIKIN or UNIFORM_BSPLINE, got ",
-                                 request.scheme()));
+    case v1::SUBDIVISION_SCHEME_UNSPECIFIED:
+    case v1::SubdivisionScheme_INT_MIN_SENTINEL_DO_NOT_USE_:
+    case v1::SubdivisionScheme_INT_MAX_SENTINEL_DO_NOT_USE_:
+      break;
+  }
+  if (!scheme.has_value()) {  // unspecified, or a value unknown to v1
+    return InvalidFieldError(
+        "scheme", absl::StrCat("choose CHAIKIN or UNIFORM_BSPLINE, got ",
+                               request.scheme()));
   }
   if (request.levels() < 1) {
     return InvalidFieldError("levels", "must be at least 1");
@@ -201,13 +193,10 @@ absl::StatusOr<UnaryWork> PlanSubdivide(const v1::SubdivideRequest& request,
   // Every level is computed; with keep_levels every level is answered too,
   // and the levels before the last add up to less than the last.
   const uint64_t values = request.keep_levels() ? 3 * last : last;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "levels");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "levels"));
   return UnaryWork{
       .plan = AnswerPlan(values, 16 * last, limits),
-      .run = [polygon = *polygon, scheme, &request,
+      .run = [polygon = *polygon, scheme = *scheme, &request,
               &response](const ExecutionContext& execution) -> absl::Status {
         absl::StatusOr<std::vector<std::vector<double>>> levels =
             SubdividePolygon(polygon, request.closed(), scheme,

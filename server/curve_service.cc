@@ -10,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "plan.h"
 #include "prepare.h"
 
@@ -66,26 +67,15 @@ absl::StatusOr<Evaluation<Geometry>> Resolve(absl::StatusOr<Geometry> geometry,
                                   .parameters = *std::move(resolved),
                                   .orders = derivative_order + size_t{1},
                                   .dimension = dimension};
-  if (absl::Status status = CheckOutputLimit(evaluation.Values(), limits);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckOutputLimit(evaluation.Values(), limits));
   return evaluation;
 }
 
 absl::StatusOr<Evaluation<Curve>> CurveEvaluation(
     const v1::EvaluateCurveRequest& request, const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDerivativeOrder(request.derivative_order(), limits);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckEnum(request.bezier_algorithm(), v1::BezierAlgorithm_IsValid,
-                    "bezier_algorithm");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDerivativeOrder(request.derivative_order(), limits));
+  RETURN_IF_ERROR(CheckEnum(request.bezier_algorithm(),
+                            v1::BezierAlgorithm_IsValid, "bezier_algorithm"));
   absl::StatusOr<Curve> curve = PrepareCurveToEvaluate(
       request.curve(), limits, "curve", request.bezier_algorithm());
   const int dimension = curve.ok() ? DimensionOf(*curve) : 0;
@@ -210,11 +200,8 @@ grpc::ServerUnaryReactor* CurveServiceImpl::EvaluateBasis(
       "CurveService.EvaluateBasis", context, request, response,
       [this, request, response]() -> absl::StatusOr<UnaryWork> {
         const ServiceLimits& limits = frame_->limits();
-        if (absl::Status status =
-                CheckDerivativeOrder(request->derivative_order(), limits);
-            !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(
+            CheckDerivativeOrder(request->derivative_order(), limits));
         absl::StatusOr<CurveBasis> basis =
             PrepareBasis(request->basis(), limits);
         const int functions = basis.ok() ? FunctionCountOf(*basis) : 0;
@@ -222,11 +209,7 @@ grpc::ServerUnaryReactor* CurveServiceImpl::EvaluateBasis(
             Resolve(std::move(basis), functions, request->parameters(),
                     request->derivative_order(), limits);
         if (!evaluation.ok()) return evaluation.status();
-        if (absl::Status status =
-                CheckMessageLimit(evaluation->Values(), limits);
-            !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(CheckMessageLimit(evaluation->Values(), limits));
         return UnaryWork{
             .plan = AnswerPlan(evaluation->Values(), 0, limits),
             .run = [evaluation = *std::move(evaluation),

@@ -10,7 +10,9 @@
 #include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "freeform/core/lagrange.h"
+#include "freeform/core/overloaded.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform::server {
 namespace {
@@ -31,10 +33,7 @@ absl::StatusOr<T> Prefixed(absl::StatusOr<T> result, absl::string_view prefix) {
 absl::Status CheckCountAndDegree(uint64_t count, int64_t degree,
                                  const ServiceLimits& limits,
                                  absl::string_view field) {
-  if (absl::Status status = CheckPointLimit(count, limits, field);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPointLimit(count, limits, field));
   return CheckDegreeLimit(degree, limits, field);
 }
 
@@ -44,19 +43,12 @@ absl::StatusOr<PointsView> LimitedPoints(const v1::Points& message,
                                          const ServiceLimits& limits,
                                          absl::string_view field,
                                          bool degree_from_count) {
-  if (absl::Status status =
-          CheckDimensionLimit(message.dimension(), limits, field);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDimensionLimit(message.dimension(), limits, field));
   const PointsView points = ViewOf(message);
   const uint64_t count = points.size();
-  if (absl::Status status = CheckCountAndDegree(
-          count, degree_from_count ? static_cast<int64_t>(count) - 1 : 0,
-          limits, field);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCountAndDegree(
+      count, degree_from_count ? static_cast<int64_t>(count) - 1 : 0, limits,
+      field));
   return points;
 }
 
@@ -68,9 +60,13 @@ BezierAlgorithm ToCore(v1::BezierAlgorithm algorithm) {
       return BezierAlgorithm::kHorner;
     case v1::BEZIER_ALGORITHM_LADDER:
       return BezierAlgorithm::kLadder;
-    default:
-      return BezierAlgorithm::kAuto;
+    case v1::BEZIER_ALGORITHM_AUTO:
+    case v1::BezierAlgorithm_INT_MIN_SENTINEL_DO_NOT_USE_:
+    case v1::BezierAlgorithm_INT_MAX_SENTINEL_DO_NOT_USE_:
+      break;
   }
+  // AUTO; an unknown value was refused by CheckEnum before.
+  return BezierAlgorithm::kAuto;
 }
 
 absl::StatusOr<Curve> BezierOf(const v1::BezierCurve& message,
@@ -95,11 +91,7 @@ absl::StatusOr<Curve> PowerOf(const v1::PowerCurve& message,
 
 absl::StatusOr<Curve> BSplineOf(const v1::BSplineCurve& message,
                                 const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDegreeLimit(message.degree(), limits, "degree");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDegreeLimit(message.degree(), limits, "degree"));
   absl::StatusOr<PointsView> points =
       LimitedPoints(message.control_points(), limits, "control_points", false);
   if (!points.ok()) return points.status();
@@ -130,29 +122,18 @@ absl::StatusOr<Curve> HermiteOf(const v1::HermiteCurve& message,
 
 absl::StatusOr<CurveBasis> BernsteinOf(const v1::BernsteinBasis& message,
                                        const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDegreeLimit(message.degree(), limits, "degree");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDegreeLimit(message.degree(), limits, "degree"));
   return BernsteinFunctions::Create(static_cast<int>(message.degree()),
                                     SpanOf(message.weights()));
 }
 
 absl::StatusOr<CurveBasis> BSplineBasisOf(const v1::BSplineBasis& message,
                                           const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDegreeLimit(message.degree(), limits, "degree");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDegreeLimit(message.degree(), limits, "degree"));
   const uint64_t knots = static_cast<uint64_t>(message.knots_size());
-  if (absl::Status status = CheckPointLimit(
-          knots > message.degree() ? knots - message.degree() - 1 : 0, limits,
-          "knots");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPointLimit(
+      knots > message.degree() ? knots - message.degree() - 1 : 0, limits,
+      "knots"));
   return BSplineFunctions::Create(static_cast<int>(message.degree()),
                                   SpanOf(message.knots()),
                                   SpanOf(message.weights()));
@@ -161,11 +142,8 @@ absl::StatusOr<CurveBasis> BSplineBasisOf(const v1::BSplineBasis& message,
 absl::StatusOr<CurveBasis> LagrangeBasisOf(const v1::LagrangeBasis& message,
                                            const ServiceLimits& limits) {
   const uint64_t count = static_cast<uint64_t>(message.nodes_size());
-  if (absl::Status status = CheckCountAndDegree(
-          count, static_cast<int64_t>(count) - 1, limits, "nodes");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCountAndDegree(count, static_cast<int64_t>(count) - 1,
+                                      limits, "nodes"));
   return LagrangeFunctions::Create(SpanOf(message.nodes()));
 }
 
@@ -183,10 +161,7 @@ absl::StatusOr<Surface> BSplineSurfaceOf(const v1::BSplineSurface& message,
   for (const auto& [degree, name] :
        {std::pair{message.degree_u(), "degree_u"},
         std::pair{message.degree_v(), "degree_v"}}) {
-    if (absl::Status status = CheckDegreeLimit(degree, limits, name);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CheckDegreeLimit(degree, limits, name));
   }
   absl::StatusOr<ControlNetView> net =
       PrepareNet(message.control_net(), limits, "control_net", false);
@@ -231,11 +206,7 @@ absl::StatusOr<Surface> HermitePatchOf(const v1::BicubicHermitePatch& message,
 
 absl::StatusOr<Surface> TriangularOf(const v1::TriangularBezierPatch& message,
                                      const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDegreeLimit(message.degree(), limits, "degree");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDegreeLimit(message.degree(), limits, "degree"));
   absl::StatusOr<PointsView> points =
       LimitedPoints(message.control_points(), limits, "control_points", false);
   if (!points.ok()) return points.status();
@@ -265,9 +236,7 @@ absl::StatusOr<PointsView> PreparePoints(const v1::Points& message,
   absl::StatusOr<PointsView> points =
       LimitedPoints(message, limits, field, false);
   if (!points.ok()) return points.status();
-  if (absl::Status status = ValidatePoints(*points, field); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(*points, field));
   return points;
 }
 
@@ -275,11 +244,7 @@ absl::StatusOr<ControlNetView> PrepareNet(const v1::ControlNet& message,
                                           const ServiceLimits& limits,
                                           absl::string_view field,
                                           bool degrees_from_counts) {
-  if (absl::Status status =
-          CheckDimensionLimit(message.dimension(), limits, field);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDimensionLimit(message.dimension(), limits, field));
   for (const auto& [count, name] : {std::pair{message.count_u(), "count_u"},
                                     std::pair{message.count_v(), "count_v"}}) {
     if (absl::Status status = CheckCountAndDegree(
@@ -334,12 +299,19 @@ absl::StatusOr<Curve> PrepareCurve(const v1::Curve& message,
   absl::StatusOr<Curve> curve =
       PrepareCurveToEvaluate(message, limits, field, v1::BEZIER_ALGORITHM_AUTO);
   if (!curve.ok()) return curve.status();
-  if (const auto* lagrange = std::get_if<LagrangeCurve>(&*curve)) {
-    if (absl::Status status = CheckLagrangeBezierForm(lagrange->view());
-        !status.ok()) {
-      return PrefixFieldPath(status, Join(field, "lagrange"));
-    }
-  }
+  // Only a Lagrange curve's Bezier form can fail to exist in double
+  // precision; a new kind must say whether its own can.
+  const absl::Status pieces = std::visit(
+      Overloaded{[](const BezierCurve&) { return absl::OkStatus(); },
+                 [](const BSplineCurve&) { return absl::OkStatus(); },
+                 [&](const LagrangeCurve& lagrange) {
+                   return PrefixFieldPath(
+                       CheckLagrangeBezierForm(lagrange.view()),
+                       Join(field, "lagrange"));
+                 },
+                 [](const HermiteCurve&) { return absl::OkStatus(); }},
+      *curve);
+  if (!pieces.ok()) return pieces;
   return curve;
 }
 

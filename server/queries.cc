@@ -9,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "plan.h"
 #include "prepare.h"
 
@@ -137,12 +138,9 @@ absl::StatusOr<IntersectionOptions> ToCore(
   const uint64_t max_results = options.max_results() == 0
                                    ? kDefaultMaxResults
                                    : uint64_t{options.max_results()};
-  if (absl::Status status =
-          UnaryAnswerCheck(SaturatingProduct(max_results, values_per_result),
-                           limits, "options.max_results");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      UnaryAnswerCheck(SaturatingProduct(max_results, values_per_result),
+                       limits, "options.max_results"));
   return IntersectionOptions{.tolerance = *tolerance,
                              .separation = *separation,
                              .max_results = static_cast<size_t>(max_results),
@@ -198,10 +196,7 @@ absl::StatusOr<UnaryWork> PlanClosestPoints(
   // most as many.
   const uint64_t values = ClosestPointsValues(
       points->size(), dimension, parameter_count, core_options->max_minima);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "queries");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "queries"));
   // The search works on a copy of the geometry rescaled by powers of two
   // (a third of the pieces' share) and of the queries.
   const uint64_t copies =

@@ -13,6 +13,7 @@
 #include "freeform/core/fitting.h"
 #include "freeform/core/knot_removal.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
@@ -36,11 +37,8 @@ uint64_t BSplineSurfaceValues(uint64_t count_u, uint64_t count_v,
 // simplify.
 absl::StatusOr<KnotDirections> DirectionsOf(
     const v1::RemoveSurfaceKnotsRequest& request) {
-  if (absl::Status status = CheckEnum(
-          request.direction(), v1::SurfaceDirection_IsValid, "direction");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckEnum(request.direction(), v1::SurfaceDirection_IsValid,
+                            "direction"));
   switch (request.direction()) {
     case v1::SURFACE_DIRECTION_U:
       return KnotDirections::kU;
@@ -50,12 +48,14 @@ absl::StatusOr<KnotDirections> DirectionsOf(
       if (!request.has_knot()) return KnotDirections::kBoth;
       return InvalidFieldError("direction",
                                "a knot is removed in U or V, not BOTH");
-    default:
-      return InvalidFieldError("direction",
-                               request.has_knot()
-                                   ? "choose U or V"
-                                   : "choose U, V or BOTH (simplify both)");
+    case v1::SURFACE_DIRECTION_UNSPECIFIED:
+    case v1::SurfaceDirection_INT_MIN_SENTINEL_DO_NOT_USE_:
+    case v1::SurfaceDirection_INT_MAX_SENTINEL_DO_NOT_USE_:
+      break;
   }
+  return InvalidFieldError(
+      "direction", request.has_knot() ? "choose U or V"
+                                      : "choose U, V or BOTH (simplify both)");
 }
 
 absl::StatusOr<SurfaceKnotRemoval> Remove(
@@ -84,10 +84,7 @@ absl::StatusOr<UnaryWork> PlanBSplineRemove(
                            static_cast<uint64_t>(view.degree_v),
                            view.rational()) +
       3;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "surface");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "surface"));
   if (!request.has_knot()) {
     const ControlNetView& net = view.control_net;
     const uint64_t knots_u =
@@ -98,15 +95,12 @@ absl::StatusOr<UnaryWork> PlanBSplineRemove(
                            : *directions == KnotDirections::kV
                                ? knots_v
                                : knots_u + knots_v;
-    if (absl::Status status = CheckSimplifyWork(
-            knots,
-            SaturatingProduct(SaturatingProduct(net.count_u, net.count_v),
-                              static_cast<uint64_t>(net.dimension) +
-                                  (view.rational() ? 1 : 0)),
-            limits, "surface.bspline.control_net");
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CheckSimplifyWork(
+        knots,
+        SaturatingProduct(
+            SaturatingProduct(net.count_u, net.count_v),
+            static_cast<uint64_t>(net.dimension) + (view.rational() ? 1 : 0)),
+        limits, "surface.bspline.control_net"));
   }
   // As for curves (curve_approximation.cc): simplifying is always heavy.
   CallPlan plan = AnswerPlan(values, 8 * 6 * values, limits);
@@ -149,10 +143,7 @@ absl::Status CheckDegrees(uint32_t degree_u, uint32_t degree_v,
                           const ServiceLimits& limits) {
   for (auto [degree, field] :
        {std::pair{degree_u, "degree_u"}, std::pair{degree_v, "degree_v"}}) {
-    if (absl::Status status = CheckDegreeLimit(degree, limits, field);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CheckDegreeLimit(degree, limits, field));
   }
   return absl::OkStatus();
 }
@@ -163,17 +154,9 @@ absl::StatusOr<UnaryWork> PlanFit(const v1::FitSurfaceRequest& request,
   absl::StatusOr<ControlNetView> points =
       PrepareNet(request.points(), limits, "points", false);
   if (!points.ok()) return points.status();
-  if (absl::Status status =
-          CheckDegrees(request.degree_u(), request.degree_v(), limits);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckEnum(request.parameterization(), v1::Parameterization_IsValid,
-                    "parameterization");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDegrees(request.degree_u(), request.degree_v(), limits));
+  RETURN_IF_ERROR(CheckEnum(request.parameterization(),
+                            v1::Parameterization_IsValid, "parameterization"));
   const v1::ControlNet& net = request.points();
   absl::StatusOr<int> cap_u =
       FitControlCap(request.max_control_points_u(), net.count_u(), limits,
@@ -193,10 +176,7 @@ absl::StatusOr<UnaryWork> PlanFit(const v1::FitSurfaceRequest& request,
                            static_cast<uint64_t>(*cap_v), dimension,
                            request.degree_u(), request.degree_v(), false) +
       uint64_t{net.count_u()} + net.count_v() + 3;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "points"));
   const uint64_t work = SaturatingProduct(
       8, SaturatingProduct(grid, 3 * dimension + 2) +
              SaturatingProduct(SaturatingProduct(static_cast<uint64_t>(*cap_u),
@@ -235,11 +215,7 @@ absl::StatusOr<UnaryWork> PlanFit(const v1::FitSurfaceRequest& request,
 absl::StatusOr<ScatteredFitOptions> ScatteredOptions(
     const v1::FitScatteredSurfaceRequest& request,
     const ServiceLimits& limits) {
-  if (absl::Status status =
-          CheckDegrees(request.degree_u(), request.degree_v(), limits);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDegrees(request.degree_u(), request.degree_v(), limits));
   // Each count and their product within the point limit (so each fits an
   // int).
   const absl::string_view larger =
@@ -250,10 +226,7 @@ absl::StatusOr<ScatteredFitOptions> ScatteredOptions(
                                            request.control_count_v())},
                          SaturatingProduct(request.control_count_u(),
                                            request.control_count_v())}) {
-    if (absl::Status status = CheckPointLimit(count, limits, larger);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CheckPointLimit(count, limits, larger));
   }
   ScatteredFitOptions options;
   options.degree_u = static_cast<int>(request.degree_u());
@@ -300,11 +273,8 @@ absl::StatusOr<UnaryWork> PlanFitScattered(
       EstimateScatteredFit(count, points->dimension, *options);
   const ScatteredFitWork net_work =
       EstimateScatteredFit(0, points->dimension, *options);
-  if (absl::Status status = CheckScatteredMemory(
-          work, net_work, request, limits.memory_budget_bytes / 4 * 3);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckScatteredMemory(work, net_work, request,
+                                       limits.memory_budget_bytes / 4 * 3));
   // The answer: the net and its knots, two parameters and a residual per
   // point.
   const uint64_t values =
@@ -312,10 +282,7 @@ absl::StatusOr<UnaryWork> PlanFitScattered(
                            static_cast<uint64_t>(points->dimension),
                            request.degree_u(), request.degree_v(), false) +
       SaturatingProduct(count, 3) + 2;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "points"));
   return UnaryWork{
       .plan = {.memory_bytes =
                    AnswerPlan(values, work.memory_bytes, limits).memory_bytes,

@@ -6,6 +6,7 @@
 #include "freeform/core/interpolation.h"
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
@@ -34,11 +35,7 @@ absl::Status CheckTensorElevation(
   if (request.by_u() == 0 && request.by_v() == 0) {
     return InvalidFieldError("by_u", "set by_u, by_v or both to at least 1");
   }
-  if (absl::Status status =
-          CheckElevation(request.by_u(), degree_u, limits, "by_u");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckElevation(request.by_u(), degree_u, limits, "by_u"));
   return CheckElevation(request.by_v(), degree_v, limits, "by_v");
 }
 
@@ -71,12 +68,8 @@ absl::StatusOr<UnaryWork> PlanBezierElevate(
     const BezierSurface& bezier, const v1::ElevateSurfaceDegreeRequest& request,
     const ServiceLimits& limits, v1::ElevateSurfaceDegreeResponse& response) {
   const BezierSurfaceView view = bezier.view();
-  if (absl::Status status =
-          CheckTensorElevation(request, view.control_net.count_u - 1,
-                               view.control_net.count_v - 1, limits);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckTensorElevation(request, view.control_net.count_u - 1,
+                                       view.control_net.count_v - 1, limits));
   const int by_u = ByU(request);
   const int by_v = ByV(request);
   const uint64_t values = uint64_t(view.control_net.count_u + by_u) *
@@ -94,28 +87,19 @@ absl::StatusOr<UnaryWork> PlanBSplineElevate(
     const v1::ElevateSurfaceDegreeRequest& request, const ServiceLimits& limits,
     v1::ElevateSurfaceDegreeResponse& response) {
   const BSplineSurfaceView view = bspline.view();
-  if (absl::Status status =
-          CheckTensorElevation(request, view.degree_u, view.degree_v, limits);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      CheckTensorElevation(request, view.degree_u, view.degree_v, limits));
   const int by_u = ByU(request);
   const int by_v = ByV(request);
   const uint64_t count_u =
       view.control_net.count_u + uint64_t(view.control_net.count_u + 1) * by_u;
   const uint64_t count_v =
       view.control_net.count_v + uint64_t(view.control_net.count_v + 1) * by_v;
-  if (absl::Status status =
-          CheckPointLimit(SaturatingProduct(count_u, count_v), limits, "by_u");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      CheckPointLimit(SaturatingProduct(count_u, count_v), limits, "by_u"));
   const uint64_t values = SaturatingProduct(
       count_u * count_v, uint64_t(view.control_net.dimension) + 1);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "by_u");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "by_u"));
   return ElevationWork(values, limits, response,
                        [view, by_u, by_v](const CancellationToken* cancel) {
                          return ElevateBSplineSurface(view, by_u, by_v, cancel);
@@ -128,11 +112,7 @@ absl::StatusOr<UnaryWork> PlanTriangularElevate(
     v1::ElevateSurfaceDegreeResponse& response) {
   const TriangularPatchView view = patch.view();
   if (request.by() < 1) return InvalidFieldError("by", "must be at least 1");
-  if (absl::Status status =
-          CheckElevation(request.by(), view.degree, limits, "by");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckElevation(request.by(), view.degree, limits, "by"));
   const int by = static_cast<int>(request.by());
   const uint64_t values = TriangularPointCount(view.degree + by) *
                           (uint64_t(view.control_points.dimension) + 1);
@@ -168,28 +148,15 @@ absl::Status InterpolateGrid(const v1::InterpolateSurfaceRequest& request,
   absl::StatusOr<ControlNetView> points =
       PrepareNet(request.points(), limits, "points", false);
   if (!points.ok()) return points.status();
-  if (absl::Status status = ValidateControlNet(*points, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateControlNet(*points, "points"));
   for (auto [degree, field] : {std::pair{request.degree_u(), "degree_u"},
                                std::pair{request.degree_v(), "degree_v"}}) {
-    if (absl::Status status = CheckDegreeLimit(degree, limits, field);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CheckDegreeLimit(degree, limits, field));
   }
-  if (absl::Status status =
-          CheckEnum(request.parameterization(), v1::Parameterization_IsValid,
-                    "parameterization");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          CheckEnum(request.knot_rule(), v1::KnotRule_IsValid, "knot_rule");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckEnum(request.parameterization(),
+                            v1::Parameterization_IsValid, "parameterization"));
+  RETURN_IF_ERROR(
+      CheckEnum(request.knot_rule(), v1::KnotRule_IsValid, "knot_rule"));
   absl::StatusOr<SurfaceInterpolation> result = InterpolateSurface(
       *points, static_cast<int>(request.degree_u()),
       static_cast<int>(request.degree_v()), ToCore(request.parameterization()),
@@ -227,10 +194,7 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Interpolate(
         const uint64_t values = SaturatingProduct(
             uint64_t{request->points().count_u()} * request->points().count_v(),
             uint64_t{request->points().dimension()} + 1);
-        if (absl::Status status = UnaryAnswerCheck(values, limits, "points");
-            !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "points"));
         return UnaryWork{
             .plan = AnswerPlan(values, 32 * values, limits),
             .run = [request, response, &limits](

@@ -14,6 +14,7 @@
 #include "freeform/core/intersection.h"
 #include "freeform/core/section.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
@@ -169,11 +170,8 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
   const uint64_t requested = request.max_points() > 0
                                  ? uint64_t{request.max_points()}
                                  : kDefaultSectionPoints;
-  if (absl::Status status = UnaryAnswerCheck(
-          SaturatingProduct(requested, per_point), limits, "max_points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(SaturatingProduct(requested, per_point),
+                                   limits, "max_points"));
   const uint64_t values = requested * per_point;
   return UnaryWork{
       .plan =
@@ -217,16 +215,10 @@ absl::StatusOr<UnaryWork> PlanCurvature(
       uint64_t{per_point.normals} + per_point.gaussian + per_point.mean +
       per_point.principal_curvatures + per_point.principal_directions +
       per_point.statuses;
-  if (absl::Status status =
-          ResolveSamples(request.parameters(), limits, values_per_point, plan);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ResolveSamples(request.parameters(), limits, values_per_point, plan));
   const uint64_t values = plan.size() * values_per_point;
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   // The core evaluates a copy of the surface rescaled by powers of two (at
   // most its pieces' values) at a copy of the samples (two values each).
   const uint64_t copies =
@@ -252,11 +244,8 @@ absl::StatusOr<UnaryWork> PlanCurvature(
                 UninitializedArray(*response.mutable_principal_directions(),
                                    sizes.principal_directions),
             .statuses = absl::MakeSpan(statuses)};
-        if (absl::Status status = EvaluateSurfaceCurvatures(
-                *plan.surface, plan.All(), output, execution);
-            !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(EvaluateSurfaceCurvatures(*plan.surface, plan.All(),
+                                                  output, execution));
         response.mutable_statuses()->Reserve(static_cast<int>(statuses.size()));
         for (const SurfacePointStatus status : statuses) {
           response.add_statuses(static_cast<v1::SurfacePointStatus>(status));

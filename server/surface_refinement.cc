@@ -8,6 +8,7 @@
 #include "freeform/core/mesh.h"
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/subdivision.h"
 #include "geometry_out.h"
 #include "plan.h"
@@ -56,9 +57,7 @@ absl::StatusOr<UnaryWork> PlanBezierSplit(
     return InvalidFieldError(
         "surface", "Split takes a tensor Bezier or a triangular patch");
   }
-  if (absl::Status status = CheckDirection(request.direction()); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDirection(request.direction()));
   const BezierSurfaceView view = bezier.view();
   const uint64_t values =
       2 * (view.control_net.coordinates.size() + view.weights.size());
@@ -98,25 +97,17 @@ absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitSurfaceRequest& request,
 absl::StatusOr<UnaryWork> PlanBSplineInsert(
     const BSplineSurface& bspline, const v1::InsertSurfaceKnotsRequest& request,
     const ServiceLimits& limits, v1::InsertSurfaceKnotsResponse& response) {
-  if (absl::Status status = CheckDirection(request.direction()); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDirection(request.direction()));
   const BSplineSurfaceView view = bspline.view();
   const bool in_u = request.direction() == v1::SURFACE_DIRECTION_U;
   const uint64_t knots = static_cast<uint64_t>(request.knots_size());
   const uint64_t points =
       SaturatingProduct(view.control_net.count_u + (in_u ? knots : 0),
                         view.control_net.count_v + (in_u ? 0 : knots));
-  if (absl::Status status = CheckPointLimit(points, limits, "knots");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPointLimit(points, limits, "knots"));
   const uint64_t values = SaturatingProduct(
       points, static_cast<uint64_t>(view.control_net.dimension) + 1);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "knots");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "knots"));
   return UnaryWork{
       .plan = AnswerPlan(values, 8 * values, limits),
       .run = [view, in_u, &request,
@@ -216,9 +207,11 @@ std::string DimensionField(const v1::Surface& message) {
       return "bicubic_hermite.positions.dimension";
     case v1::Surface::kTriangularBezier:
       return "triangular_bezier.control_points.dimension";
-    default:
-      return "bezier.control_net.dimension";
+    case v1::Surface::kBezier:
+    case v1::Surface::KIND_NOT_SET:  // refused by PrepareSurface before
+      break;
   }
+  return "bezier.control_net.dimension";
 }
 
 // MeshPlanning says where a mesh request is planned: on the pool when a
@@ -260,12 +253,8 @@ absl::StatusOr<MeshInput> PrepareMesh(
   if (!max_normal_angle.ok()) return max_normal_angle.status();
   // The Bezier pieces the mesher cuts the surfaces into (with a normal-angle
   // limit the planner cuts them already).
-  if (absl::Status status =
-          PieceWorkBytes(PieceValues(input.surfaces), limits, "surfaces")
-              .status();
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      PieceWorkBytes(PieceValues(input.surfaces), limits, "surfaces").status());
   const uint64_t requested = request.max_vertices() > 0 ? request.max_vertices()
                                                         : limits.max_parameters;
   input.cap = static_cast<size_t>(

@@ -5,6 +5,7 @@
 #include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/triangular.h"
 #include "plan.h"
 
@@ -59,11 +60,8 @@ absl::StatusOr<absl::Span<const double>> ResolvePairs(
         "parameters.points.uv",
         absl::StrCat("holds ", uv.size(), " values, not (u, v) pairs"));
   }
-  if (absl::Status status = CheckSampleCount(uv.size() / 2, values_per_point,
-                                             limits, "parameters.points.uv");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckSampleCount(uv.size() / 2, values_per_point, limits,
+                                   "parameters.points.uv"));
   return uv;
 }
 
@@ -128,12 +126,9 @@ absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
           ResolveAxis(parameters.grid().v(), plan.domain.v_start,
                       plan.domain.v_end, limits, "parameters.grid.v");
       if (!v.ok()) return v.status();
-      if (absl::Status status =
-              CheckSampleCount(SaturatingProduct(u->size(), v->size()),
-                               values_per_point, limits, "parameters.grid");
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(CheckSampleCount(SaturatingProduct(u->size(), v->size()),
+                                       values_per_point, limits,
+                                       "parameters.grid"));
       plan.grid = true;
       plan.u = AllValues(*u);
       plan.v = AllValues(*v);

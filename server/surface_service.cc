@@ -13,6 +13,7 @@
 #include "convert.h"
 #include "freeform/core/basis.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/surface.h"
 #include "freeform/core/triangular.h"
 #include "plan.h"
@@ -45,11 +46,8 @@ absl::StatusOr<SurfacePlan> PlanSurfaceEvaluation(
   }
   plan.order = static_cast<int>(request.derivative_order());
   plan.normals = request.normals();
-  if (absl::Status status = ResolveSamples(request.parameters(), limits,
-                                           plan.ValuesPerPoint(), plan);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ResolveSamples(request.parameters(), limits,
+                                 plan.ValuesPerPoint(), plan));
   return plan;
 }
 
@@ -101,12 +99,8 @@ absl::Status EvaluateChunk(const SurfacePlan& plan, size_t first, size_t last,
     const absl::Span<double> piece_normals =
         normals.empty() ? normals
                         : normals.subspan(3 * piece.offset, 3 * points);
-    if (absl::Status status =
-            EvaluateSurface(*plan.surface, piece.samples, piece_output,
-                            piece_normals, execution);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(EvaluateSurface(*plan.surface, piece.samples, piece_output,
+                                    piece_normals, execution));
   }
   return absl::OkStatus();
 }
@@ -130,16 +124,10 @@ absl::StatusOr<UnaryWork> PlanTensorBasis(
                  .v_end = dv.end};
   const uint64_t functions = static_cast<uint64_t>(FunctionCountOf(*u)) *
                              static_cast<uint64_t>(FunctionCountOf(*v));
-  if (absl::Status status =
-          ResolveSamples(request.parameters(), limits, functions, plan);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ResolveSamples(request.parameters(), limits, functions, plan));
   const uint64_t values = SaturatingProduct(plan.size(), functions);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   const uint64_t work =
       8 * plan.size() * (FunctionCountOf(*u) + FunctionCountOf(*v));
   return UnaryWork{
@@ -158,11 +146,7 @@ absl::StatusOr<UnaryWork> PlanTriangularBasis(
     const v1::EvaluateSurfaceBasisRequest& request, const ServiceLimits& limits,
     v1::EvaluateSurfaceBasisResponse& response) {
   const uint32_t degree = request.triangular_degree();
-  if (absl::Status status =
-          CheckDegreeLimit(degree, limits, "triangular_degree");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckDegreeLimit(degree, limits, "triangular_degree"));
   if (!request.parameters().has_points()) {
     return InvalidFieldError(
         "parameters.points",
@@ -175,10 +159,7 @@ absl::StatusOr<UnaryWork> PlanTriangularBasis(
   const absl::Span<const double> uv = *pairs;
   const uint64_t count = uv.size() / 2;
   const uint64_t values = SaturatingProduct(count, functions);
-  if (absl::Status status = UnaryAnswerCheck(values, limits, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   return UnaryWork{
       .plan = AnswerPlan(values, 0, limits),
       .run = [uv, degree, count, functions, values,

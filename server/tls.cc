@@ -21,6 +21,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "freeform/client/file.h"
+#include "freeform/core/status_macros.h"
 #include "grpc_handoff.h"
 #include "spdlog/spdlog.h"
 
@@ -268,9 +269,7 @@ class ClientAllowList final : public grpc::AuthMetadataProcessor {
 
 absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> ListenerCredentials(
     const TlsOptions& tls) {
-  if (absl::Status complete = CheckComplete(tls); !complete.ok()) {
-    return complete;
-  }
+  RETURN_IF_ERROR(CheckComplete(tls));
   if (tls.cert_file.empty()) return grpc::InsecureServerCredentials();
   absl::StatusOr<std::string> cert = ReadTlsFile(kCertFlag, tls.cert_file);
   if (!cert.ok()) return cert.status();
@@ -279,9 +278,7 @@ absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> ListenerCredentials(
   absl::StatusOr<Certificate> leaf =
       FirstCertificate(kCertFlag, tls.cert_file, *cert);
   if (!leaf.ok()) return leaf.status();
-  if (absl::Status match = CheckKeyMatches(tls, *key, **leaf); !match.ok()) {
-    return match;
-  }
+  RETURN_IF_ERROR(CheckKeyMatches(tls, *key, **leaf));
   grpc::SslServerCredentialsOptions options;
   options.pem_key_cert_pairs.push_back({*std::move(key), *std::move(cert)});
   if (!tls.client_ca_file.empty()) {

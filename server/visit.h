@@ -12,17 +12,10 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/string_view.h"
+#include "freeform/core/overloaded.h"  // Overloaded{handler...}
 #include "freeform/core/status.h"
 
 namespace freeform::server {
-
-// Overloaded{handler...}: one visitor from several handlers.
-template <typename... Handlers>
-struct Overloaded : Handlers... {
-  using Handlers::operator()...;
-};
-template <typename... Handlers>
-Overloaded(Handlers...) -> Overloaded<Handlers...>;
 
 // Refuse<Kind...>{field, reason}: the handler of the kinds an RPC does not
 // take. Each answers INVALID_ARGUMENT naming `field`. Visit with

@@ -17,8 +17,10 @@
 #include "freeform/core/points.h"
 #include "freeform/core/saturating.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "scaled.h"
 #include "scaled_geometry.h"
+#include "variant_dispatch.h"
 #include "tessellation_checks.h"
 
 namespace freeform {
@@ -108,9 +110,7 @@ absl::StatusOr<CurvePieces> LiftCurvePieces(const Curve& curve,
     pieces.rational |= pieces.nets.back().rational;
   }
   pieces.breakpoints = std::move(decomposition->breakpoints);
-  if (absl::Status status = CheckResolvable(pieces, tolerance); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckResolvable(pieces, tolerance));
   return pieces;
 }
 
@@ -320,10 +320,7 @@ absl::Status AddSegment(const Net& net, double budget,
     const double mid = 0.5 * (top.a + top.b);
     const double halves[] = {integrator.Integrate(net, top.a, mid),
                              integrator.Integrate(net, mid, top.b)};
-    if (absl::Status status = poll.Done(SpeedIntegrator::Work(net));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(SpeedIntegrator::Work(net)));
     // Rules that agree to rounding of their value cannot do better (a
     // tolerance below what double precision resolves would otherwise
     // halve every interval kMaxArcLengthDepth times, 2^40 intervals), nor
@@ -422,11 +419,7 @@ absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0, double u1,
     held -= std::min(held, top.net.values.size());
     if (WeightsAreModerate(top.net)) {
       table.segments.push_back({.piece = k, .u_a = top.u_a, .u_b = top.u_b});
-      if (absl::Status status =
-              AddSegment(top.net, top.budget, integrator, poll, table);
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(AddSegment(top.net, top.budget, integrator, poll, table));
       if (keep_nets) {
         held += top.net.values.size();
         table.segments.back().net = table.nets.size();
@@ -438,10 +431,7 @@ absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0, double u1,
       return WeightsError(absl::StrCat(
           "more than ", kMaxArcLengthWeightHalvings, " halvings of one piece"));
     }
-    if (absl::Status status = poll.Done(top.net.values.size() * 4);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(top.net.values.size() * 4));
     Stretch low{.net = {},
                 .u_a = top.u_a,
                 .u_b = 0.5 * (top.u_a + top.u_b),
@@ -495,12 +485,9 @@ absl::StatusOr<LengthTable> BuildTable(const CurvePieces& pieces, double start,
     const double share =
         (std::min(end, breaks[k + 1]) - std::max(start, breaks[k])) /
         (end - start);
-    if (absl::Status status = AddPiece(
-            pieces, k, std::clamp(u0, 0.0, 1.0), std::clamp(u1, 0.0, 1.0),
-            tolerance * share, keep_nets, integrator, poll, table);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(AddPiece(pieces, k, std::clamp(u0, 0.0, 1.0),
+                             std::clamp(u1, 0.0, 1.0), tolerance * share,
+                             keep_nets, integrator, poll, table));
   }
   return table;
 }
@@ -662,13 +649,8 @@ absl::Status CheckParameter(double value, const ParameterDomain& domain,
 absl::Status CheckInterval(const Curve& curve, double start, double end,
                            double tolerance) {
   const ParameterDomain domain = DomainOf(curve);
-  if (absl::Status status = CheckParameter(start, domain, "start");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = CheckParameter(end, domain, "end"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckParameter(start, domain, "start"));
+  RETURN_IF_ERROR(CheckParameter(end, domain, "end"));
   if (end < start) return InvalidFieldError("end", "must not be below start");
   return ValidatePositive(tolerance, "tolerance");
 }
@@ -761,13 +743,13 @@ absl::StatusOr<double> LengthOf(const CurvePieces& pieces, double start,
 }
 
 bool IsRational(const Curve& curve) {
-  if (const auto* bezier = std::get_if<BezierCurve>(&curve)) {
-    return bezier->view().rational();
-  }
-  if (const auto* bspline = std::get_if<BSplineCurve>(&curve)) {
-    return bspline->view().rational();
-  }
-  return false;
+  return std::visit(
+      internal::Overloaded{
+          [](const BezierCurve& bezier) { return bezier.view().rational(); },
+          [](const BSplineCurve& bspline) { return bspline.view().rational(); },
+          [](const LagrangeCurve&) { return false; },
+          [](const HermiteCurve&) { return false; }},
+      curve);
 }
 
 }  // namespace
@@ -810,10 +792,7 @@ void GaussLegendreRule(int points, absl::Span<double> nodes,
 absl::StatusOr<double> ArcLength(const Curve& curve, double start, double end,
                                  double tolerance,
                                  const CancellationToken* cancel) {
-  if (absl::Status status = CheckInterval(curve, start, end, tolerance);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckInterval(curve, start, end, tolerance));
   absl::StatusOr<CurvePieces> pieces =
       LiftCurvePieces(curve, tolerance, cancel);
   if (!pieces.ok()) return pieces.status();
@@ -827,13 +806,8 @@ absl::Status ArcLengths(const Curve& curve, absl::Span<const double> intervals,
     return InvalidFieldError("intervals", "must hold (start, end) pairs");
   }
   const size_t count = intervals.size() / 2;
-  if (absl::Status status = CheckOutputSize(lengths, count); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidatePositive(tolerance, "tolerance");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckOutputSize(lengths, count));
+  RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
   for (size_t i = 0; i < count; ++i) {
     if (absl::Status status = CheckInterval(curve, intervals[2 * i],
                                             intervals[2 * i + 1], tolerance);
@@ -862,19 +836,10 @@ absl::Status ParametersAtArcLengths(const Curve& curve, double start,
                                     absl::Span<double> parameters,
                                     const ExecutionContext& context) {
   const double end = DomainOf(curve).end;
-  if (absl::Status status = CheckInterval(curve, start, end, tolerance);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = CheckOutputSize(parameters, lengths.size());
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateInRange(
-          lengths, 0.0, std::numeric_limits<double>::max(), "lengths");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckInterval(curve, start, end, tolerance));
+  RETURN_IF_ERROR(CheckOutputSize(parameters, lengths.size()));
+  RETURN_IF_ERROR(ValidateInRange(
+      lengths, 0.0, std::numeric_limits<double>::max(), "lengths"));
   absl::StatusOr<Inverse> inverse =
       BuildInverse(curve, start, end, tolerance, context.cancellation);
   if (!inverse.ok()) return inverse.status();
@@ -899,14 +864,9 @@ absl::Status EqualArcLengthParameters(const Curve& curve, double start,
                                       double tolerance,
                                       absl::Span<double> parameters,
                                       const ExecutionContext& context) {
-  if (absl::Status status = CheckInterval(curve, start, end, tolerance);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckInterval(curve, start, end, tolerance));
   if (count < 2) return InvalidFieldError("count", "must be at least 2");
-  if (absl::Status status = CheckOutputSize(parameters, count); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckOutputSize(parameters, count));
   absl::StatusOr<Inverse> inverse =
       BuildInverse(curve, start, end, tolerance, context.cancellation);
   if (!inverse.ok()) return inverse.status();

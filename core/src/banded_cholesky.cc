@@ -7,6 +7,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/cancellation.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform::internal {
 namespace {
@@ -32,10 +33,7 @@ absl::Status BandedCholesky::Factor(const CancellationToken* cancel) {
   CancellationPoll poll(cancel);
   for (size_t i = 0; i < n_; ++i) {
     const size_t first = i > bandwidth_ ? i - bandwidth_ : 0;
-    if (absl::Status status = poll.Done((i - first + 1) * (i - first + 1));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done((i - first + 1) * (i - first + 1)));
     double* row = band_.data() + i * width_ + (first + bandwidth_ - i);
     // row[j - first] is entry (i, j); L_ij = (A_ij - sum_{k<j} L_ik L_jk) /
     // L_jj over the columns k >= first that both rows hold.
@@ -63,7 +61,7 @@ absl::Status BandedCholesky::Solve(double* rhs, size_t columns,
   const size_t row_work = width_ * columns;
   // L y = b, row by row.
   for (size_t i = 0; i < n_; ++i) {
-    if (absl::Status status = poll.Done(row_work); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(row_work));
     const size_t first = i > bandwidth_ ? i - bandwidth_ : 0;
     const double* row = band_.data() + i * width_ + (first + bandwidth_ - i);
     double* target = rhs + i * columns;
@@ -77,7 +75,7 @@ absl::Status BandedCholesky::Solve(double* rhs, size_t columns,
   // L^T x = y from the last row up: once x_i is known, subtract its
   // multiples L_ij x_i from the rows j < i it couples to.
   for (size_t i = n_; i-- > 0;) {
-    if (absl::Status status = poll.Done(row_work); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(row_work));
     const size_t first = i > bandwidth_ ? i - bandwidth_ : 0;
     const double* row = band_.data() + i * width_ + (first + bandwidth_ - i);
     double* source = rhs + i * columns;

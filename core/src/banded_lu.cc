@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform::internal {
 
@@ -20,10 +21,7 @@ absl::Status BandedLu::Factor() {
   CancellationPoll poll(cancel_);
   std::vector<double> row_scale(static_cast<size_t>(n_), 0.0);
   for (int i = 0; i < n_; ++i) {
-    if (absl::Status status = poll.Done(static_cast<size_t>(width_));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(static_cast<size_t>(width_)));
     for (int w = 0; w < width_; ++w) {
       row_scale[static_cast<size_t>(i)] =
           std::max(row_scale[static_cast<size_t>(i)],
@@ -31,11 +29,7 @@ absl::Status BandedLu::Factor() {
     }
   }
   for (int k = 0; k < n_; ++k) {
-    if (absl::Status status =
-            poll.Done(static_cast<size_t>(kl_ + 1) * (ku_ + 1));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(static_cast<size_t>(kl_ + 1) * (ku_ + 1)));
     const double pivot = at(k, k);
     if (!(std::abs(pivot) > 1e-14 * row_scale[static_cast<size_t>(k)])) {
       return SingularSystemError();
@@ -59,9 +53,7 @@ absl::Status BandedLu::Solve(double* rhs, int columns) {
   CancellationPoll poll(cancel_);
   const size_t row_work = static_cast<size_t>(width_) * d;
   for (int i = 0; i < n_; ++i) {
-    if (absl::Status status = poll.Done(row_work); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(row_work));
     double* row = rhs + static_cast<size_t>(i) * d;
     for (int j = std::max(0, i - kl_); j < i; ++j) {
       const double factor = at(i, j);
@@ -70,9 +62,7 @@ absl::Status BandedLu::Solve(double* rhs, int columns) {
     }
   }
   for (int i = n_ - 1; i >= 0; --i) {
-    if (absl::Status status = poll.Done(row_work); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(row_work));
     double* row = rhs + static_cast<size_t>(i) * d;
     for (int j = i + 1; j <= std::min(n_ - 1, i + ku_); ++j) {
       const double factor = at(i, j);

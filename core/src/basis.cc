@@ -8,6 +8,7 @@
 #include "freeform/core/lagrange.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "validated.h"
 #include "variant_dispatch.h"
 
@@ -45,10 +46,7 @@ absl::StatusOr<BSplineFunctions> BSplineFunctions::Create(
                               static_cast<size_t>(degree) + 2, " knots, got ",
                               knots.size()));
   }
-  if (absl::Status status = ValidateBSplineBasis(degree, knots, weights);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBSplineBasis(degree, knots, weights));
   return BSplineFunctions(degree, knots, weights);
 }
 
@@ -116,10 +114,7 @@ absl::StatusOr<std::vector<double>> BasisValues(
   std::vector<double> values(parameters.size() *
                              static_cast<size_t>(FunctionCountOf(basis)));
   const absl::Span<double> output[] = {absl::MakeSpan(values)};
-  if (absl::Status status = EvaluateBasis(basis, parameters, output, context);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(EvaluateBasis(basis, parameters, output, context));
   return values;
 }
 
@@ -138,11 +133,8 @@ absl::Status EvaluateTensorBasis(const CurveBasis& u, const CurveBasis& v,
                                  const ExecutionContext& context) {
   const ParameterDomain du = DomainOf(u);
   const ParameterDomain dv = DomainOf(v);
-  if (absl::Status status =
-          ValidateSurfaceSamples(samples, du.start, du.end, dv.start, dv.end);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidateSurfaceSamples(samples, du.start, du.end, dv.start, dv.end));
   const size_t fu = static_cast<size_t>(FunctionCountOf(u));
   const size_t fv = static_cast<size_t>(FunctionCountOf(v));
   const size_t count = samples.size();

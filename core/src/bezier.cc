@@ -9,6 +9,7 @@
 #include "checked_chunks.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "homogeneous.h"
 #include "scalar_reference.h"
 #include "simd/curve_simd.h"
@@ -17,11 +18,7 @@
 namespace freeform {
 
 absl::Status ValidateBezierCurve(const BezierCurveView& curve) {
-  if (absl::Status status =
-          ValidatePoints(curve.control_points, "control_points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(curve.control_points, "control_points"));
   if (!curve.rational()) return absl::OkStatus();
   const size_t count = curve.control_points.size();
   if (curve.weights.size() != count) {
@@ -29,14 +26,7 @@ absl::Status ValidateBezierCurve(const BezierCurveView& curve) {
         "weights", absl::StrCat("has ", curve.weights.size(), " weights for ",
                                 count, " control points"));
   }
-  for (size_t i = 0; i < count; ++i) {
-    const double weight = curve.weights[i];
-    if (!std::isfinite(weight) || weight < 0) {
-      return InvalidFieldError(
-          IndexedField("weights", i),
-          absl::StrCat("weights must be finite and >= 0, got ", weight));
-    }
-  }
+  RETURN_IF_ERROR(ValidateWeightValues(curve.weights));
   if (curve.weights.front() == 0 || curve.weights.back() == 0) {
     const size_t end = curve.weights.front() == 0 ? 0 : count - 1;
     return InvalidFieldError(
@@ -251,11 +241,8 @@ absl::Status EvaluateBernsteinBasis(int n, absl::Span<const double> weights,
       !status.ok()) {
     return status;
   }
-  if (absl::Status status =
-          ValidateBatch(parameters, 0.0, 1.0, output, static_cast<int>(count));
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidateBatch(parameters, 0.0, 1.0, output, static_cast<int>(count)));
   const int max_order = static_cast<int>(output.size()) - 1;
   const size_t orders = output.size();
   const bool rational = !weights.empty();
@@ -347,9 +334,7 @@ absl::Status EvaluateBezierCurve(const BezierCurveView& curve,
                                  CurveOutput output,
                                  const ExecutionContext& context,
                                  BezierAlgorithm algorithm) {
-  if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBezierCurve(curve));
   return internal::EvaluateValidBezierCurve(curve, parameters, output, context,
                                             algorithm);
 }
@@ -428,21 +413,15 @@ absl::Status EvaluateValidBezierCurve(const BezierCurveView& curve,
                                       const ExecutionContext& context,
                                       BezierAlgorithm algorithm) {
   // The lanes check the parameters chunk by chunk (checked_chunks.h).
-  if (absl::Status status = ValidateCurveOutput(output, parameters.size(),
-                                                curve.control_points.dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateCurveOutput(output, parameters.size(),
+                                      curve.control_points.dimension));
   const BezierAlgorithm scheme =
       ResolveBezierAlgorithm(algorithm, curve.degree());
   if (!curve.rational() && (scheme == BezierAlgorithm::kHorner ||
                             scheme == BezierAlgorithm::kLadder)) {
     return EvaluateLanes(curve, parameters, output, context, scheme);
   }
-  if (absl::Status status = ValidateInRange(parameters, 0.0, 1.0, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateInRange(parameters, 0.0, 1.0, "parameters"));
   return EvaluatePointByPoint(curve, parameters, output, context, algorithm);
 }
 
@@ -450,14 +429,9 @@ absl::Status EvaluateBezierCurveScalar(const BezierCurveView& curve,
                                        absl::Span<const double> parameters,
                                        CurveOutput output,
                                        BezierAlgorithm algorithm) {
-  if (absl::Status status = ValidateBezierCurve(curve); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateBatch(parameters, 0.0, 1.0, output,
-                                          curve.control_points.dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBezierCurve(curve));
+  RETURN_IF_ERROR(ValidateBatch(parameters, 0.0, 1.0, output,
+                                curve.control_points.dimension));
   return EvaluatePointByPoint(curve, parameters, output, {}, algorithm);
 }
 

@@ -10,6 +10,7 @@
 #include "freeform/core/bezier.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
 #include "homogeneous.h"
@@ -306,10 +307,7 @@ absl::StatusOr<QueryScale> ScaleForQuery(double tolerance,
                                          absl::Span<Pieces* const> pieces) {
   const std::vector<const Pieces*> all(pieces.begin(), pieces.end());
   const double largest = LargestCoordinate(all);
-  if (absl::Status status = CheckResolvableAt(tolerance, largest);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckResolvableAt(tolerance, largest));
   if (!(largest > 0.0) || !std::isfinite(largest)) return QueryScale{};
   const int exponent = std::ilogb(largest);
   for (Pieces* each : pieces) {

@@ -15,6 +15,7 @@
 #include "freeform/core/rational.h"
 #include "freeform/core/saturating.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/triangular.h"
 #include "scaled_geometry.h"
@@ -325,11 +326,8 @@ absl::StatusOr<double> Extreme(LiftedPieces<Shape>& pieces, int j, double sign,
                       .next = next[h]});
       std::push_heap(heap.begin(), heap.end(), LowerBound<Shape>);
     }
-    if (absl::Status status = poll.Done(4 * PointCount(top.shape) *
-                                        static_cast<size_t>(pieces.dimension));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(4 * PointCount(top.shape) *
+                              static_cast<size_t>(pieces.dimension)));
   }
 }
 
@@ -530,10 +528,7 @@ uint64_t SurfaceBoundingBoxBytes(const Surface& surface) {
 absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
                                              double tolerance,
                                              const CancellationToken* cancel) {
-  if (absl::Status status = ValidatePositive(tolerance, "tolerance");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
   const internal::ScaledCurve scaled = internal::ScaledCurve::Of(curve);
   absl::StatusOr<BezierDecomposition> pieces =
       DecomposeCurve(scaled.curve(), cancel);
@@ -551,25 +546,26 @@ absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
 
 absl::StatusOr<BoundingBox> SurfaceBoundingBox(
     const Surface& surface, double tolerance, const CancellationToken* cancel) {
-  if (absl::Status status = ValidatePositive(tolerance, "tolerance");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
   // A triangular patch is halved as a triangle (BisectTriangularPatch), a
   // tensor surface as its Bezier pieces.
   const internal::ScaledSurface scaled = internal::ScaledSurface::Of(surface);
   const double scaled_tolerance = Scaled(tolerance, scaled.scale());
-  if (const auto* patch = std::get_if<TriangularPatch>(&scaled.surface())) {
-    return Unscaled(
-        BoxOf(std::vector<TriangularPatchData>{PatchOf(patch->view())},
-              scaled_tolerance, cancel),
-        scaled.scale());
-  }
-  absl::StatusOr<SurfaceDecomposition> pieces =
-      DecomposeSurface(scaled.surface(), cancel);
-  if (!pieces.ok()) return pieces.status();
+  const auto tensor = [&]() -> absl::StatusOr<BoundingBox> {
+    ASSIGN_OR_RETURN(SurfaceDecomposition pieces,
+                     DecomposeSurface(scaled.surface(), cancel));
+    return BoxOf(std::move(pieces.pieces.patches), scaled_tolerance, cancel);
+  };
   return Unscaled(
-      BoxOf(std::move(pieces->pieces.patches), scaled_tolerance, cancel),
+      std::visit(internal::Overloaded{
+                     [&](const BezierSurface&) { return tensor(); },
+                     [&](const BSplineSurface&) { return tensor(); },
+                     [&](const TriangularPatch& patch) {
+                       return BoxOf(std::vector<TriangularPatchData>{PatchOf(
+                                        patch.view())},
+                                    scaled_tolerance, cancel);
+                     }},
+                 scaled.surface()),
       scaled.scale());
 }
 

@@ -13,6 +13,7 @@
 #include "freeform/core/bezier.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "scalar_reference.h"
 #include "simd/curve_simd.h"
 #include "validated.h"
@@ -384,9 +385,7 @@ absl::Status ValidateDegree(int p) {
 
 // Knots must be finite and non-decreasing.
 absl::Status ValidateKnotOrder(absl::Span<const double> knots) {
-  if (absl::Status status = ValidateFinite(knots, "knots"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateFinite(knots, "knots"));
   for (size_t i = 1; i < knots.size(); ++i) {
     if (knots[i] < knots[i - 1]) {
       return InvalidFieldError(
@@ -433,12 +432,8 @@ absl::Status ValidateMultiplicities(int p, int n,
 
 // n + p + 2 knots whose count has been checked.
 absl::Status ValidateKnots(int p, int n, absl::Span<const double> knots) {
-  if (absl::Status status = ValidateKnotOrder(knots); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateMultiplicities(p, n, knots); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateKnotOrder(knots));
+  RETURN_IF_ERROR(ValidateMultiplicities(p, n, knots));
   if (!(knots[p] < knots[n + 1])) {
     return InvalidFieldError(
         "knots", absl::StrCat("the domain [u_p, u_{n+1}] = [", knots[p], ", ",
@@ -482,13 +477,7 @@ absl::Status ValidateWeights(int p, int n, absl::Span<const double> knots,
         "weights", absl::StrCat("has ", weights.size(), " weights for ", count,
                                 " ", owners));
   }
-  for (size_t i = 0; i < count; ++i) {
-    if (!std::isfinite(weights[i]) || weights[i] < 0) {
-      return InvalidFieldError(
-          IndexedField("weights", i),
-          absl::StrCat("weights must be finite and >= 0, got ", weights[i]));
-    }
-  }
+  RETURN_IF_ERROR(ValidateWeightValues(weights));
   return ValidateDenominator(p, n, knots, weights);
 }
 
@@ -498,9 +487,7 @@ absl::Status ValidateKnotsAndWeights(int p, int n,
                                      absl::Span<const double> knots,
                                      absl::Span<const double> weights,
                                      absl::string_view owners) {
-  if (absl::Status status = ValidateKnots(p, n, knots); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateKnots(p, n, knots));
   if (weights.empty()) return absl::OkStatus();
   return ValidateWeights(p, n, knots, weights, owners);
 }
@@ -509,12 +496,8 @@ absl::Status ValidateKnotsAndWeights(int p, int n,
 
 absl::Status ValidateBSplineCurve(const BSplineCurveView& curve) {
   const int p = curve.degree;
-  if (absl::Status status = ValidateDegree(p); !status.ok()) return status;
-  if (absl::Status status =
-          ValidatePoints(curve.control_points, "control_points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateDegree(p));
+  RETURN_IF_ERROR(ValidatePoints(curve.control_points, "control_points"));
   const size_t count = curve.control_points.size();
   if (count < static_cast<size_t>(p) + 1) {
     return InvalidFieldError(
@@ -535,7 +518,7 @@ absl::Status ValidateBSplineCurve(const BSplineCurveView& curve) {
 
 absl::Status ValidateBSplineBasis(int p, absl::Span<const double> knots,
                                   absl::Span<const double> weights) {
-  if (absl::Status status = ValidateDegree(p); !status.ok()) return status;
+  RETURN_IF_ERROR(ValidateDegree(p));
   const size_t minimum = 2 * (static_cast<size_t>(p) + 1);
   if (knots.size() < minimum) {
     return InvalidFieldError(
@@ -586,9 +569,7 @@ absl::Status EvaluateBSplineCurve(const BSplineCurveView& curve,
                                   absl::Span<const double> parameters,
                                   CurveOutput output,
                                   const ExecutionContext& context) {
-  if (absl::Status status = ValidateBSplineCurve(curve); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBSplineCurve(curve));
   return internal::EvaluateValidBSplineCurve(curve, parameters, output,
                                              context);
 }
@@ -609,11 +590,7 @@ absl::Status EvaluateBSplineBatch(const BSplineCurveView& curve,
   const ParameterDomain domain = BSplineDomain(curve);
   const int dimension = curve.control_points.dimension;
   // The parameters are checked chunk by chunk (checked_chunks.h).
-  if (absl::Status status =
-          ValidateCurveOutput(output, parameters.size(), dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateCurveOutput(output, parameters.size(), dimension));
   const auto in_domain_chunks =
       [&](absl::FunctionRef<void(size_t, size_t)> body) {
         return internal::ParallelForInRange(
@@ -668,9 +645,7 @@ absl::Status EvaluateValidBSplineCurve(const BSplineCurveView& curve,
 absl::Status EvaluateBSplineCurveScalar(const BSplineCurveView& curve,
                                         absl::Span<const double> parameters,
                                         CurveOutput output) {
-  if (absl::Status status = ValidateBSplineCurve(curve); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBSplineCurve(curve));
   return EvaluateBSplineBatch(curve, parameters, output, {},
                               CurveKernel::kScalar);
 }
@@ -682,10 +657,7 @@ absl::Status EvaluateBSplineBasis(int degree, absl::Span<const double> knots,
                                   absl::Span<const double> parameters,
                                   CurveOutput output,
                                   const ExecutionContext& context) {
-  if (absl::Status status = ValidateBSplineBasis(degree, knots, weights);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBSplineBasis(degree, knots, weights));
   return internal::EvaluateValidBSplineBasis(degree, knots, weights, parameters,
                                              output, context);
 }
@@ -699,12 +671,9 @@ absl::Status EvaluateValidBSplineBasis(int degree,
                                        CurveOutput output,
                                        const ExecutionContext& context) {
   const int function_count = static_cast<int>(knots.size()) - degree - 1;
-  if (absl::Status status = ValidateBatch(
-          parameters, knots[static_cast<size_t>(degree)],
-          knots[static_cast<size_t>(function_count)], output, function_count);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBatch(parameters, knots[static_cast<size_t>(degree)],
+                                knots[static_cast<size_t>(function_count)],
+                                output, function_count));
   const BasisBatch batch{.p = degree,
                          .function_count = function_count,
                          .max_order = static_cast<int>(output.size()) - 1,

@@ -14,6 +14,7 @@
 #include "freeform/core/cancellation.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "scaled.h"
 #include "scaled_geometry.h"
 
@@ -31,11 +32,8 @@ constexpr int kBranchNewtonSteps = 8;
 constexpr int kPolishNewtonSteps = 60;
 
 absl::Status CheckOptions(const ClosestPointOptions& options) {
-  if (absl::Status status =
-          internal::CheckTolerances(options.tolerance, options.separation);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      internal::CheckTolerances(options.tolerance, options.separation));
   if (options.max_minima < 1 || options.max_minima > kMaxMinimaPerQuery) {
     return InvalidFieldError(
         "max_minima", absl::StrCat("must lie in [1, ", kMaxMinimaPerQuery,
@@ -48,9 +46,7 @@ absl::Status CheckOptions(const ClosestPointOptions& options) {
 }
 
 absl::Status CheckQueries(const PointsView& queries, int dimension) {
-  if (absl::Status status = ValidatePoints(queries, "queries"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(queries, "queries"));
   if (queries.dimension != dimension) {
     return InvalidFieldError(
         "queries.dimension",
@@ -933,12 +929,9 @@ absl::Status Finisher::Finish(size_t r, ClosestPoints& answer) const {
         parameters[k], k % pc == 0 ? scale.u_exponent : scale.v_exponent);
   }
   double* points = answer.points.data() + slot * static_cast<size_t>(dim);
-  if (absl::Status status =
-          evaluate(absl::MakeConstSpan(parameters, count * pc),
-                   absl::MakeSpan(points, count * static_cast<size_t>(dim)));
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      evaluate(absl::MakeConstSpan(parameters, count * pc),
+               absl::MakeSpan(points, count * static_cast<size_t>(dim))));
   const double* q = queries.point(r);
   double distance = kInfinity;
   for (size_t k = 0; k < count; ++k) {
@@ -1038,11 +1031,8 @@ template <typename Geometry>
 absl::StatusOr<ClosestPoints> ClosestPointsOn(
     const Geometry& geometry, const PointsView& queries,
     const ClosestPointOptions& options, const ExecutionContext& context) {
-  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
-  if (absl::Status status = CheckQueries(queries, DimensionOf(geometry));
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckOptions(options));
+  RETURN_IF_ERROR(CheckQueries(queries, DimensionOf(geometry)));
   const auto scaled = ScaledOf(geometry);
   absl::StatusOr<Pieces> pieces = ScaledPieces(scaled, context.cancellation);
   if (!pieces.ok()) return pieces.status();
@@ -1062,9 +1052,7 @@ absl::StatusOr<ClosestPoints> ClosestPointsOn(
                           .far = far,
                           .rational = IsRational(*pieces),
                           .evaluate = evaluate};
-  if (absl::Status status = Finish(finisher, *answer, context); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(Finish(finisher, *answer, context));
   return answer;
 }
 

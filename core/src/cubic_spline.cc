@@ -14,6 +14,7 @@
 #include "freeform/core/interpolation.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "interpolation_parameters.h"
 #include "interpolation_result.h"
 #include "knot_insertion.h"
@@ -104,9 +105,7 @@ absl::Status ValidatePeriodicEnds(const PointsView& values) {
 absl::StatusOr<CurveInterpolation> PeriodicCubicSpline(
     const PointsView& values, absl::Span<const double> x,
     const CancellationToken* cancel) {
-  if (absl::Status status = ValidatePeriodicEnds(values); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePeriodicEnds(values));
   const size_t n = values.size() - 1;
   const PointsView distinct{.dimension = values.dimension,
                             .coordinates = values.coordinates.subspan(
@@ -128,23 +127,17 @@ absl::Status ValidateSplineInput(const PointsView& values,
                                  absl::Span<const double> x, SplineEnd end,
                                  absl::Span<const double> start_derivative,
                                  absl::Span<const double> end_derivative) {
-  if (absl::Status status =
-          ValidatePoints(values, "points", end == SplineEnd::kPeriodic ? 3 : 2);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidatePoints(values, "points", end == SplineEnd::kPeriodic ? 3 : 2));
   if (x.size() != values.size()) {
     return InvalidFieldError("parameters",
                              absl::StrCat("needs one abscissa per point (",
                                           values.size(), "), got ", x.size()));
   }
-  if (absl::Status status = ValidateParameters(x); !status.ok()) return status;
+  RETURN_IF_ERROR(ValidateParameters(x));
   const bool clamped = end == SplineEnd::kClamped;
-  if (absl::Status status = ValidateDerivative(
-          start_derivative, "start_derivative", values.dimension, clamped);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateDerivative(start_derivative, "start_derivative",
+                                     values.dimension, clamped));
   return ValidateDerivative(end_derivative, "end_derivative", values.dimension,
                             clamped);
 }
@@ -155,11 +148,8 @@ absl::StatusOr<CurveInterpolation> InterpolateCubicSpline(
     const PointsView& values, absl::Span<const double> x, SplineEnd end,
     absl::Span<const double> start_derivative,
     absl::Span<const double> end_derivative, const CancellationToken* cancel) {
-  if (absl::Status status =
-          ValidateSplineInput(values, x, end, start_derivative, end_derivative);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidateSplineInput(values, x, end, start_derivative, end_derivative));
   if (end == SplineEnd::kPeriodic) {
     return PeriodicCubicSpline(values, x, cancel);
   }

@@ -4,6 +4,7 @@
 #include <utility>
 #include <vector>
 
+#include "freeform/core/status_macros.h"
 #include "piece_values.h"
 #include "validated.h"
 #include "variant_dispatch.h"
@@ -12,18 +13,13 @@ namespace freeform {
 
 absl::StatusOr<BezierCurve> BezierCurve::Create(const BezierCurveView& view,
                                                 BezierAlgorithm algorithm) {
-  if (absl::Status status = ValidateBezierCurve(view); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBezierCurve(view));
   return BezierCurve(view, algorithm, nullptr);
 }
 
 absl::StatusOr<BezierCurve> BezierCurve::FromPowerForm(
     const PointsView& coefficients, BezierAlgorithm algorithm) {
-  if (absl::Status status = ValidatePoints(coefficients, "coefficients");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(coefficients, "coefficients"));
   auto owned =
       std::make_shared<const std::vector<double>>(PowerToBezier(coefficients));
   const BezierCurveView view{
@@ -42,9 +38,7 @@ absl::Status BezierCurve::Evaluate(absl::Span<const double> parameters,
 
 absl::StatusOr<BSplineCurve> BSplineCurve::Create(
     const BSplineCurveView& view) {
-  if (absl::Status status = ValidateBSplineCurve(view); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBSplineCurve(view));
   return BSplineCurve(view);
 }
 
@@ -62,9 +56,7 @@ LagrangeCurve::LagrangeCurve(const LagrangeCurveView& view) : view_(view) {
 
 absl::StatusOr<LagrangeCurve> LagrangeCurve::Create(
     const LagrangeCurveView& view) {
-  if (absl::Status status = ValidateLagrangeCurve(view); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateLagrangeCurve(view));
   return LagrangeCurve(view);
 }
 
@@ -82,9 +74,7 @@ HermiteCurve::HermiteCurve(const HermiteCurveView& view) : view_(view) {
 
 absl::StatusOr<HermiteCurve> HermiteCurve::Create(
     const HermiteCurveView& view) {
-  if (absl::Status status = ValidateHermiteCurve(view); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateHermiteCurve(view));
   return HermiteCurve(view);
 }
 
@@ -136,13 +126,20 @@ BezierDecomposition SinglePiece(BezierCurveData piece, double start,
 
 std::vector<double> CurveBreakpoints(const Curve& curve) {
   const ParameterDomain domain = DomainOf(curve);
-  if (const auto* bspline = std::get_if<BSplineCurve>(&curve)) {
-    return DistinctWithin(bspline->view().knots, domain.start, domain.end);
-  }
-  if (const auto* hermite = std::get_if<HermiteCurve>(&curve)) {
-    return HermiteNodes(hermite->view());
-  }
-  return {domain.start, domain.end};
+  const auto ends = [&domain] {
+    return std::vector<double>{domain.start, domain.end};
+  };
+  return std::visit(
+      internal::Overloaded{[&](const BezierCurve&) { return ends(); },
+                           [&](const BSplineCurve& bspline) {
+                             return DistinctWithin(bspline.view().knots,
+                                                   domain.start, domain.end);
+                           },
+                           [&](const LagrangeCurve&) { return ends(); },
+                           [](const HermiteCurve& hermite) {
+                             return HermiteNodes(hermite.view());
+                           }},
+      curve);
 }
 
 uint64_t DecomposedCurveValues(const Curve& curve) {
@@ -176,14 +173,18 @@ uint64_t DecomposedCurveValues(const Curve& curve) {
 }
 
 uint64_t DecomposedCurvePieces(const Curve& curve) {
-  if (const auto* bspline = std::get_if<BSplineCurve>(&curve)) {
-    const BSplineCurveView& view = bspline->view();
-    return view.control_points.size() - static_cast<uint64_t>(view.degree);
-  }
-  if (const auto* hermite = std::get_if<HermiteCurve>(&curve)) {
-    return hermite->view().points.size() - 1;
-  }
-  return 1;
+  return std::visit(
+      internal::Overloaded{[](const BezierCurve&) -> uint64_t { return 1; },
+                           [](const BSplineCurve& bspline) -> uint64_t {
+                             const BSplineCurveView& view = bspline.view();
+                             return view.control_points.size() -
+                                    static_cast<uint64_t>(view.degree);
+                           },
+                           [](const LagrangeCurve&) -> uint64_t { return 1; },
+                           [](const HermiteCurve& hermite) -> uint64_t {
+                             return hermite.view().points.size() - 1;
+                           }},
+      curve);
 }
 
 absl::StatusOr<BezierDecomposition> DecomposeCurve(

@@ -17,6 +17,7 @@
 #include "freeform/core/fitting.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "interpolation_result.h"
 #include "tolerance_refinement.h"
 
@@ -48,11 +49,8 @@ absl::StatusOr<KnotFit> FitOnKnots(const PointsView& points, int p,
   if (!control.ok()) return control.status();
   fit.control = *std::move(control);
   std::vector<double> values(points.coordinates.size());
-  if (absl::Status status =
-          system->Evaluate(fit.control.data(), d, values.data(), cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      system->Evaluate(fit.control.data(), d, values.data(), cancel));
   fit.errors.resize(points.size());
   for (size_t k = 0; k < fit.errors.size(); ++k) {
     double sum = 0;
@@ -131,13 +129,10 @@ absl::StatusOr<KnotFit> FitWithCorrections(const PointsView& points, int p,
   absl::StatusOr<KnotFit> fit = FitOnKnots(points, p, knots, t, cancel);
   for (int round = 0; fit.ok() && round < corrections; ++round) {
     std::vector<double> previous = t;
-    if (absl::Status status = CorrectParameters(
-            MakeCurve(p, points.dimension, fit->control,
-                      std::vector<double>(knots.begin(), knots.end())),
-            points, t, cancel);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CorrectParameters(
+        MakeCurve(p, points.dimension, fit->control,
+                  std::vector<double>(knots.begin(), knots.end())),
+        points, t, cancel));
     if (!internal::SpansHoldData(p, knots, t)) {
       t = std::move(previous);
       break;
@@ -165,15 +160,9 @@ absl::Status ValidateCurveFitOptions(const PointsView& points,
     return InvalidFieldError(
         "degree", absl::StrCat("must be >= 1, got ", options.degree));
   }
-  if (absl::Status status = ValidatePoints(
-          points, "points", static_cast<size_t>(options.degree) + 1);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = internal::ValidateTolerance(options.tolerance);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(points, "points",
+                                 static_cast<size_t>(options.degree) + 1));
+  RETURN_IF_ERROR(internal::ValidateTolerance(options.tolerance));
   if (options.max_control_points <= options.degree) {
     return InvalidFieldError("max_control_points",
                              absl::StrCat("must be >= degree + 1, got ",
@@ -198,11 +187,7 @@ absl::StatusOr<std::vector<double>> ExplicitParameters(
         absl::StrCat("needs one parameter per point (", points.size(),
                      "), got ", parameters.size()));
   }
-  if (absl::Status status =
-          internal::ValidateIncreasing(parameters, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(internal::ValidateIncreasing(parameters, "parameters"));
   return std::vector<double>(parameters.begin(), parameters.end());
 }
 
@@ -300,10 +285,7 @@ absl::StatusOr<CurveFit> RefineFit(const PointsView& points,
 
 absl::StatusOr<CurveFit> FitCurve(const PointsView& points,
                                   const CurveFitOptions& options) {
-  if (absl::Status status = ValidateCurveFitOptions(points, options);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateCurveFitOptions(points, options));
   const int p = options.degree;
   absl::StatusOr<std::vector<double>> t =
       options.parameters.empty()
@@ -332,17 +314,12 @@ absl::StatusOr<CurveApproximation> FitCurveToKnots(
     return InvalidFieldError("degree",
                              absl::StrCat("must be >= 1, got ", degree));
   }
-  if (absl::Status status =
-          ValidatePoints(points, "points", static_cast<size_t>(degree) + 1);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidatePoints(points, "points", static_cast<size_t>(degree) + 1));
   absl::StatusOr<std::vector<double>> t =
       ExplicitParameters(points, parameters);
   if (!t.ok()) return t.status();
-  if (absl::Status status = ValidateFitKnots(degree, knots, *t); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateFitKnots(degree, knots, *t));
   absl::StatusOr<KnotFit> fit = FitOnKnots(points, degree, knots, *t, cancel);
   if (!fit.ok()) return fit.status();
   const auto [max, rms] = ErrorSummary(fit->errors);

@@ -2,6 +2,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "freeform/core/points.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform {
 
@@ -24,11 +25,7 @@ absl::Status ValidateCurveOutput(CurveOutput output, size_t count,
 absl::Status ValidateBatch(absl::Span<const double> parameters, double start,
                            double end, CurveOutput output,
                            int values_per_point) {
-  if (absl::Status status =
-          ValidateInRange(parameters, start, end, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateInRange(parameters, start, end, "parameters"));
   return ValidateCurveOutput(output, parameters.size(), values_per_point);
 }
 

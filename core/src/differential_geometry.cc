@@ -13,6 +13,7 @@
 #include "freeform/core/curve_output.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/surface_output.h"
 #include "scaled.h"
 #include "scaled_geometry.h"
@@ -130,11 +131,8 @@ absl::StatusOr<CurveDerivatives> EvaluateDerivatives(
     const Curve& curve, absl::Span<const double> parameters,
     const ExecutionContext& context) {
   const ParameterDomain original = DomainOf(curve);
-  if (absl::Status status = ValidateInRange(parameters, original.start,
-                                            original.end, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidateInRange(parameters, original.start, original.end, "parameters"));
   const internal::ScaledCurve scaled = internal::ScaledCurve::Of(curve);
   std::vector<double> scaled_parameters;
   absl::Span<const double> at = parameters;
@@ -157,10 +155,7 @@ absl::StatusOr<CurveDerivatives> EvaluateDerivatives(
                                  static_cast<size_t>(derivatives.dimension));
     output[k] = absl::MakeSpan(derivatives.orders[k]);
   }
-  if (absl::Status status = EvaluateCurve(scaled.curve(), at, output, context);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(EvaluateCurve(scaled.curve(), at, output, context));
   return derivatives;
 }
 
@@ -212,10 +207,7 @@ absl::StatusOr<std::array<double, kMaxDimension>> InitialReference(
           "initial_reference",
           absl::StrCat("has ", given.size(), " values, not the dimension ", d));
     }
-    if (absl::Status status = ValidateFinite(given, "initial_reference");
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ValidateFinite(given, "initial_reference"));
     std::copy(given.begin(), given.end(), reference.begin());
   } else if (point.status == CurvePointStatus::kRegular) {
     return point.normal;
@@ -454,10 +446,7 @@ absl::Status EvaluateFrenetFrames(const Curve& curve,
                                   const FrenetFrameOutput& output,
                                   const ExecutionContext& context) {
   const int d = DimensionOf(curve);
-  if (absl::Status status = CheckFrenetOutput(output, d, parameters.size());
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckFrenetOutput(output, d, parameters.size()));
   absl::StatusOr<CurveDerivatives> derivatives =
       EvaluateDerivatives(curve, parameters, context);
   if (!derivatives.ok()) return derivatives.status();
@@ -489,11 +478,7 @@ absl::Status EvaluateRotationMinimizingFrames(
   if (parameters.empty()) {
     return InvalidFieldError("parameters", "needs at least one parameter");
   }
-  if (absl::Status status =
-          CheckRotationMinimizingOutput(output, d, parameters.size());
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckRotationMinimizingOutput(output, d, parameters.size()));
   absl::StatusOr<CurveDerivatives> derivatives =
       EvaluateDerivatives(curve, parameters, context);
   if (!derivatives.ok()) return derivatives.status();
@@ -518,7 +503,7 @@ absl::Status EvaluateRotationMinimizingFrames(
       Cross(point->tangent.data(), reference->data(), &output.third[3 * r]);
     }
     previous = std::move(point);
-    if (absl::Status status = poll.Done(16 * dim); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(16 * dim));
   }
   return absl::OkStatus();
 }
@@ -536,33 +521,24 @@ absl::Status EvaluateSurfaceCurvatures(const Surface& surface,
                                        const SurfaceSamples& samples,
                                        const SurfaceCurvatureOutput& output,
                                        const ExecutionContext& context) {
-  if (absl::Status status = CheckThreeDimensional(surface); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckThreeDimensional(surface));
   const size_t count = samples.size();
-  if (absl::Status status = CheckCurvatureOutput(output, count); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCurvatureOutput(output, count));
   std::vector<std::vector<double>> buffers(PartialCount(2),
                                            std::vector<double>(3 * count));
   std::vector<absl::Span<double>> partials;
   for (std::vector<double>& buffer : buffers) {
     partials.push_back(absl::MakeSpan(buffer));
   }
-  if (absl::Status status = ValidateSamples(surface, samples); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateSamples(surface, samples));
   // Evaluated on the copy rescaled by powers of two (scaled_geometry.h):
   // its curvatures are the surface's times 2^e.
   const internal::ScaledSurface scaled = internal::ScaledSurface::Of(surface);
   std::vector<double> storage;
   std::vector<double> normals(3 * count);
-  if (absl::Status status =
-          EvaluateSurface(scaled.surface(), scaled.Samples(samples, storage),
-                          partials, absl::MakeSpan(normals), context);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(EvaluateSurface(scaled.surface(),
+                                  scaled.Samples(samples, storage), partials,
+                                  absl::MakeSpan(normals), context));
   const int exponent = scaled.scale().coordinate_exponent;
   const internal::PowerOfTwoScale back(-exponent);
   const internal::PowerOfTwoScale back_squared(-2 * exponent);

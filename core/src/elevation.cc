@@ -13,6 +13,7 @@
 #include "freeform/core/bspline.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "homogeneous.h"
 #include "knot_insertion.h"
 #include "knots.h"
@@ -68,10 +69,7 @@ absl::Status ElevateSegment(const std::vector<double>& a, int p, int by,
                             CancellationPoll* poll = nullptr) {
   for (int i = first; i <= p + by; ++i) {
     if (poll != nullptr) {
-      if (absl::Status status = poll->Done(static_cast<size_t>(p + 1) * dim);
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(poll->Done(static_cast<size_t>(p + 1) * dim));
     }
     double* q = out + static_cast<size_t>(i) * dim;
     std::fill(q, q + dim, 0.0);
@@ -91,12 +89,9 @@ absl::StatusOr<PointArray> ElevateBezierPoints(
   PointArray result{points.dim,
                     std::vector<double>((points.count() + by) * points.dim)};
   CancellationPoll poll(cancel);
-  if (absl::Status status =
-          ElevateSegment(ElevationCoefficients(p, by), p, by, points.dim,
-                         points.values.data(), 0, result.values.data(), &poll);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ElevateSegment(ElevationCoefficients(p, by), p, by,
+                                 points.dim, points.values.data(), 0,
+                                 result.values.data(), &poll));
   return result;
 }
 
@@ -221,9 +216,7 @@ class BlossomElevator {
         static_cast<size_t>(p() + 1) * dim_;
     int span = p();
     for (int i = 0; i < count; ++i) {
-      if (absl::Status status = poll.Done(work_per_point); !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(poll.Done(work_per_point));
       span = SpanFor(uh, i, span);
       const double* weights = ph() == p() + 1
                                   ? LeaveOneOutWeights(span, &uh[i + 1])
@@ -412,9 +405,7 @@ absl::StatusOr<Spline> RunBlossomElevator(const Spline& spline, int by,
 absl::StatusOr<Spline> ElevateSpline(Spline spline, int by,
                                      const CancellationToken* cancel) {
   if (!IsClamped(spline.knots, spline.degree)) {
-    if (absl::Status status = Clamp(spline, cancel); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(Clamp(spline, cancel));
   }
   return RunBlossomElevator(spline, by, cancel);
 }
@@ -471,10 +462,7 @@ absl::Status ElevateNetV(NetWithKnots& net, int degree, int by,
       TransposeBlocks(net.values, net.rows, net.cols, net.dim),
       std::move(net.knots_v),
       {}};
-  if (absl::Status status = ElevateNetU(transposed, degree, by, cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ElevateNetU(transposed, degree, by, cancel));
   net.cols = transposed.rows;
   net.values = TransposeBlocks(transposed.values, transposed.rows,
                                transposed.cols, net.dim);
@@ -499,16 +487,10 @@ absl::StatusOr<SurfaceData> ElevateSurface(const ControlNetView& view,
                    std::vector<double>(knots_u.begin(), knots_u.end()),
                    std::vector<double>(knots_v.begin(), knots_v.end())};
   if (by_u > 0) {
-    if (absl::Status status = ElevateNetU(net, degree_u, by_u, cancel);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ElevateNetU(net, degree_u, by_u, cancel));
   }
   if (by_v > 0) {
-    if (absl::Status status = ElevateNetV(net, degree_v, by_v, cancel);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ElevateNetV(net, degree_v, by_v, cancel));
   }
   SurfaceData result;
   result.dimension = view.dimension;
@@ -516,9 +498,14 @@ absl::StatusOr<SurfaceData> ElevateSurface(const ControlNetView& view,
   result.count_v = net.cols;
   result.degree_u = degree_u < 0 ? net.rows - 1 : degree_u + by_u;
   result.degree_v = degree_v < 0 ? net.cols - 1 : degree_v + by_v;
+  // A Bezier net is raised by convex combinations; a B-spline net's
+  // elevation subtracts (it removes the knots it inserted).
+  const bool bspline = degree_u >= 0 || degree_v >= 0;
   ProjectAllowingDirections(PointArray{net.dim, std::move(net.values)},
                             !weights.empty(), result.coordinates,
-                            result.weights);
+                            result.weights,
+                            bspline ? internal::ZeroWeights::kWithinRounding
+                                    : internal::ZeroWeights::kExact);
   result.knots_u = std::move(net.knots_u);
   result.knots_v = std::move(net.knots_v);
   return result;
@@ -633,24 +620,20 @@ PointArray ReducedPoints(const PointArray& p, int by) {
 
 absl::StatusOr<BezierCurveData> ElevateBezierCurve(const BezierCurveView& curve,
                                                    int by) {
-  if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPositive(by, "by"));
   absl::StatusOr<PointArray> elevated = ElevateBezierPoints(
       Lift(curve.control_points, curve.weights), by, nullptr);
   if (!elevated.ok()) return elevated.status();
   BezierCurveData result;
   result.dimension = curve.control_points.dimension;
   ProjectAllowingDirections(*elevated, curve.rational(), result.coordinates,
-                            result.weights);
+                            result.weights, internal::ZeroWeights::kExact);
   return result;
 }
 
 absl::StatusOr<BSplineCurveData> ElevateBSplineCurve(
     const BSplineCurveView& curve, int by, const CancellationToken* cancel) {
-  if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPositive(by, "by"));
   absl::StatusOr<Spline> spline = ElevateSpline(
       Spline{curve.degree,
              std::vector<double>(curve.knots.begin(), curve.knots.end()),
@@ -662,7 +645,8 @@ absl::StatusOr<BSplineCurveData> ElevateBSplineCurve(
   result.dimension = curve.control_points.dimension;
   result.knots = std::move(spline->knots);
   ProjectAllowingDirections(spline->points, curve.rational(),
-                            result.coordinates, result.weights);
+                            result.coordinates, result.weights,
+                            internal::ZeroWeights::kWithinRounding);
   return result;
 }
 
@@ -695,9 +679,7 @@ absl::StatusOr<ReducedBezierCurve> ReduceBezierCurve(
 absl::StatusOr<SurfaceData> ElevateBezierSurface(
     const BezierSurfaceView& surface, int by_u, int by_v,
     const CancellationToken* cancel) {
-  if (absl::Status status = CheckSurfaceElevation(by_u, by_v); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckSurfaceElevation(by_u, by_v));
   return ElevateSurface(surface.control_net, surface.weights, {}, {}, -1, -1,
                         by_u, by_v, cancel);
 }
@@ -705,9 +687,7 @@ absl::StatusOr<SurfaceData> ElevateBezierSurface(
 absl::StatusOr<SurfaceData> ElevateBSplineSurface(
     const BSplineSurfaceView& surface, int by_u, int by_v,
     const CancellationToken* cancel) {
-  if (absl::Status status = CheckSurfaceElevation(by_u, by_v); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckSurfaceElevation(by_u, by_v));
   return ElevateSurface(surface.control_net, surface.weights, surface.knots_u,
                         surface.knots_v, surface.degree_u, surface.degree_v,
                         by_u, by_v, cancel);
@@ -715,9 +695,7 @@ absl::StatusOr<SurfaceData> ElevateBSplineSurface(
 
 absl::StatusOr<TriangularPatchData> ElevateTriangularPatch(
     const TriangularPatchView& patch, int by) {
-  if (absl::Status status = CheckPositive(by, "by"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPositive(by, "by"));
   PointArray points = Lift(patch.control_points, patch.weights);
   for (int n = patch.degree; n < patch.degree + by; ++n) {
     points = ElevateTriangleOnce(points, n);
@@ -728,7 +706,7 @@ absl::StatusOr<TriangularPatchData> ElevateTriangularPatch(
   result.domain_triangle.assign(patch.domain_triangle.begin(),
                                 patch.domain_triangle.end());
   ProjectAllowingDirections(points, patch.rational(), result.coordinates,
-                            result.weights);
+                            result.weights, internal::ZeroWeights::kExact);
   return result;
 }
 

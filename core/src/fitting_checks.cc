@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform::internal {
 
@@ -22,9 +23,7 @@ absl::Status ValidateTolerance(double tolerance) {
 
 absl::Status ValidateIncreasing(absl::Span<const double> values,
                                 absl::string_view field) {
-  if (absl::Status status = ValidateFinite(values, field); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateFinite(values, field));
   const auto repeat =
       std::adjacent_find(values.begin(), values.end(),
                          [](double a, double b) { return !(b > a); });

@@ -10,6 +10,7 @@
 #include "freeform/core/bspline.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform::internal {
 
@@ -32,7 +33,7 @@ absl::StatusOr<FixedEndLeastSquares> FixedEndLeastSquares::Create(
   CancellationPoll poll(cancel);
   int span = p;
   for (size_t k = 0; k < t.size(); ++k) {
-    if (absl::Status status = poll.Done(w * w); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(w * w));
     span = FindSpanFrom(span, n, p, t[k], knots);
     const size_t first = static_cast<size_t>(span - p);
     double* basis = fit.basis_.data() + k * w;
@@ -80,9 +81,7 @@ absl::StatusOr<std::vector<double>> FixedEndLeastSquares::Solve(
   std::vector<double> residual(columns);
   CancellationPoll poll(cancel);
   for (size_t k = 1; k < m; ++k) {
-    if (absl::Status status = poll.Done(2 * w * columns); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(2 * w * columns));
     const double* basis = basis_.data() + k * w;
     const size_t first = first_[k];
     std::copy_n(data + k * columns, columns, residual.begin());
@@ -101,9 +100,7 @@ absl::StatusOr<std::vector<double>> FixedEndLeastSquares::Solve(
       for (size_t c = 0; c < columns; ++c) row[c] += basis[a] * residual[c];
     }
   }
-  if (absl::Status status = normal_.Solve(rhs, columns, cancel); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(normal_.Solve(rhs, columns, cancel));
   return control;
 }
 
@@ -113,9 +110,7 @@ absl::Status FixedEndLeastSquares::Evaluate(
   const size_t w = static_cast<size_t>(p_) + 1;
   CancellationPoll poll(cancel);
   for (size_t k = 0; k < first_.size(); ++k) {
-    if (absl::Status status = poll.Done(w * columns); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(w * columns));
     double* value = values + k * columns;
     std::fill_n(value, columns, 0.0);
     const double* basis = basis_.data() + k * w;

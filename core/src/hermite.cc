@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "validated.h"
 
 namespace freeform {
@@ -13,9 +14,7 @@ namespace {
 
 absl::Status ValidateStrictlyIncreasing(absl::Span<const double> values,
                                         absl::string_view field) {
-  if (absl::Status status = ValidateFinite(values, field); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateFinite(values, field));
   for (size_t i = 1; i < values.size(); ++i) {
     if (!(values[i] > values[i - 1])) {
       return InvalidFieldError(
@@ -37,20 +36,14 @@ size_t FindSegment(absl::Span<const double> nodes, double t) {
 }  // namespace
 
 absl::Status ValidateHermiteCurve(const HermiteCurveView& curve) {
-  if (absl::Status status = ValidatePoints(curve.points, "points", 2);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(curve.points, "points", 2));
   if (curve.tangents.dimension != curve.points.dimension) {
     return InvalidFieldError("tangents.dimension",
                              absl::StrCat("must equal the points' dimension ",
                                           curve.points.dimension, ", got ",
                                           curve.tangents.dimension));
   }
-  if (absl::Status status = ValidatePoints(curve.tangents, "tangents");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(curve.tangents, "tangents"));
   if (curve.tangents.size() != curve.points.size()) {
     return InvalidFieldError(
         "tangents.coordinates",
@@ -103,9 +96,7 @@ absl::Status EvaluateHermiteCurve(const HermiteCurveView& curve,
                                   absl::Span<const double> parameters,
                                   CurveOutput output,
                                   const ExecutionContext& context) {
-  if (absl::Status status = ValidateHermiteCurve(curve); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateHermiteCurve(curve));
   return internal::EvaluateValidHermiteCurve(curve, parameters, output,
                                              context);
 }
@@ -118,11 +109,7 @@ absl::Status EvaluateValidHermiteCurve(const HermiteCurveView& curve,
                                        const ExecutionContext& context) {
   const auto [start, end] = HermiteDomain(curve);
   const int dimension = curve.points.dimension;
-  if (absl::Status status =
-          ValidateBatch(parameters, start, end, output, dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBatch(parameters, start, end, output, dimension));
   const std::vector<double> nodes = HermiteNodes(curve);
   const int max_order = static_cast<int>(output.size()) - 1;
   std::vector<BezierPointEvaluator> segments;

@@ -25,7 +25,8 @@ PointArray Lift(const PointsView& points, absl::Span<const double> weights) {
 
 void ProjectAllowingDirections(const PointArray& points, bool rational,
                                std::vector<double>& coordinates,
-                               std::vector<double>& weights) {
+                               std::vector<double>& weights,
+                               ZeroWeights zeros) {
   if (!rational) {
     coordinates = points.values;
     weights.clear();
@@ -37,7 +38,10 @@ void ProjectAllowingDirections(const PointArray& points, bool rational,
   for (size_t i = 0; i < count; ++i) {
     largest = std::max(largest, std::abs(points.at(i)[dim]));
   }
-  const double zero = 8.0 * std::numeric_limits<double>::epsilon() * largest;
+  const double zero =
+      zeros == ZeroWeights::kExact
+          ? 0.0
+          : 8.0 * std::numeric_limits<double>::epsilon() * largest;
   coordinates.resize(count * dim);
   weights.resize(count);
   for (size_t i = 0; i < count; ++i) {

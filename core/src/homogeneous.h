@@ -28,11 +28,15 @@ PointArray Lift(const PointsView& points, absl::Span<const double> weights);
 //
 // ProjectAllowingDirections serves the algorithms that take zero weights
 // (points at infinity, rational.h) and build new points as combinations of
-// the old ones (elevation, subdivision, knot insertion): a weight within
-// rounding of 0 (8 epsilon of the largest weight) is such a point whose
-// weight only picked up rounding, so it becomes exactly 0 and the
-// homogeneous coordinates are kept as its direction; other points are
-// scaled by the reciprocal of their weight.
+// the old ones (elevation, subdivision, knot insertion). A weight 0 keeps
+// the homogeneous coordinates as its direction; other points are divided
+// by their weight. Convex combinations (Bezier elevation, subdivision, knot
+// insertion: nonnegative coefficients) give 0 exactly from zeros and a
+// true positive weight otherwise, however small next to the largest
+// (ZeroWeights::kExact); an algorithm that subtracts (B-spline elevation
+// removes the knots it inserted) leaves rounding on a weight that should
+// be 0, so there a weight within 8 epsilon of the largest becomes 0
+// (ZeroWeights::kWithinRounding).
 //
 // ProjectPositive serves the algorithms that need positive weights (the
 // convex hull of the projected points bounds the geometry; knot removal
@@ -42,9 +46,11 @@ PointArray Lift(const PointsView& points, absl::Span<const double> weights);
 
 // ProjectAllowingDirections writes `points` (homogeneous when `rational`,
 // else copied) back as coordinates and weights (cleared when not rational).
+enum class ZeroWeights { kExact, kWithinRounding };
 void ProjectAllowingDirections(const PointArray& points, bool rational,
                                std::vector<double>& coordinates,
-                               std::vector<double>& weights);
+                               std::vector<double>& weights,
+                               ZeroWeights zeros);
 
 // ProjectPositive writes the Cartesian point P = h / w of the homogeneous
 // point `homogeneous` (dimension + 1 values, weight last) into `point`;

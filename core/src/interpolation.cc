@@ -11,6 +11,7 @@
 #include "absl/types/span.h"
 #include "banded_lu.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "interpolation_at_parameters.h"
 #include "interpolation_knots.h"
 #include "interpolation_parameters.h"
@@ -48,16 +49,11 @@ absl::StatusOr<CurveInterpolation> InterpolateCurve(
         "only the kAtParameters knot rule scales end derivatives");
   }
   const int p = options.degree;
-  if (absl::Status status = ValidateCurveData(points, p); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateCurveData(points, p));
   if (options.closed) return InterpolateClosed(points, options);
   const bool has_start = !options.start_derivative.empty();
   const bool has_end = !options.end_derivative.empty();
-  if (absl::Status status = ValidateEndDerivatives(options, points.dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateEndDerivatives(options, points.dimension));
   const int count = static_cast<int>(points.size()) + has_start + has_end;
   std::vector<double> t;
   const bool universal =

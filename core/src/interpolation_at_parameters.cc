@@ -13,6 +13,7 @@
 #include "banded_lu.h"
 #include "freeform/core/lagrange.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "interpolation_parameters.h"
 #include "interpolation_result.h"
 #include "open_interpolation.h"
@@ -88,9 +89,7 @@ int AtParametersDegree(size_t count, const CurveInterpolationOptions& options) {
 
 absl::Status ValidateAtParameters(const PointsView& points,
                                   const CurveInterpolationOptions& options) {
-  if (absl::Status status = ValidatePoints(points, "points", 2); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(points, "points", 2));
   if (options.closed && !options.end_derivative.empty()) {
     return InvalidFieldError(
         "end_derivative",
@@ -207,10 +206,7 @@ absl::StatusOr<CurveInterpolation> InterpolateClosedAtParameters(
 
 absl::StatusOr<CurveInterpolation> InterpolateAtParameters(
     const PointsView& points, const CurveInterpolationOptions& options) {
-  if (absl::Status status = ValidateAtParameters(points, options);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateAtParameters(points, options));
   return options.closed ? InterpolateClosedAtParameters(points, options)
                         : InterpolateOpenAtParameters(points, options);
 }

@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "freeform/core/status_macros.h"
+
 namespace freeform::internal {
 namespace {
 
@@ -17,7 +19,7 @@ absl::StatusOr<std::vector<double>> AveragingKnots(
   std::fill_n(knots.begin(), degree + 1, s.front());
   CancellationPoll poll(cancel);
   for (size_t j = 1; j + degree < count; ++j) {
-    if (absl::Status status = poll.Done(degree); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(degree));
     double sum = 0;
     for (size_t i = j; i < j + degree; ++i) sum += s[i];
     knots[j + degree] = sum / p;

@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "interpolation_knots.h"
 
 namespace freeform {
@@ -114,10 +115,7 @@ std::vector<double> UniversalParameters(int count, int p) {
 }
 
 absl::Status ValidateParameters(absl::Span<const double> parameters) {
-  if (absl::Status status = ValidateFinite(parameters, "parameters");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateFinite(parameters, "parameters"));
   for (size_t i = 1; i < parameters.size(); ++i) {
     if (!(parameters[i] > parameters[i - 1])) {
       return InvalidFieldError(IndexedField("parameters", i),
@@ -134,9 +132,7 @@ absl::StatusOr<std::vector<double>> ExplicitParameters(
         "parameters", absl::StrCat("needs one parameter per point (", count,
                                    "), got ", parameters.size()));
   }
-  if (absl::Status status = ValidateParameters(parameters); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateParameters(parameters));
   return std::vector<double>(parameters.begin(), parameters.end());
 }
 
@@ -148,10 +144,7 @@ absl::Status ValidatePositiveDegree(int degree, absl::string_view field) {
 }
 
 absl::Status ValidateCurveData(const PointsView& points, int degree) {
-  if (absl::Status status = ValidatePositiveDegree(degree, "degree");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePositiveDegree(degree, "degree"));
   return ValidatePoints(points, "points", static_cast<size_t>(degree) + 1);
 }
 
@@ -162,9 +155,13 @@ absl::StatusOr<std::vector<double>> OpenParameters(
       return CumulativeParameters(points, 1.0, false);
     case Parameterization::kCentripetal:
       return CumulativeParameters(points, 0.5, false);
-    default:
-      return UniformValues(points.size() - 1);
+    case Parameterization::kUniform:
+    // Universal parameters are taken before (UniversalParameters) where they
+    // apply; elsewhere the uniform ones stand in.
+    case Parameterization::kUniversal:
+      break;
   }
+  return UniformValues(points.size() - 1);
 }
 
 absl::StatusOr<std::vector<double>> ClosedParameters(
@@ -178,10 +175,7 @@ absl::StatusOr<std::vector<double>> ClosedParameters(
           absl::StrCat("a closed curve needs one parameter per point (", count,
                        ") or one more, got ", options.parameters.size()));
     }
-    if (absl::Status status = ValidateParameters(options.parameters);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ValidateParameters(options.parameters));
     std::vector<double> t(options.parameters.begin(), options.parameters.end());
     if (t.size() == count) {
       t.push_back(t.back() +
@@ -194,19 +188,18 @@ absl::StatusOr<std::vector<double>> ClosedParameters(
       return CumulativeParameters(points, 1.0, true);
     case Parameterization::kCentripetal:
       return CumulativeParameters(points, 0.5, true);
-    default:
-      return UniformValues(count);
+    case Parameterization::kUniform:
+    case Parameterization::kUniversal:  // as for an open curve
+      break;
   }
+  return UniformValues(count);
 }
 
 }  // namespace internal
 
 absl::StatusOr<std::vector<double>> InterpolationParameters(
     const PointsView& points, int degree, Parameterization parameterization) {
-  if (absl::Status status = internal::ValidateCurveData(points, degree);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(internal::ValidateCurveData(points, degree));
   if (parameterization == Parameterization::kUniversal) {
     return internal::UniversalParameters(static_cast<int>(points.size()),
                                          degree);

@@ -8,6 +8,7 @@
 
 #include "freeform/core/bspline.h"
 #include "freeform/core/points.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform::internal {
 
@@ -65,9 +66,7 @@ absl::StatusOr<CurveInterpolation> FinishMeasuredInterpolation(
   if (!evaluable) {
     return FinishInterpolation(std::move(curve), std::move(t), points, cancel);
   }
-  if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCancelled(cancel));
   return CurveInterpolation{.curve = std::move(curve),
                             .parameters = std::move(t),
                             .max_residual = max_residual};

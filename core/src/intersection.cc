@@ -13,6 +13,8 @@
 #include "bezier_net.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
+#include "scaled.h"
 
 namespace freeform {
 namespace {
@@ -362,6 +364,11 @@ class PairSearch {
   // The merged candidates, in the order of the first parameter: each is an
   // overlap (parallel) or gives its point.
   const std::vector<Candidate>& runs() const { return candidates_; }
+  // How much the search's evaluations may differ by rounding alone.
+  double rounding() const { return rounding_; }
+  // SecondPointOf returns the second input's point at an anchor (valid
+  // until the next call).
+  const double* SecondPointOf(const Anchor& at);
   // PointOf returns the first input's point at an anchor (valid until the
   // next evaluation).
   const double* PointOf(const Anchor& at);
@@ -786,9 +793,7 @@ bool PairSearch::Examine(const PartPtr& a, const PartPtr& b) {
 }
 
 absl::Status PairSearch::Run() {
-  if (absl::Status status = CheckCancelled(cancel_); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCancelled(cancel_));
   const double zero[2] = {0.0, 0.0};
   const double one[2] = {1.0, 1.0};
   std::vector<PartPtr> second_parts;
@@ -808,12 +813,12 @@ absl::Status PairSearch::Run() {
       if (!BoxesApart(*a, *b, prune_tolerance_)) stack.emplace_back(a, b);
     }
     while (!stack.empty()) {
-      if (absl::Status status = budget_.Check(); !status.ok()) return status;
+      RETURN_IF_ERROR(budget_.Check());
       auto [a_part, b_part] = std::move(stack.back());
       stack.pop_back();
       budget_.Add(ExamineCost(*a_part, *b_part));
       if (Examine(a_part, b_part)) {
-        if (absl::Status status = Compact(); !status.ok()) return status;
+        RETURN_IF_ERROR(Compact());
         continue;
       }
       const bool first_larger = a_part->diameter >= b_part->diameter;
@@ -829,13 +834,13 @@ absl::Status PairSearch::Run() {
       }
     }
   }
-  if (absl::Status status = Merge(); !status.ok()) return status;
+  RETURN_IF_ERROR(Merge());
   if (candidates_.size() > RunLimit(options_.max_results)) {
     return ExhaustedFieldError("max_results",
                                absl::StrCat("more than ", options_.max_results,
                                             " separate intersections"));
   }
-  if (absl::Status status = Finish(); !status.ok()) return status;
+  RETURN_IF_ERROR(Finish());
   return budget_.Check();
 }
 
@@ -847,12 +852,19 @@ absl::Status PairSearch::Compact() {
   if (candidates_.size() < CompactionSize(options_.max_results)) {
     return absl::OkStatus();
   }
-  if (absl::Status status = Merge(); !status.ok()) return status;
+  RETURN_IF_ERROR(Merge());
   if (candidates_.size() <= limit) return budget_.Check();
   return ExhaustedFieldError(
       "max_results",
       absl::StrCat("more than ", limit, " separate intersections, more than ",
                    options_.max_results));
+}
+
+const double* PairSearch::SecondPointOf(const Anchor& at) {
+  const Net& net = second_.nets[at.second_piece];
+  budget_.Add(EvaluationCost(net));
+  evaluator_.Evaluate(net, at.x[1], at.x[2], scratch_b_.data());
+  return scratch_b_.data();
 }
 
 const double* PairSearch::PointOf(const Anchor& at) {
@@ -883,7 +895,7 @@ absl::Status PairSearch::Merge() {
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(k));
   };
   for (size_t n = 0; n < candidates.size(); ++n) {
-    if (absl::Status status = budget_.Check(); !status.ok()) return status;
+    RETURN_IF_ERROR(budget_.Check());
     Candidate& next = candidates[n];
     for (size_t k = 0; k < active.size();) {
       if (candidates[active[k]].to + slack_s_ < next.from ||
@@ -945,7 +957,7 @@ absl::Status PairSearch::Finish() {
   for (size_t k = 0; k < candidates_.size(); ++k) {
     Candidate& run = candidates_[k];
     if (!run.parallel) continue;
-    if (absl::Status status = budget_.Check(); !status.ok()) return status;
+    RETURN_IF_ERROR(budget_.Check());
     Extend(run.start, -1.0);
     Extend(run.end, 1.0);
     run.from = Global(run.start);
@@ -967,7 +979,7 @@ absl::Status PairSearch::Finish() {
     if (run.parallel || !run.has_point || Inside(run, overlaps, reach)) {
       continue;
     }
-    if (absl::Status status = budget_.Check(); !status.ok()) return status;
+    RETURN_IF_ERROR(budget_.Check());
     std::copy_n(PointOf(run.point), dim, coordinates.begin() + k * dim);
     points.push_back(k);
   }
@@ -1210,7 +1222,7 @@ auto Intersect(const Curve& first, const Second& second,
                double slack_s, const double* slack_second,
                const CancellationToken* cancel, Finish finish)
     -> decltype(finish(std::declval<const Found&>())) {
-  if (absl::Status status = CheckOptions(options); !status.ok()) return status;
+  RETURN_IF_ERROR(CheckOptions(options));
   if (DimensionOf(second) != DimensionOf(first)) {
     return InvalidFieldError(
         field, absl::StrCat("must be the first input's dimension ",
@@ -1232,17 +1244,60 @@ auto Intersect(const Curve& first, const Second& second,
       scaled.tolerance + kPruneSlack * scale->largest;
   PairSearch search(*a, *b, scaled, slack_s, slack_second, prune_tolerance,
                     cancel);
-  if (absl::Status status = search.Run(); !status.ok()) return status;
+  RETURN_IF_ERROR(search.Run());
   return finish(Found{*a, *b, exponent, search});
+}
+
+// LocalParameter returns where a curve's parameter t lies on piece
+// `piece` (0 to 1 over the piece), from the piece's ends.
+double LocalParameter(const Pieces& pieces, size_t piece, double t) {
+  double start = 0.0;
+  double end = 0.0;
+  pieces.parameters(piece, 0.0, 0.0, &start);
+  pieces.parameters(piece, 1.0, 0.0, &end);
+  if (!(end > start)) return 0.0;
+  return std::clamp((t - start) / (end - start), 0.0, 1.0);
+}
+
+// CheckResolved checks that the curves at the rounded parameters (s, t) of
+// a point still meet within the tolerance: where a knot span is only a few
+// ulps of its position (spans of 0.125 at 1e15), the nearest double
+// parameter lies on another span, and the answer would name a parameter
+// whose point is not the intersection. The search works in units of
+// 2^exponent; `rounding` is what its evaluations may differ by.
+absl::Status CheckResolved(const Found& found, const Anchor& at, double s,
+                           double t, double tolerance, double rounding) {
+  Anchor rounded = at;
+  rounded.x[0] = LocalParameter(found.first, at.first_piece, s);
+  rounded.x[1] = LocalParameter(found.second, at.second_piece, t);
+  const int dim = found.first.dimension;
+  const double* exact = found.search.PointOf(at);
+  const std::vector<double> point(exact, exact + dim);
+  const double* first = found.search.PointOf(rounded);
+  const double first_gap = internal::ScaledDistanceOf(first, point.data(), dim);
+  const double* second = found.search.SecondPointOf(rounded);
+  const double second_gap =
+      internal::ScaledDistanceOf(second, point.data(), dim);
+  const double allowed = tolerance + rounding;
+  if (first_gap <= allowed && second_gap <= allowed) return absl::OkStatus();
+  const bool first_moved = first_gap > second_gap;
+  return InvalidFieldError(
+      first_moved ? "first" : "second",
+      absl::StrCat("an intersection lies at a parameter near ",
+                   first_moved ? s : t,
+                   " that double precision cannot resolve: the nearest "
+                   "double parameter moves the curve's point ",
+                   std::ldexp(first_moved ? first_gap : second_gap,
+                              found.exponent),
+                   " away, beyond the tolerance; its knot spans are too "
+                   "short for their position (move the parameters nearer 0)"));
 }
 
 // CurveAnswer returns the points and overlaps of two curves.
 absl::StatusOr<CurveIntersections> CurveAnswer(
     const IntersectionOptions& options, const Found& found) {
   const std::vector<Candidate>& runs = found.search.runs();
-  if (absl::Status status = CheckResults(runs.size(), options); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckResults(runs.size(), options));
   CurveIntersections result{.dimension = found.first.dimension};
   for (const Candidate& run : runs) {
     auto second_at = [&](const Anchor& at) {
@@ -1260,8 +1315,12 @@ absl::StatusOr<CurveIntersections> CurveAnswer(
     }
     double s = 0.0;
     found.first.parameters(run.point.first_piece, run.point.x[0], 0.0, &s);
+    const double t = second_at(run.point);
+    RETURN_IF_ERROR(CheckResolved(
+        found, run.point, s, t, std::ldexp(options.tolerance, -found.exponent),
+        found.search.rounding()));
     result.first_parameters.push_back(s);
-    result.second_parameters.push_back(second_at(run.point));
+    result.second_parameters.push_back(t);
     found.AppendPoint(run.point, result.points);
   }
   return result;
@@ -1272,9 +1331,7 @@ absl::StatusOr<CurveIntersections> CurveAnswer(
 absl::StatusOr<CurveSurfaceIntersections> SurfaceAnswer(
     const IntersectionOptions& options, const Found& found) {
   const std::vector<Candidate>& runs = found.search.runs();
-  if (absl::Status status = CheckResults(runs.size(), options); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckResults(runs.size(), options));
   CurveSurfaceIntersections result{.dimension = found.first.dimension};
   for (const Candidate& run : runs) {
     if (run.parallel) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform::internal {
 namespace {
@@ -50,10 +51,7 @@ absl::StatusOr<Spline> RefineKnots(const Spline& spline,
   int i = b + p - 1;
   int k = b + p + r;
   for (int j = r; j >= 0; --j) {
-    if (absl::Status status = poll.Done(static_cast<size_t>(p + 1) * dim);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(static_cast<size_t>(p + 1) * dim));
     while (x[j] <= u[i] && i > a) {
       std::copy_n(pw.at(i - p - 1), dim, qw.at(k - p - 1));
       ubar[k] = u[i];

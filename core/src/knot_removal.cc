@@ -11,6 +11,7 @@
 #include "absl/functional/function_ref.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "homogeneous.h"
 #include "knot_remover.h"
 
@@ -45,10 +46,7 @@ absl::Status CheckPositiveWeights(absl::Span<const double> weights) {
 // status of its Validate* function), then its weights.
 absl::Status CheckInput(double tolerance, const absl::Status& validation,
                         absl::Span<const double> weights) {
-  if (absl::Status status = ValidatePositive(tolerance, "tolerance");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
   if (!validation.ok()) return validation;
   return CheckPositiveWeights(weights);
 }
@@ -114,7 +112,7 @@ absl::StatusOr<CurveKnotRemoval> RunOnCurve(const BSplineCurveView& curve,
                   .points = std::move(points)},
       &reference, poll);
   if (!remover.ok()) return remover.status();
-  if (absl::Status status = work(*remover, poll); !status.ok()) return status;
+  RETURN_IF_ERROR(work(*remover, poll));
   CurveKnotRemoval result{.curve = {.degree = curve.degree, .dimension = dim},
                           .removals = remover->removals(),
                           .error_bound = remover->bound()};
@@ -230,7 +228,7 @@ absl::StatusOr<PassResult> SurfacePass(HomogeneousSurface& current,
                                     current.count_v, in_u, true)},
       &reference, poll);
   if (!remover.ok()) return remover.status();
-  if (absl::Status status = work(*remover, poll); !status.ok()) return status;
+  RETURN_IF_ERROR(work(*remover, poll));
   const BlockSpline& result = remover->spline();
   (in_u ? current.knots_u : current.knots_v) = result.knots;
   (in_u ? current.count_u : current.count_v) = result.count();
@@ -283,16 +281,10 @@ absl::StatusOr<SurfaceKnotRemoval> RunOnSurface(
 absl::StatusOr<CurveKnotRemoval> RemoveCurveKnot(
     const BSplineCurveView& curve, double knot, int times, double tolerance,
     const CancellationToken* cancel) {
-  if (absl::Status status =
-          CheckInput(tolerance, ValidateBSplineCurve(curve), curve.weights);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = CheckTimes(times); !status.ok()) return status;
-  if (absl::Status status = CheckInteriorKnot(curve.knots, curve.degree, knot);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      CheckInput(tolerance, ValidateBSplineCurve(curve), curve.weights));
+  RETURN_IF_ERROR(CheckTimes(times));
+  RETURN_IF_ERROR(CheckInteriorKnot(curve.knots, curve.degree, knot));
   return RunOnCurve(curve, cancel,
                     [&](KnotRemover& remover, CancellationPoll& poll) {
                       return remover.Remove(knot, times, tolerance, poll);
@@ -302,11 +294,8 @@ absl::StatusOr<CurveKnotRemoval> RemoveCurveKnot(
 absl::StatusOr<CurveKnotRemoval> SimplifyCurveKnots(
     const BSplineCurveView& curve, double tolerance,
     const CancellationToken* cancel) {
-  if (absl::Status status =
-          CheckInput(tolerance, ValidateBSplineCurve(curve), curve.weights);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      CheckInput(tolerance, ValidateBSplineCurve(curve), curve.weights));
   return RunOnCurve(curve, cancel,
                     [&](KnotRemover& remover, CancellationPoll& poll) {
                       return remover.Simplify(tolerance, poll);
@@ -316,18 +305,12 @@ absl::StatusOr<CurveKnotRemoval> SimplifyCurveKnots(
 absl::StatusOr<SurfaceKnotRemoval> RemoveSurfaceKnot(
     const BSplineSurfaceView& surface, bool in_u, double knot, int times,
     double tolerance, const CancellationToken* cancel) {
-  if (absl::Status status = CheckInput(
-          tolerance, ValidateBSplineSurface(surface), surface.weights);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = CheckTimes(times); !status.ok()) return status;
-  if (absl::Status status =
-          CheckInteriorKnot(in_u ? surface.knots_u : surface.knots_v,
-                            in_u ? surface.degree_u : surface.degree_v, knot);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      CheckInput(tolerance, ValidateBSplineSurface(surface), surface.weights));
+  RETURN_IF_ERROR(CheckTimes(times));
+  RETURN_IF_ERROR(CheckInteriorKnot(in_u ? surface.knots_u : surface.knots_v,
+                                    in_u ? surface.degree_u : surface.degree_v,
+                                    knot));
   return RunOnSurface(surface, in_u ? KnotDirections::kU : KnotDirections::kV,
                       cancel,
                       [&](KnotRemover& remover, CancellationPoll& poll) {
@@ -338,11 +321,8 @@ absl::StatusOr<SurfaceKnotRemoval> RemoveSurfaceKnot(
 absl::StatusOr<SurfaceKnotRemoval> SimplifySurfaceKnots(
     const BSplineSurfaceView& surface, KnotDirections directions,
     double tolerance, const CancellationToken* cancel) {
-  if (absl::Status status = CheckInput(
-          tolerance, ValidateBSplineSurface(surface), surface.weights);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      CheckInput(tolerance, ValidateBSplineSurface(surface), surface.weights));
   return RunOnSurface(surface, directions, cancel,
                       [&](KnotRemover& remover, CancellationPoll& poll) {
                         return remover.Simplify(tolerance, poll);

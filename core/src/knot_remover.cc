@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "freeform/core/status_macros.h"
+
 namespace freeform::internal {
 namespace {
 
@@ -296,9 +298,7 @@ absl::StatusOr<KnotRemover> KnotRemover::Create(BlockSpline start,
   KnotRemover remover(std::move(start), reference);
   for (size_t j = 0; j < remover.relevant_.size(); ++j) {
     if (!remover.relevant_[j]) continue;
-    if (absl::Status status = poll.Done(reference->work()); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(reference->work()));
     const Deviation deviation = reference->Compare(
         static_cast<int>(j), remover.spline_.point(static_cast<int>(j)));
     remover.distances_.Set(j, deviation.distance);
@@ -473,10 +473,7 @@ absl::Status KnotRemover::Remove(double knot, int times, double tolerance,
     const int index = LastIndexOf(knot);
     if (index < 0) break;
     Candidate candidate = Evaluate(index);
-    if (absl::Status status = poll.Done(EvaluationWork(candidate));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(EvaluationWork(candidate)));
     if (!(candidate.bound <= tolerance)) break;
     Apply(candidate);
   }
@@ -557,10 +554,7 @@ absl::Status KnotRemover::Refresh(KnotQueue& queue, int index,
     const double u = spline_.knots[static_cast<size_t>(g)];
     if (u == previous || !Interior(u)) continue;
     previous = u;
-    if (absl::Status status = Push(queue, queue.IndexOf(u), poll);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(Push(queue, queue.IndexOf(u), poll));
   }
   return absl::OkStatus();
 }
@@ -574,9 +568,7 @@ absl::Status KnotRemover::Simplify(double tolerance, CancellationPoll& poll) {
   }
   KnotQueue queue(std::move(values));
   for (int v = 0; v < queue.size(); ++v) {
-    if (absl::Status status = Push(queue, v, poll); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(Push(queue, v, poll));
   }
   // Keys are local bounds, never above the full bound: once the smallest
   // exceeds the tolerance, nothing more can go.
@@ -585,19 +577,14 @@ absl::Status KnotRemover::Simplify(double tolerance, CancellationPoll& poll) {
     const int index = LastIndexOf(queue.value(entry->value));
     if (index < 0) continue;
     Candidate candidate = Evaluate(index);
-    if (absl::Status status = poll.Done(EvaluationWork(candidate));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(EvaluationWork(candidate)));
     if (candidate.local_bound != entry->key) {
       queue.Requeue(*entry, candidate.local_bound);  // changed nearby
       continue;
     }
     if (!(candidate.bound <= tolerance)) continue;
     Apply(candidate);
-    if (absl::Status status = Refresh(queue, index, poll); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(Refresh(queue, index, poll));
   }
   return absl::OkStatus();
 }

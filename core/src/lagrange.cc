@@ -7,6 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "double_double.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "validated.h"
 
 namespace freeform {
@@ -92,10 +93,7 @@ void Combine(const PointsView& points, absl::Span<const double> basis,
 }  // namespace
 
 absl::Status ValidateLagrangeCurve(const LagrangeCurveView& curve) {
-  if (absl::Status status = ValidatePoints(curve.points, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(curve.points, "points"));
   if (curve.nodes.empty()) return absl::OkStatus();
   if (curve.nodes.size() != curve.points.size()) {
     return InvalidFieldError(
@@ -501,9 +499,7 @@ absl::Status EvaluateLagrangeCurve(const LagrangeCurveView& curve,
                                    absl::Span<const double> parameters,
                                    CurveOutput output,
                                    const ExecutionContext& context) {
-  if (absl::Status status = ValidateLagrangeCurve(curve); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateLagrangeCurve(curve));
   return internal::EvaluateValidLagrangeCurve(curve, parameters, output,
                                               context);
 }
@@ -516,11 +512,8 @@ absl::Status EvaluateValidLagrangeCurve(const LagrangeCurveView& curve,
                                         const ExecutionContext& context) {
   const std::pair<double, double> domain = LagrangeDomain(curve);
   const int dimension = curve.points.dimension;
-  if (absl::Status status = ValidateBatch(parameters, domain.first,
-                                          domain.second, output, dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBatch(parameters, domain.first, domain.second, output,
+                                dimension));
   const std::vector<double> nodes = LagrangeNodes(curve);
   const std::vector<double> weights = BarycentricWeights(nodes);
   const size_t dim = static_cast<size_t>(dimension);
@@ -557,7 +550,7 @@ absl::Status EvaluateLagrangeBasis(absl::Span<const double> nodes,
   if (nodes.empty()) {
     return InvalidFieldError("nodes", "needs at least one node");
   }
-  if (absl::Status status = ValidateNodes(nodes); !status.ok()) return status;
+  RETURN_IF_ERROR(ValidateNodes(nodes));
   return internal::EvaluateValidLagrangeBasis(nodes, parameters, output,
                                               context);
 }
@@ -569,12 +562,8 @@ absl::Status EvaluateValidLagrangeBasis(absl::Span<const double> nodes,
                                         CurveOutput output,
                                         const ExecutionContext& context) {
   const size_t count = nodes.size();
-  if (absl::Status status =
-          ValidateBatch(parameters, nodes.front(), nodes.back(), output,
-                        static_cast<int>(count));
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBatch(parameters, nodes.front(), nodes.back(), output,
+                                static_cast<int>(count)));
   const std::vector<double> weights = BarycentricWeights(nodes);
   const size_t orders = output.size();
 

@@ -14,6 +14,7 @@
 #include "freeform/core/bspline.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "interpolation_parameters.h"
 #include "interpolation_result.h"
 
@@ -34,9 +35,7 @@ absl::StatusOr<CurveApproximation> ApproximateCurve(
     Parameterization parameterization, absl::Span<const double> parameters,
     const CancellationToken* cancel) {
   const int p = degree;
-  if (absl::Status status = ValidateCurveData(points, p); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateCurveData(points, p));
   const int m = static_cast<int>(points.size()) - 1;
   const int n = control_point_count - 1;
   if (n < p || n > m) {
@@ -76,11 +75,7 @@ absl::StatusOr<CurveApproximation> ApproximateCurve(
     std::vector<double> residual(d);
     int span = p;
     for (int k = 1; k < m; ++k) {
-      if (absl::Status status =
-              poll.Done(static_cast<size_t>(p + 1) * (p + 1 + d));
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(poll.Done(static_cast<size_t>(p + 1) * (p + 1 + d)));
       const double u = t[static_cast<size_t>(k)];
       span = FindSpanFrom(span, n, p, u, knots);
       BasisFunctions(span, u, p, knots, absl::MakeSpan(basis),
@@ -110,11 +105,8 @@ absl::StatusOr<CurveApproximation> ApproximateCurve(
         }
       }
     }
-    if (absl::Status status = normal.Factor(); !status.ok()) return status;
-    if (absl::Status status = normal.Solve(rhs.data(), points.dimension);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(normal.Factor());
+    RETURN_IF_ERROR(normal.Solve(rhs.data(), points.dimension));
     std::copy(rhs.begin(), rhs.end(),
               control.begin() + static_cast<ptrdiff_t>(d));
   }

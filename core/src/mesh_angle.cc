@@ -32,6 +32,7 @@
 #include "freeform/core/cancellation.h"
 #include "freeform/core/mesh.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "mesh_plan.h"
 #include "mesh_ring.h"
 
@@ -185,10 +186,7 @@ absl::Status AngleRefiner::CheckGrid(uint32_t piece, CancellationPoll& poll) {
                    {static_cast<double>(i) / nu, static_cast<double>(j) / nv});
       }
     }
-    if (absl::Status status = evaluator_.Evaluate(PieceView(piece), uv_);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(evaluator_.Evaluate(PieceView(piece), uv_));
     const bool has_previous = first > 1;
     if (has_previous) {
       normals.erase(normals.begin(), normals.end() - 3 * row);
@@ -219,10 +217,7 @@ absl::Status AngleRefiner::CheckGrid(uint32_t piece, CancellationPoll& poll) {
         }
       }
     }
-    if (absl::Status status = poll.Done(uv_.size() / 2 * kNormalWork);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(uv_.size() / 2 * kNormalWork));
   }
   cell_turn_[piece] = {std::acos(std::clamp(least_u, -1.0, 1.0)),
                        std::acos(std::clamp(least_v, -1.0, 1.0))};
@@ -243,10 +238,7 @@ absl::Status AngleRefiner::CheckRing(uint32_t piece, CancellationPoll& poll) {
   for (const InnerPlace& place : inner) {
     uv_.insert(uv_.end(), {place.u, place.v});
   }
-  if (absl::Status status = evaluator_.Evaluate(PieceView(piece), uv_);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(evaluator_.Evaluate(PieceView(piece), uv_));
   const absl::Span<const double> normals = evaluator_.normals();
   const std::array<double, 2>& turn = cell_turn_[piece];
   // A turn of zero (a grid too coarse to tell) counts as a small one, so
@@ -315,16 +307,11 @@ absl::Status AngleRefiner::RaiseGrid(uint32_t piece, int axis, double cells) {
   const double before = (plan.grid_u - 1.0) * (plan.grid_v - 1.0);
   (axis == 0 ? plan.grid_u : plan.grid_v) = static_cast<int>(cells);
   changed_[piece] |= kGridChanged | kRingChanged;
-  if (absl::Status status =
-          AddVertices((plan.grid_u - 1.0) * (plan.grid_v - 1.0) - before);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      AddVertices((plan.grid_u - 1.0) * (plan.grid_v - 1.0) - before));
   for (const int side : axis == 0 ? std::array<int, 2>{kBottom, kTop}
                                   : std::array<int, 2>{kRight, kLeft}) {
-    if (absl::Status status = RaiseEdge(plan.edge[side], cells); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(RaiseEdge(plan.edge[side], cells));
   }
   return absl::OkStatus();
 }
@@ -340,12 +327,9 @@ absl::StatusOr<bool> AngleRefiner::Grow() {
   for (size_t edge = 0; edge < plan_.edges.size(); ++edge) {
     if (!(edge_ratio_[edge] > 1.0)) continue;
     grew = true;
-    if (absl::Status status =
-            RaiseEdge(static_cast<int>(edge),
-                      grown(plan_.edges[edge].segments, edge_ratio_[edge]));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(
+        RaiseEdge(static_cast<int>(edge),
+                  grown(plan_.edges[edge].segments, edge_ratio_[edge])));
   }
   for (uint32_t piece = 0; piece < plan_.pieces.size(); ++piece) {
     for (int axis = 0; axis < 2; ++axis) {
@@ -353,11 +337,8 @@ absl::StatusOr<bool> AngleRefiner::Grow() {
       if (!(ratio > 1.0)) continue;
       grew = true;
       const PiecePlan& plan = plan_.pieces[piece];
-      if (absl::Status status = RaiseGrid(
-              piece, axis, grown(axis == 0 ? plan.grid_u : plan.grid_v, ratio));
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(RaiseGrid(
+          piece, axis, grown(axis == 0 ? plan.grid_u : plan.grid_v, ratio)));
     }
   }
   return grew;
@@ -368,14 +349,10 @@ absl::Status AngleRefiner::Run(const CancellationToken* cancel) {
   while (true) {
     for (uint32_t piece = 0; piece < plan_.pieces.size(); ++piece) {
       if ((changed_[piece] & kGridChanged) != 0) {
-        if (absl::Status status = CheckGrid(piece, poll); !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(CheckGrid(piece, poll));
       }
       if ((changed_[piece] & kRingChanged) != 0) {
-        if (absl::Status status = CheckRing(piece, poll); !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(CheckRing(piece, poll));
       }
       changed_[piece] = 0;
     }

@@ -16,6 +16,7 @@
 #include "absl/status/status.h"
 #include "freeform/core/mesh.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/surface_output.h"
 #include "mesh_plan.h"
 #include "mesh_ring.h"
@@ -285,9 +286,7 @@ absl::Status MeshBuilder::Build(const CancellationToken* cancel) {
     corner_uv_.reserve(6 * plan_.size.triangles);
   }
   for (uint32_t piece = 0; piece < plan_.pieces.size(); ++piece) {
-    if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CheckCancelled(cancel));
     BuildPiece(piece);
   }
   // Only the pieces' construction needs these.
@@ -321,9 +320,7 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
   for (uint32_t piece = 0; piece < pieces; ++piece) {
     for (size_t start = first[piece]; start < first[piece + 1];
          start += kEvaluationBatch) {
-      if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(CheckCancelled(cancel));
       const size_t end =
           std::min<size_t>(first[piece + 1], start + kEvaluationBatch);
       uv.clear();
@@ -331,10 +328,7 @@ absl::Status MeshBuilder::Evaluate(const CancellationToken* cancel) {
         uv.push_back(sources_[order[k]].u);
         uv.push_back(sources_[order[k]].v);
       }
-      if (absl::Status status = evaluator.Evaluate(PieceView(piece), uv);
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(evaluator.Evaluate(PieceView(piece), uv));
       for (size_t k = start; k < end; ++k) {
         std::copy_n(&evaluator.positions()[3 * (k - start)], 3,
                     &positions_[3 * order[k]]);

@@ -20,6 +20,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/core/mesh.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "tessellation_checks.h"
 #include "variant_dispatch.h"
 
@@ -507,12 +508,9 @@ void Planner::UseSide(PiecePlan& piece, int side, std::pair<int, bool> edge,
 absl::Status Planner::AddSurface(uint32_t index, const TensorForm& form) {
   const BSplineSurfaceView surface = form.view();
   const ControlNetView& net = surface.control_net;
-  if (absl::Status status = internal::CheckResolvable(
-          options_.tolerance, net.coordinates,
-          std::max(surface.degree_u, surface.degree_v));
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      internal::CheckResolvable(options_.tolerance, net.coordinates,
+                                std::max(surface.degree_u, surface.degree_v)));
   for (const double c : net.coordinates) {
     plan_.scale = std::max(plan_.scale, std::abs(c));
   }
@@ -557,9 +555,7 @@ absl::Status Planner::AddSurface(uint32_t index, const TensorForm& form) {
   for (int i = 0; i <= last_u; ++i) {
     for (int j = 0; j <= last_v; ++j) {
       if (plan_.pieces.size() % kCancelStride == 0) {
-        if (absl::Status status = CheckCancelled(cancel_); !status.ok()) {
-          return status;
-        }
+        RETURN_IF_ERROR(CheckCancelled(cancel_));
       }
       const PieceBounds bounds =
           BoundPiece(surface, spans_u[static_cast<size_t>(i)],
@@ -588,12 +584,9 @@ absl::Status Planner::AddSurface(uint32_t index, const TensorForm& form) {
       }
       plan_.pieces.push_back(piece);
       // Interior grid nodes and the corners (an upper bound).
-      if (absl::Status status = AddVertices(
-              PieceVertices(piece.grid_u, piece.grid_v),
-              PieceVertices(needed_u.by_tolerance, needed_v.by_tolerance));
-          !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(AddVertices(
+          PieceVertices(piece.grid_u, piece.grid_v),
+          PieceVertices(needed_u.by_tolerance, needed_v.by_tolerance)));
     }
   }
   return absl::OkStatus();
@@ -602,9 +595,7 @@ absl::Status Planner::AddSurface(uint32_t index, const TensorForm& form) {
 absl::StatusOr<std::shared_ptr<const MeshPlan>> Planner::Finish() {
   plan_.edges = std::move(edges_.edges());
   if (options_.max_normal_angle > 0.0) {
-    if (absl::Status status = RefineNormalAngles(); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(RefineNormalAngles());
   }
   plan_.size = {.vertices = static_cast<size_t>(vertex_count_),
                 .triangles = PlannedTriangles(plan_)};
@@ -618,16 +609,10 @@ absl::StatusOr<std::shared_ptr<const MeshPlan>> Planner::Finish() {
 }
 
 absl::Status ValidateOptions(const MeshOptions& options) {
-  if (absl::Status status = internal::ValidateTolerance(options.tolerance);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(internal::ValidateTolerance(options.tolerance));
   if (options.max_edge_length != 0.0) {
-    if (absl::Status status =
-            ValidatePositive(options.max_edge_length, "max_edge_length");
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(
+        ValidatePositive(options.max_edge_length, "max_edge_length"));
   }
   if (options.max_normal_angle != 0.0 &&
       !(options.max_normal_angle > 0.0 &&
@@ -644,13 +629,9 @@ absl::StatusOr<std::shared_ptr<const MeshPlan>> PlanMesh(
     absl::Span<const Surface> surfaces, const MeshOptions& options,
     const CancellationToken* cancel) {
   for (size_t i = 0; i < surfaces.size(); ++i) {
-    if (absl::Status status = CheckMeshable(surfaces[i], i); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(CheckMeshable(surfaces[i], i));
   }
-  if (absl::Status status = ValidateOptions(options); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateOptions(options));
   if (surfaces.size() >= UINT32_MAX) {
     return internal::TessellationTooLarge("tolerance", "vertices",
                                           options.max_vertices);
@@ -659,11 +640,7 @@ absl::StatusOr<std::shared_ptr<const MeshPlan>> PlanMesh(
   for (size_t i = 0; i < surfaces.size(); ++i) {
     absl::StatusOr<TensorForm> form = TensorFormOf(surfaces[i]);
     if (!form.ok()) return form.status();
-    if (absl::Status status =
-            planner.AddSurface(static_cast<uint32_t>(i), *form);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(planner.AddSurface(static_cast<uint32_t>(i), *form));
   }
   return planner.Finish();
 }

@@ -9,6 +9,7 @@
 #include "absl/status/status.h"
 #include "absl/types/span.h"
 #include "freeform/core/normals.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
 #include "validated.h"
@@ -115,10 +116,7 @@ absl::Status PieceEvaluator::Evaluate(const BezierSurfaceView& piece,
   // First partials give the normal of every regular point; the zero
   // normals of degenerate points (a collapsed side) are then replaced by
   // the limit from the second partials, evaluated for them only.
-  if (absl::Status status = PartialNormals(piece, 1, uv, buffers_, normals_);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(PartialNormals(piece, 1, uv, buffers_, normals_));
   degenerate_.clear();
   degenerate_uv_.clear();
   for (size_t k = 0; 3 * k < normals_.size(); ++k) {
@@ -129,11 +127,8 @@ absl::Status PieceEvaluator::Evaluate(const BezierSurfaceView& piece,
     }
   }
   if (degenerate_.empty()) return absl::OkStatus();
-  if (absl::Status status = PartialNormals(piece, 2, degenerate_uv_,
-                                           second_buffers_, second_normals_);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(PartialNormals(piece, 2, degenerate_uv_, second_buffers_,
+                                 second_normals_));
   for (size_t d = 0; d < degenerate_.size(); ++d) {
     std::copy_n(&second_normals_[3 * d], 3, &normals_[3 * degenerate_[d]]);
   }

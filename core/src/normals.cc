@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "freeform/core/status_macros.h"
 #include "scaled.h"
 
 namespace freeform {
@@ -113,10 +114,7 @@ double SideOf(double t, double start, double end) {
 
 absl::Status ComputeUnitNormals(SurfaceOutput partials, size_t count,
                                 absl::Span<double> normals) {
-  if (absl::Status status = ValidateNormalBuffers(partials, count, normals);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateNormalBuffers(partials, count, normals));
   for (size_t r = 0; r < count; ++r) {
     Store(UnitNormal(partials, r, 1.0, 1.0), r, normals);
   }
@@ -128,10 +126,7 @@ absl::Status ComputeUnitNormals(SurfaceOutput partials,
                                 const SurfaceDomain& domain,
                                 absl::Span<double> normals) {
   const size_t count = samples.size();
-  if (absl::Status status = ValidateNormalBuffers(partials, count, normals);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateNormalBuffers(partials, count, normals));
   const size_t count_v = samples.v.size();
   for (size_t r = 0; r < count; ++r) {
     const double u = samples.grid ? samples.u[r / count_v] : samples.uv[2 * r];

@@ -14,6 +14,7 @@
 #include "collocation_lu.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "simd/range_simd.h"
 #include "zeroed_array.h"
 
@@ -155,7 +156,7 @@ class OpenSolver {
     const absl::Span<const double> t = system_.t;
     int hint = p_;
     for (size_t k = 0; k < t.size(); ++k) {
-      if (absl::Status status = poll_.Done(work_); !status.ok()) return status;
+      RETURN_IF_ERROR(poll_.Done(work_));
       if (k + 1 == t.size() && system_.end.order > 0 &&
           !DerivativeRow(t[k], system_.end.order)) {
         return SingularSystemError();
@@ -182,9 +183,7 @@ class OpenSolver {
     double largest = 0.0;
     const size_t d = static_cast<size_t>(system_.dimension);
     for (int begin = count_; begin > 0; begin -= kBlock) {
-      if (absl::Status status = poll_.Done(work_ * kBlock); !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(poll_.Done(work_ * kBlock));
       const int end = std::max(0, begin - kBlock);
       lu_.BackSubstituteRows(begin, end);
       if (!measure_) continue;
@@ -252,7 +251,7 @@ absl::Status SolveOpenOf(const OpenSystem& system, const PointsView& points,
                          double* measured, const CancellationToken* cancel) {
   OpenSolver<kDegree, kDimension> solver(system, points, measured != nullptr,
                                          cancel);
-  if (absl::Status status = solver.Eliminate(); !status.ok()) return status;
+  RETURN_IF_ERROR(solver.Eliminate());
   absl::StatusOr<double> largest = solver.Finish();
   if (!largest.ok()) return largest.status();
   if (measured != nullptr) *measured = *largest;
@@ -304,7 +303,7 @@ absl::StatusOr<OpenRows> BuildOpenRows(int p, absl::Span<const double> knots,
   };
   int span = p;
   for (size_t k = 0; k < t.size(); ++k) {
-    if (absl::Status status = poll.Done(w * w); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(w * w));
     if (k + 1 == t.size() && end.order > 0) derivative_row(t[k], end.order);
     span = FindSpanFrom(span, n, p, t[k], knots);
     const size_t offset = rows.values.size();
@@ -334,10 +333,7 @@ absl::StatusOr<BandedLu> FactorOpenSystem(int p,
   BandedLu matrix(count, kl, ku, cancel);
   CancellationPoll poll(cancel);
   for (int r = 0; r < count; ++r) {
-    if (absl::Status status = poll.Done(static_cast<size_t>(p) + 1);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(static_cast<size_t>(p) + 1));
     const int first = rows.first[static_cast<size_t>(r)];
     for (int j = 0; j <= p; ++j) {
       const int column = first + j;
@@ -348,7 +344,7 @@ absl::StatusOr<BandedLu> FactorOpenSystem(int p,
       }
     }
   }
-  if (absl::Status status = matrix.Factor(); !status.ok()) return status;
+  RETURN_IF_ERROR(matrix.Factor());
   return matrix;
 }
 
@@ -375,11 +371,8 @@ absl::StatusOr<OpenSolution> SolveOpenMeasured(
                           .start = start,
                           .end = end,
                           .rhs = solution.control.data()};
-  if (absl::Status status = SolveOpenSystem(
-          system, points, measure ? &solution.max_residual : nullptr, cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(SolveOpenSystem(
+      system, points, measure ? &solution.max_residual : nullptr, cancel));
   return solution;
 }
 
@@ -404,10 +397,7 @@ absl::Status ValidateEndDerivatives(const CurveInterpolationOptions& options,
        {std::pair{options.start_derivative, "start_derivative"},
         std::pair{options.end_derivative, "end_derivative"}}) {
     if (value.empty()) continue;
-    if (absl::Status status = ValidateDerivative(value, field, dimension, true);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ValidateDerivative(value, field, dimension, true));
     if (options.degree < 2) {
       return InvalidFieldError(field, "end derivatives need degree >= 2");
     }

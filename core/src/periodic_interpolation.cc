@@ -9,6 +9,7 @@
 #include "banded_lu.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "interpolation_parameters.h"
 #include "interpolation_result.h"
 
@@ -89,12 +90,10 @@ absl::Status SolveCyclic(int n, int p, const std::vector<int>& columns,
           values[e];
     }
   }
-  if (absl::Status status = a11.Factor(); !status.ok()) return status;
+  RETURN_IF_ERROR(a11.Factor());
   // Y = A11^-1 A12, z = A11^-1 b1.
-  if (absl::Status status = a11.Solve(a12.data(), p); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = a11.Solve(rhs, d); !status.ok()) return status;
+  RETURN_IF_ERROR(a11.Solve(a12.data(), p));
+  RETURN_IF_ERROR(a11.Solve(rhs, d));
   const size_t dd = static_cast<size_t>(d);
   double* b2 = rhs + mm * dd;
   for (size_t i = 0; i < r; ++i) {
@@ -150,12 +149,8 @@ absl::StatusOr<CurveInterpolation> InterpolatePeriodic(
     }
   }
   Matrix solution(points.coordinates.begin(), points.coordinates.end());
-  if (absl::Status status =
-          SolveCyclic(static_cast<int>(n), p, columns, values, solution.data(),
-                      points.dimension, cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(SolveCyclic(static_cast<int>(n), p, columns, values,
+                              solution.data(), points.dimension, cancel));
   const size_t d = static_cast<size_t>(points.dimension);
   Matrix control(static_cast<size_t>(n + p) * d);
   for (long i = 0; i < n + p; ++i) {

@@ -11,6 +11,7 @@
 #include "freeform/core/fitting.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "symmetric_eigen.h"
 
 namespace freeform {
@@ -23,7 +24,7 @@ absl::StatusOr<std::vector<double>> Centroid(const PointsView& points,
   std::vector<double> mean(d, 0.0);
   CancellationPoll poll(cancel);
   for (size_t k = 0; k < points.size(); ++k) {
-    if (absl::Status status = poll.Done(d); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(d));
     const double weight = 1.0 / static_cast<double>(k + 1);
     for (size_t c = 0; c < d; ++c) {
       mean[c] += (points.point(k)[c] - mean[c]) * weight;
@@ -41,7 +42,7 @@ absl::StatusOr<std::vector<double>> Covariance(
   std::vector<double> covariance(d * d, 0.0), y(d);
   CancellationPoll poll(cancel);
   for (size_t k = 0; k < points.size(); ++k) {
-    if (absl::Status status = poll.Done(d * d); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(d * d));
     for (size_t c = 0; c < d; ++c) {
       y[c] = (points.point(k)[c] - centroid[c]) / scale;
     }
@@ -67,9 +68,7 @@ void Orient(absl::Span<double> vector) {
 
 absl::StatusOr<std::vector<double>> PlaneParameters(
     const PointsView& points, const CancellationToken* cancel) {
-  if (absl::Status status = ValidatePoints(points, "points", 3); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(points, "points", 3));
   if (points.dimension < 2) {
     return InvalidFieldError(
         "points.dimension",

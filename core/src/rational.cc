@@ -1,6 +1,37 @@
 #include "freeform/core/rational.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "freeform/core/status.h"
+
 namespace freeform {
+
+absl::Status ValidateWeightValues(absl::Span<const double> weights) {
+  double largest = 0.0;
+  for (size_t i = 0; i < weights.size(); ++i) {
+    if (!std::isfinite(weights[i]) || weights[i] < 0) {
+      return InvalidFieldError(
+          IndexedField("weights", i),
+          absl::StrCat("weights must be finite and >= 0, got ", weights[i]));
+    }
+    largest = std::max(largest, weights[i]);
+  }
+  const double smallest = largest * kSmallestWeightRatio;
+  for (size_t i = 0; i < weights.size(); ++i) {
+    if (weights[i] != 0.0 && weights[i] < smallest) {
+      return InvalidFieldError(
+          IndexedField("weights", i),
+          absl::StrCat(
+              "a nonzero weight must be at least 2^-1021 of the largest (",
+              largest, "), got ", weights[i],
+              ": below, its homogeneous point w P underflows and loses its "
+              "point; use 0 (a direction) or scale the weights closer"));
+    }
+  }
+  return absl::OkStatus();
+}
 
 std::vector<double> HomogeneousPoints(const PointsView& points,
                                       absl::Span<const double> weights) {

@@ -20,6 +20,7 @@
 #include "freeform/core/cancellation.h"
 #include "freeform/core/fitting.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
 
@@ -72,21 +73,13 @@ Ordering ChooseOrdering(const ScatteredFitOptions& options) {
 
 absl::Status ValidateScatteredOptions(const PointsView& points,
                                       const ScatteredFitOptions& options) {
-  if (absl::Status status = internal::ValidateDegreeAndCount(
-          options.degree_u, options.control_count_u, "u", "control_count_u",
-          "control points");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = internal::ValidateDegreeAndCount(
-          options.degree_v, options.control_count_v, "v", "control_count_v",
-          "control points");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidatePoints(points, "points"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(internal::ValidateDegreeAndCount(
+      options.degree_u, options.control_count_u, "u", "control_count_u",
+      "control points"));
+  RETURN_IF_ERROR(internal::ValidateDegreeAndCount(
+      options.degree_v, options.control_count_v, "v", "control_count_v",
+      "control points"));
+  RETURN_IF_ERROR(ValidatePoints(points, "points"));
   const size_t controls =
       Product(Count(options.control_count_u), Count(options.control_count_v));
   if (points.size() < controls) {
@@ -171,10 +164,7 @@ absl::Status AddData(const PointsView& points, absl::Span<const double> uv,
   std::vector<double> value(wu * wv);
   CancellationPoll poll(cancel);
   for (size_t k = 0; k < points.size(); ++k) {
-    if (absl::Status status = poll.Done(index.size() * (index.size() + d));
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(index.size() * (index.size() + d)));
     EvaluateBasis(surface.degree_u, surface.knots_u, uv[2 * k], bu);
     EvaluateBasis(surface.degree_v, surface.knots_v, uv[2 * k + 1], bv);
     for (size_t a = 0; a < wu; ++a) {
@@ -262,7 +252,7 @@ absl::Status AddSmoothing(double lambda, const SurfaceData& surface,
       Greville(surface.knots_v, surface.degree_v, nv);
   CancellationPoll poll(cancel);
   for (size_t i = 0; i < nu; ++i) {
-    if (absl::Status status = poll.Done(nv * 48); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(nv * 48));
     for (size_t j = 0; j < nv; ++j) {
       if (i > 0 && i + 1 < nu) {
         const std::array<double, 3> c = SecondDifference(xi, i);
@@ -366,25 +356,16 @@ absl::Status SolveNet(const PointsView& points,
   const size_t d = static_cast<size_t>(points.dimension);
   BandedCholesky normal(unknowns, ordering.bandwidth);
   std::vector<double> rhs(unknowns * d, 0.0);
-  if (absl::Status status = AddData(points, fit.parameters, surface, ordering,
-                                    normal, rhs, options.cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(AddData(points, fit.parameters, surface, ordering, normal,
+                          rhs, options.cancel));
   // The data term is summed, not averaged: scale lambda by N instead.
   if (options.smoothing > 0) {
     const double data = LargestDiagonal(normal);
-    if (absl::Status status =
-            AddSmoothing(options.smoothing * static_cast<double>(points.size()),
-                         surface, ordering, normal, options.cancel);
-        !status.ok()) {
-      return status;
-    }
-    if (absl::Status status = CheckSmoothingKeepsTheData(
-            options.smoothing, data, LargestDiagonal(normal) - data);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(
+        AddSmoothing(options.smoothing * static_cast<double>(points.size()),
+                     surface, ordering, normal, options.cancel));
+    RETURN_IF_ERROR(CheckSmoothingKeepsTheData(options.smoothing, data,
+                                               LargestDiagonal(normal) - data));
   }
   if (absl::Status status = normal.Factor(options.cancel); !status.ok()) {
     if (!absl::IsFailedPrecondition(status)) return status;
@@ -399,10 +380,7 @@ absl::Status SolveNet(const PointsView& points,
             "support; with smoothing the data must still "
             "fix a plane (three points not on one line in (u, v))"));
   }
-  if (absl::Status status = normal.Solve(rhs.data(), d, options.cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(normal.Solve(rhs.data(), d, options.cancel));
   surface.coordinates.resize(unknowns * d);
   for (size_t i = 0; i < ordering.count_u; ++i) {
     for (size_t j = 0; j < ordering.count_v; ++j) {
@@ -441,13 +419,8 @@ ScatteredFitWork EstimateScatteredFit(size_t point_count, int dimension,
 
 absl::StatusOr<ScatteredFit> FitScatteredSurface(
     const PointsView& points, const ScatteredFitOptions& options) {
-  if (absl::Status status = ValidateScatteredOptions(points, options);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = CheckWork(points, options); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateScatteredOptions(points, options));
+  RETURN_IF_ERROR(CheckWork(points, options));
   ScatteredFit fit;
   if (options.parameters.empty()) {
     absl::StatusOr<std::vector<double>> uv =
@@ -467,13 +440,8 @@ absl::StatusOr<ScatteredFit> FitScatteredSurface(
       .knots_u = ClampedUniformKnots(options.control_count_u, options.degree_u),
       .knots_v =
           ClampedUniformKnots(options.control_count_v, options.degree_v)};
-  if (absl::Status status = SolveNet(points, options, fit); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = Residuals(points, fit, options.cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(SolveNet(points, options, fit));
+  RETURN_IF_ERROR(Residuals(points, fit, options.cancel));
   return fit;
 }
 

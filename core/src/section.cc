@@ -15,6 +15,7 @@
 #include "bezier_net.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "tessellation_checks.h"
 
 namespace freeform {
@@ -343,7 +344,7 @@ absl::Status Slicer::CountVertex() {
 // between neighbouring parameters, as extreme weights make it).
 absl::StatusOr<Vertex> Slicer::MakeVertex(size_t piece, int along, double c,
                                           double a) {
-  if (absl::Status status = CountVertex(); !status.ok()) return status;
+  RETURN_IF_ERROR(CountVertex());
   Vertex vertex{.piece = piece};
   vertex.x[along] = a;
   vertex.x[1 - along] = c;
@@ -447,9 +448,7 @@ absl::Status Slicer::Leaf(size_t piece, const Cell& cell, int along) {
       if (c == c1) return a1;
       return Root(piece, across, c, cell.lo[along], cell.hi[along], false);
     };
-    if (absl::Status status = Arc(piece, along, c0, c1, locate); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(Arc(piece, along, c0, c1, locate));
   }
   return absl::OkStatus();
 }
@@ -482,14 +481,12 @@ absl::Status Slicer::Piece(size_t piece) {
     Cell cell = std::move(stack.back());
     stack.pop_back();
     budget_.Add(CellCost(cell.net));
-    if (absl::Status status = budget_.Check(); !status.ok()) return status;
+    RETURN_IF_ERROR(budget_.Check());
     if (OneSign(piece, cell)) continue;
     const int along =
         Monotone(cell.net, 0) ? 0 : (Monotone(cell.net, 1) ? 1 : -1);
     if (along >= 0) {
-      if (absl::Status status = Leaf(piece, cell, along); !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(Leaf(piece, cell, along));
       continue;
     }
     if (cell.depth < kMaxSectionDepth) {
@@ -531,9 +528,7 @@ absl::Status Slicer::Edges(size_t piece) {
 }
 
 absl::Status Slicer::Run() {
-  if (absl::Status status = CheckCancelled(cancel_); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckCancelled(cancel_));
   // Regions first, so that their edges are not traced.
   for (size_t piece = 0; piece < scalars_.size(); ++piece) {
     if (!InPlane(piece)) continue;
@@ -546,8 +541,8 @@ absl::Status Slicer::Run() {
   }
   for (size_t piece = 0; piece < scalars_.size(); ++piece) {
     if (InPlane(piece)) continue;
-    if (absl::Status status = Edges(piece); !status.ok()) return status;
-    if (absl::Status status = Piece(piece); !status.ok()) return status;
+    RETURN_IF_ERROR(Edges(piece));
+    RETURN_IF_ERROR(Piece(piece));
   }
   return budget_.Check();
 }
@@ -668,9 +663,7 @@ absl::Status CheckPlane(absl::Span<const double> point,
           name, absl::StrCat("needs the surface's dimension ", dimension,
                              " values, got ", values.size()));
     }
-    if (absl::Status status = ValidateFinite(values, name); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ValidateFinite(values, name));
   }
   if (std::all_of(normal.begin(), normal.end(),
                   [](double n) { return n == 0.0; })) {
@@ -808,10 +801,7 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
     absl::Span<const double> plane_normal, const SectionOptions& options,
     const CancellationToken* cancel) {
   const int dimension = DimensionOf(surface);
-  if (absl::Status status = CheckPlane(plane_point, plane_normal, dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckPlane(plane_point, plane_normal, dimension));
   if (!std::isfinite(options.tolerance) || options.tolerance <= 0.0) {
     return InvalidFieldError("tolerance", "must be positive and finite");
   }
@@ -826,12 +816,9 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   if (!scale.ok()) return scale.status();
   const int exponent = scale->exponent;
   if (options.fit_tolerance > 0.0) {
-    if (absl::Status status = internal::CheckResolvableAt(
-            options.fit_tolerance, std::ldexp(scale->largest, exponent),
-            "fit_tolerance");
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(internal::CheckResolvableAt(
+        options.fit_tolerance, std::ldexp(scale->largest, exponent),
+        "fit_tolerance"));
   }
   const std::vector<double> normal = UnitNormal(plane_normal);
   const double offset = ScaledOffset(normal, plane_point, exponent);
@@ -839,7 +826,7 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   if (!std::isfinite(offset)) return sections;  // far beyond the surface
   Slicer slicer(*pieces, normal, offset,
                 std::ldexp(options.tolerance, -exponent), options, cancel);
-  if (absl::Status status = slicer.Run(); !status.ok()) return status;
+  RETURN_IF_ERROR(slicer.Run());
   Chain chain(slicer.arcs(), dimension, 1e-9 * scale->largest);
   chain.Write(*pieces, sections);
   for (double& x : sections.points) x = std::ldexp(x, exponent);

@@ -11,6 +11,7 @@
 #include "absl/types/span.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "homogeneous.h"
 #include "knot_insertion.h"
 #include "knots.h"
@@ -29,7 +30,8 @@ using internal::TransposeBlocks;
 BezierCurveData ToBezierCurve(const PointArray& points, bool rational) {
   BezierCurveData curve;
   curve.dimension = rational ? points.dim - 1 : points.dim;
-  ProjectAllowingDirections(points, rational, curve.coordinates, curve.weights);
+  ProjectAllowingDirections(points, rational, curve.coordinates, curve.weights,
+                            internal::ZeroWeights::kExact);
   return curve;
 }
 
@@ -156,10 +158,7 @@ absl::StatusOr<PointArray> RefinePolygon(const PointArray& points, bool closed,
   PointArray out{dim,
                  std::vector<double>(static_cast<size_t>(count) * dim, 0.0)};
   for (int r = 0; r < count; ++r) {
-    if (absl::Status status = poll.Done(static_cast<size_t>(d + 2) * dim);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(static_cast<size_t>(d + 2) * dim));
     const int j = r + d;
     double* q = out.at(r);
     for (int i = FloorDiv2(j - d); i <= FloorDiv2(j); ++i) {
@@ -218,7 +217,7 @@ void FillNet(const PointArray& rows, bool in_u, bool rational,
                                  : TransposeBlocks(rows.values, lines, per_line,
                                                    point_dim)};
   ProjectAllowingDirections(net, rational, surface.coordinates,
-                            surface.weights);
+                            surface.weights, internal::ZeroWeights::kExact);
 }
 
 // ---------------------------------------------------------------------------
@@ -299,7 +298,8 @@ std::vector<TriangularPatchData> SplitPieces(
     piece.degree = n;
     piece.dimension = patch.control_points.dimension;
     ProjectAllowingDirections(SubPatch(levels, n, vertex), patch.rational(),
-                              piece.coordinates, piece.weights);
+                              piece.coordinates, piece.weights,
+                              internal::ZeroWeights::kExact);
     if (patch.domain_triangle.empty()) continue;
     piece.domain_triangle.assign(patch.domain_triangle.begin(),
                                  patch.domain_triangle.end());
@@ -388,18 +388,14 @@ SurfaceData PatchOfSpans(const SurfaceData& refined, int s, int t) {
 absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
     const BezierCurveView& curve, absl::Span<const double> parameters,
     const CancellationToken* cancel) {
-  if (absl::Status status = CheckSplitParameters(parameters); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckSplitParameters(parameters));
   const PointArray points = Lift(curve.control_points, curve.weights);
   std::vector<BezierCurveData> pieces;
   pieces.reserve(parameters.size() + 1);
   const size_t piece_work = points.values.size() * points.values.size();
   CancellationPoll poll(cancel);
   for (size_t k = 0; k <= parameters.size(); ++k) {
-    if (absl::Status status = poll.Done(piece_work); !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(poll.Done(piece_work));
     const double a = k == 0 ? 0.0 : parameters[k - 1];
     const double b = k == parameters.size() ? 1.0 : parameters[k];
     pieces.push_back(ToBezierCurve(Piece(points, a, b), curve.rational()));
@@ -410,11 +406,7 @@ absl::StatusOr<std::vector<BezierCurveData>> SplitBezierCurve(
 absl::StatusOr<BSplineCurveData> InsertKnots(const BSplineCurveView& curve,
                                              absl::Span<const double> knots,
                                              const CancellationToken* cancel) {
-  if (absl::Status status =
-          CheckKnotsToInsert(curve.degree, curve.knots, knots);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckKnotsToInsert(curve.degree, curve.knots, knots));
   absl::StatusOr<Spline> refined = RefineKnots(LiftCurve(curve), knots, cancel);
   if (!refined.ok()) return refined.status();
   BSplineCurveData result;
@@ -422,7 +414,8 @@ absl::StatusOr<BSplineCurveData> InsertKnots(const BSplineCurveView& curve,
   result.dimension = curve.control_points.dimension;
   result.knots = refined->knots;
   ProjectAllowingDirections(refined->points, curve.rational(),
-                            result.coordinates, result.weights);
+                            result.coordinates, result.weights,
+                            internal::ZeroWeights::kExact);
   return result;
 }
 
@@ -479,10 +472,7 @@ absl::StatusOr<std::vector<std::vector<double>>> SubdividePolygon(
     const PointsView& polygon, bool closed, SubdivisionScheme scheme,
     int degree, int levels, const CancellationToken* cancel) {
   const int d = scheme == SubdivisionScheme::kChaikin ? 2 : degree;
-  if (absl::Status status = CheckSubdivision(polygon.size(), closed, d, levels);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckSubdivision(polygon.size(), closed, d, levels));
   const std::vector<double> mask = Mask(d);
   PointArray current{polygon.dimension,
                      std::vector<double>(polygon.coordinates.begin(),
@@ -505,10 +495,7 @@ absl::StatusOr<SurfaceData> InsertSurfaceKnots(
   const int degree = in_u ? surface.degree_u : surface.degree_v;
   const absl::Span<const double> old_knots =
       in_u ? surface.knots_u : surface.knots_v;
-  if (absl::Status status = CheckKnotsToInsert(degree, old_knots, knots);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckKnotsToInsert(degree, old_knots, knots));
   const Spline lines{degree,
                      std::vector<double>(old_knots.begin(), old_knots.end()),
                      RowsOf(surface.control_net, surface.weights, in_u)};
@@ -546,9 +533,7 @@ absl::StatusOr<std::vector<SurfaceData>> SplitBezierSurface(
 
 absl::StatusOr<std::vector<TriangularPatchData>> SplitTriangularPatch(
     const TriangularPatchView& patch, double u, double v) {
-  if (absl::Status status = CheckTrianglePoint(u, v); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckTrianglePoint(u, v));
   return SplitPieces(patch, u, v, {0, 1, 2});
 }
 

@@ -10,6 +10,7 @@
 #include "freeform/core/normals.h"
 #include "freeform/core/patches.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "piece_values.h"
 #include "validated.h"
 #include "variant_dispatch.h"
@@ -38,9 +39,7 @@ absl::Status ValidateCornerNet(const ControlNetView& net, int dimension,
 
 absl::StatusOr<BezierSurface> BezierSurface::Create(
     const BezierSurfaceView& view) {
-  if (absl::Status status = ValidateBezierSurface(view); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBezierSurface(view));
   return BezierSurface(view, nullptr);
 }
 
@@ -57,10 +56,7 @@ BezierSurface BezierSurface::OwnedBicubic(int dimension,
 
 absl::StatusOr<BezierSurface> BezierSurface::FromInterpolatingPatch(
     const ControlNetView& points) {
-  if (absl::Status status = ValidateControlNet(points, "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateControlNet(points, "points"));
   if (points.count_u != 4 || points.count_v != 4) {
     return InvalidFieldError(
         points.count_u != 4 ? "points.count_u" : "points.count_v",
@@ -81,11 +77,7 @@ absl::StatusOr<BezierSurface> BezierSurface::FromHermitePatch(
         std::tuple{&derivatives_u, "derivatives_u", false},
         std::tuple{&derivatives_v, "derivatives_v", false},
         std::tuple{&twists, "twists", true}}) {
-    if (absl::Status status =
-            ValidateCornerNet(*net, dimension, field, optional);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ValidateCornerNet(*net, dimension, field, optional));
   }
   return OwnedBicubic(
       dimension,
@@ -102,9 +94,7 @@ absl::Status BezierSurface::Evaluate(const SurfaceSamples& samples,
 
 absl::StatusOr<BSplineSurface> BSplineSurface::Create(
     const BSplineSurfaceView& view) {
-  if (absl::Status status = ValidateBSplineSurface(view); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBSplineSurface(view));
   return BSplineSurface(view);
 }
 
@@ -116,9 +106,7 @@ absl::Status BSplineSurface::Evaluate(const SurfaceSamples& samples,
 
 absl::StatusOr<TriangularPatch> TriangularPatch::Create(
     const TriangularPatchView& view) {
-  if (absl::Status status = ValidateTriangularPatch(view); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateTriangularPatch(view));
   return TriangularPatch(view);
 }
 
@@ -176,12 +164,17 @@ uint64_t SurfacePieceValues(const Surface& surface) {
 }
 
 uint64_t SurfacePieceCount(const Surface& surface) {
-  if (const auto* bspline = std::get_if<BSplineSurface>(&surface)) {
-    const BSplineSurfaceView& view = bspline->view();
-    return static_cast<uint64_t>(view.control_net.count_u - view.degree_u) *
-           static_cast<uint64_t>(view.control_net.count_v - view.degree_v);
-  }
-  return 1;
+  return std::visit(internal::Overloaded{
+                        [](const BezierSurface&) -> uint64_t { return 1; },
+                        [](const BSplineSurface& bspline) -> uint64_t {
+                          const BSplineSurfaceView& view = bspline.view();
+                          return static_cast<uint64_t>(
+                                     view.control_net.count_u - view.degree_u) *
+                                 static_cast<uint64_t>(
+                                     view.control_net.count_v - view.degree_v);
+                        },
+                        [](const TriangularPatch&) -> uint64_t { return 1; }},
+                    surface);
 }
 
 bool IsTriangular(const Surface& surface) {
@@ -190,16 +183,23 @@ bool IsTriangular(const Surface& surface) {
 
 absl::Status ValidateSamples(const Surface& surface,
                              const SurfaceSamples& samples) {
-  if (const auto* patch = std::get_if<TriangularPatch>(&surface)) {
-    if (samples.grid) {
-      return InvalidFieldError(
-          "grid", "a triangular patch takes (u, v) points, not a grid");
-    }
-    return internal::ValidateTriangularPairs(patch->view(), samples.uv);
-  }
-  const SurfaceDomain domain = DomainOf(surface);
-  return ValidateSurfaceSamples(samples, domain.u_start, domain.u_end,
-                                domain.v_start, domain.v_end);
+  const auto in_domain = [&samples](const auto& tensor) {
+    const SurfaceDomain domain = tensor.domain();
+    return ValidateSurfaceSamples(samples, domain.u_start, domain.u_end,
+                                  domain.v_start, domain.v_end);
+  };
+  return std::visit(
+      internal::Overloaded{
+          [&](const BezierSurface& bezier) { return in_domain(bezier); },
+          [&](const BSplineSurface& bspline) { return in_domain(bspline); },
+          [&](const TriangularPatch& patch) {
+            if (samples.grid) {
+              return InvalidFieldError(
+                  "grid", "a triangular patch takes (u, v) points, not a grid");
+            }
+            return internal::ValidateTriangularPairs(patch.view(), samples.uv);
+          }},
+      surface);
 }
 
 absl::Status EvaluateSurface(const Surface& surface,
@@ -224,7 +224,7 @@ absl::Status EvaluateSurface(const Surface& surface,
   while (all.size() < PartialCount(2)) {
     all.push_back(absl::MakeSpan(scratch.emplace_back(size)));
   }
-  if (absl::Status status = evaluate(all); !status.ok()) return status;
+  RETURN_IF_ERROR(evaluate(all));
   if (IsTriangular(surface)) return ComputeUnitNormals(all, count, normals);
   return ComputeUnitNormals(all, samples, DomainOf(surface), normals);
 }

@@ -18,6 +18,7 @@
 #include "freeform/core/interpolation.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "tolerance_refinement.h"
 
 namespace freeform {
@@ -27,12 +28,9 @@ using internal::FixedEndLeastSquares;
 
 absl::Status ValidateDirection(int degree, int count, int cap,
                                absl::string_view direction) {
-  if (absl::Status status = internal::ValidateDegreeAndCount(
-          degree, count, direction, absl::StrCat("points.count_", direction),
-          "points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(internal::ValidateDegreeAndCount(
+      degree, count, direction, absl::StrCat("points.count_", direction),
+      "points"));
   if (cap <= degree) {
     return InvalidFieldError(
         absl::StrCat("max_control_points_", direction),
@@ -43,20 +41,11 @@ absl::Status ValidateDirection(int degree, int count, int cap,
 
 absl::Status ValidateGridFit(const ControlNetView& points,
                              const GridFitOptions& options) {
-  if (absl::Status status = ValidateControlNet(points, "points");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateDirection(
-          options.degree_u, points.count_u, options.max_control_points_u, "u");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateDirection(
-          options.degree_v, points.count_v, options.max_control_points_v, "v");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateControlNet(points, "points"));
+  RETURN_IF_ERROR(ValidateDirection(options.degree_u, points.count_u,
+                                    options.max_control_points_u, "u"));
+  RETURN_IF_ERROR(ValidateDirection(options.degree_v, points.count_v,
+                                    options.max_control_points_v, "v"));
   return internal::ValidateTolerance(options.tolerance);
 }
 
@@ -76,16 +65,10 @@ absl::Status ValidateGiven(absl::Span<const double> parameters, int count,
 // others as InterpolateSurface chooses them for this grid and these degrees.
 absl::Status GridParameters(const ControlNetView& points,
                             const GridFitOptions& options, SurfaceFit& fit) {
-  if (absl::Status status =
-          ValidateGiven(options.parameters_u, points.count_u, "parameters_u");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          ValidateGiven(options.parameters_v, points.count_v, "parameters_v");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidateGiven(options.parameters_u, points.count_u, "parameters_u"));
+  RETURN_IF_ERROR(
+      ValidateGiven(options.parameters_v, points.count_v, "parameters_v"));
   fit.parameters_u.assign(options.parameters_u.begin(),
                           options.parameters_u.end());
   fit.parameters_v.assign(options.parameters_v.begin(),
@@ -140,17 +123,14 @@ absl::Status FitRows(const FixedEndLeastSquares& along_v,
   round.error_v.assign(count_v, 0.0);
   CancellationPoll poll(cancel);
   for (size_t i = 0; i < rows; ++i) {
-    if (absl::Status status = poll.Done(4 * row); !status.ok()) return status;
+    RETURN_IF_ERROR(poll.Done(4 * row));
     const double* data = columns.data() + i * row;
     absl::StatusOr<std::vector<double>> net = along_v.Solve(data, d, cancel);
     if (!net.ok()) return net.status();
     std::copy(net->begin(), net->end(),
               round.control.begin() + static_cast<ptrdiff_t>(i * net_row));
     double* value = fitted.data() + i * row;
-    if (absl::Status status = along_v.Evaluate(net->data(), d, value, cancel);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(along_v.Evaluate(net->data(), d, value, cancel));
     const std::vector<double> error = Distances(value, data, count_v, d);
     for (size_t l = 0; l < count_v; ++l) {
       round.error_v[l] = std::max(round.error_v[l], error[l]);
@@ -180,11 +160,8 @@ absl::StatusOr<GridRound> FitOnGrid(const ControlNetView& points,
       along_u->Solve(points.coordinates.data(), row, cancel);
   if (!columns.ok()) return columns.status();
   std::vector<double> values(count_u * row);
-  if (absl::Status status =
-          along_u->Evaluate(columns->data(), row, values.data(), cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      along_u->Evaluate(columns->data(), row, values.data(), cancel));
   GridRound round;
   const std::vector<double> column_errors =
       Distances(values.data(), points.coordinates.data(), count_u * count_v, d);
@@ -197,17 +174,9 @@ absl::StatusOr<GridRound> FitOnGrid(const ControlNetView& points,
   }
   // Rows, then the surface at the grid: the u fit evaluated on G.
   std::vector<double> fitted;
-  if (absl::Status status =
-          FitRows(*along_v, *columns, along_u->control_count(), d, round,
-                  fitted, cancel);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          along_u->Evaluate(fitted.data(), row, values.data(), cancel);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(FitRows(*along_v, *columns, along_u->control_count(), d,
+                          round, fitted, cancel));
+  RETURN_IF_ERROR(along_u->Evaluate(fitted.data(), row, values.data(), cancel));
   round.errors =
       Distances(values.data(), points.coordinates.data(), count_u * count_v, d);
   return round;
@@ -256,14 +225,9 @@ absl::Status GridToleranceNotMet(const SurfaceFit& fit,
 
 absl::StatusOr<SurfaceFit> FitSurfaceToGrid(const ControlNetView& points,
                                             const GridFitOptions& options) {
-  if (absl::Status status = ValidateGridFit(points, options); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateGridFit(points, options));
   SurfaceFit fit;
-  if (absl::Status status = GridParameters(points, options, fit);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(GridParameters(points, options, fit));
   const int p = options.degree_u, q = options.degree_v;
   SurfaceData& surface = fit.surface;
   surface.degree_u = p;

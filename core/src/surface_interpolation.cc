@@ -14,6 +14,7 @@
 #include "freeform/core/interpolation.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
 #include "interpolation_knots.h"
@@ -112,19 +113,10 @@ absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
         "knot_rule",
         "kAtParameters needs end derivatives, which surfaces do not take");
   }
-  if (absl::Status status = ValidatePositiveDegree(degree_u, "degree_u");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidatePositiveDegree(degree_v, "degree_v");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          ValidateControlNet(points, "points", degree_u + 1, degree_v + 1);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePositiveDegree(degree_u, "degree_u"));
+  RETURN_IF_ERROR(ValidatePositiveDegree(degree_v, "degree_v"));
+  RETURN_IF_ERROR(
+      ValidateControlNet(points, "points", degree_u + 1, degree_v + 1));
   SurfaceInterpolation result;
   absl::StatusOr<std::vector<double>> tu =
       GridParameters(points, true, degree_u, parameterization);
@@ -165,17 +157,11 @@ absl::StatusOr<SurfaceInterpolation> InterpolateSurface(
                              points.coordinates.end());
   const size_t row = static_cast<size_t>(points.count_v) *
                      static_cast<size_t>(points.dimension);
-  if (absl::Status status =
-          along_u->Solve(surface.coordinates.data(), static_cast<int>(row));
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      along_u->Solve(surface.coordinates.data(), static_cast<int>(row)));
   for (size_t k = 0; k < static_cast<size_t>(points.count_u); ++k) {
-    if (absl::Status status = along_v->Solve(
-            surface.coordinates.data() + k * row, points.dimension);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(
+        along_v->Solve(surface.coordinates.data() + k * row, points.dimension));
   }
   absl::StatusOr<double> residual = SurfaceResidual(result, points, cancel);
   if (!residual.ok()) return residual.status();

@@ -4,6 +4,7 @@
 #include "freeform/core/curve_output.h"
 #include "freeform/core/points.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 
 namespace freeform {
 
@@ -29,10 +30,7 @@ absl::Status ValidateSurfaceSamples(const SurfaceSamples& samples,
                                     double u_start, double u_end,
                                     double v_start, double v_end) {
   if (samples.grid) {
-    if (absl::Status status = ValidateInRange(samples.u, u_start, u_end, "u");
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ValidateInRange(samples.u, u_start, u_end, "u"));
     return ValidateInRange(samples.v, v_start, v_end, "v");
   }
   if (samples.uv.size() % 2 != 0) {

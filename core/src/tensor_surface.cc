@@ -13,6 +13,7 @@
 #include "freeform/core/points.h"
 #include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "scalar_reference.h"
 #include "simd/surface_simd.h"
 #include "validated.h"
@@ -290,16 +291,9 @@ absl::Status EvaluateTensorSurface(
     absl::Span<const double> weights, const SurfaceDomain& domain,
     const SurfaceSamples& samples, SurfaceOutput output,
     const ExecutionContext& context, GridKernel kernel = GridKernel::kLanes) {
-  if (absl::Status status = ValidateSurfaceSamples(
-          samples, domain.u_start, domain.u_end, domain.v_start, domain.v_end);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          ValidateSurfaceOutput(output, samples.size(), net.dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateSurfaceSamples(samples, domain.u_start, domain.u_end,
+                                         domain.v_start, domain.v_end));
+  RETURN_IF_ERROR(ValidateSurfaceOutput(output, samples.size(), net.dimension));
   const bool rational = !weights.empty();
   const std::vector<double> homogeneous =
       rational ? HomogeneousPoints({.dimension = net.dimension,
@@ -333,8 +327,8 @@ absl::Status EvaluateTensorSurface(
 }
 
 // Weights: one per net point, finite and >= 0.
-absl::Status ValidateWeightValues(const ControlNetView& net,
-                                  absl::Span<const double> weights) {
+absl::Status ValidateNetWeights(const ControlNetView& net,
+                                absl::Span<const double> weights) {
   const size_t count = static_cast<size_t>(net.count_u) * net.count_v;
   if (weights.size() != count) {
     return InvalidFieldError(
@@ -342,14 +336,7 @@ absl::Status ValidateWeightValues(const ControlNetView& net,
         absl::StrCat("has ", weights.size(), " weights for ", count,
                      " net points (", net.count_u, " x ", net.count_v, ")"));
   }
-  for (size_t k = 0; k < count; ++k) {
-    if (!std::isfinite(weights[k]) || weights[k] < 0) {
-      return InvalidFieldError(
-          IndexedField("weights", k),
-          absl::StrCat("weights must be finite and >= 0, got ", weights[k]));
-    }
-  }
-  return absl::OkStatus();
+  return ValidateWeightValues(weights);
 }
 
 // "degree_u" must be >= 0.
@@ -526,15 +513,9 @@ absl::Status ValidateControlNet(const ControlNetView& net,
 
 absl::Status ValidateBezierSurface(const BezierSurfaceView& surface) {
   const ControlNetView& net = surface.control_net;
-  if (absl::Status status = ValidateControlNet(net, "control_net");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateControlNet(net, "control_net"));
   if (!surface.rational()) return absl::OkStatus();
-  if (absl::Status status = ValidateWeightValues(net, surface.weights);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateNetWeights(net, surface.weights));
   for (const int i : {0, net.count_u - 1}) {
     for (const int j : {0, net.count_v - 1}) {
       const size_t k = static_cast<size_t>(i) * net.count_v + j;
@@ -552,33 +533,16 @@ absl::Status ValidateBezierSurface(const BezierSurfaceView& surface) {
 absl::Status ValidateBSplineSurface(const BSplineSurfaceView& surface) {
   const int p = surface.degree_u;
   const int q = surface.degree_v;
-  if (absl::Status status = ValidateDegree(p, "degree_u"); !status.ok()) {
-    return status;
-  }
-  if (absl::Status status = ValidateDegree(q, "degree_v"); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateDegree(p, "degree_u"));
+  RETURN_IF_ERROR(ValidateDegree(q, "degree_v"));
   const ControlNetView& net = surface.control_net;
-  if (absl::Status status =
-          ValidateControlNet(net, "control_net", p + 1, q + 1);
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          ValidateDirectionKnots(p, net.count_u, surface.knots_u, "knots_u");
-      !status.ok()) {
-    return status;
-  }
-  if (absl::Status status =
-          ValidateDirectionKnots(q, net.count_v, surface.knots_v, "knots_v");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateControlNet(net, "control_net", p + 1, q + 1));
+  RETURN_IF_ERROR(
+      ValidateDirectionKnots(p, net.count_u, surface.knots_u, "knots_u"));
+  RETURN_IF_ERROR(
+      ValidateDirectionKnots(q, net.count_v, surface.knots_v, "knots_v"));
   if (!surface.rational()) return absl::OkStatus();
-  if (absl::Status status = ValidateWeightValues(net, surface.weights);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateNetWeights(net, surface.weights));
   return ValidateDenominator(BSplineDirection(p, net.count_u, surface.knots_u),
                              BSplineDirection(q, net.count_v, surface.knots_v),
                              net.count_v, surface.weights);
@@ -603,9 +567,7 @@ absl::Status EvaluateBezierSurface(const BezierSurfaceView& surface,
                                    const SurfaceSamples& samples,
                                    SurfaceOutput output,
                                    const ExecutionContext& context) {
-  if (absl::Status status = ValidateBezierSurface(surface); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBezierSurface(surface));
   return internal::EvaluateValidBezierSurface(surface, samples, output,
                                               context);
 }
@@ -633,9 +595,7 @@ absl::Status EvaluateBSplineSurface(const BSplineSurfaceView& surface,
                                     const SurfaceSamples& samples,
                                     SurfaceOutput output,
                                     const ExecutionContext& context) {
-  if (absl::Status status = ValidateBSplineSurface(surface); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBSplineSurface(surface));
   return internal::EvaluateValidBSplineSurface(surface, samples, output,
                                                context);
 }
@@ -653,9 +613,7 @@ absl::Status EvaluateValidBSplineSurface(const BSplineSurfaceView& surface,
 absl::Status EvaluateBSplineSurfaceScalar(const BSplineSurfaceView& surface,
                                           const SurfaceSamples& samples,
                                           SurfaceOutput output) {
-  if (absl::Status status = ValidateBSplineSurface(surface); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateBSplineSurface(surface));
   return EvaluateValidBSplineSurfaceWith(surface, samples, output, {},
                                          GridKernel::kScalar);
 }

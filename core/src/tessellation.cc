@@ -10,6 +10,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/subdivision.h"
 #include "homogeneous.h"
 #include "tessellation_checks.h"
@@ -133,9 +134,7 @@ absl::Status SubdivideBezierPiece(const double* control,
   size_t steps = 0;
   while (!intervals.empty()) {
     if (++steps % kCancelStride == 0) {
-      if (absl::Status status = CheckCancelled(cancel); !status.ok()) {
-        return status;
-      }
+      RETURN_IF_ERROR(CheckCancelled(cancel));
     }
     const Interval top = intervals.back();
     const double* piece = stack.data() + stack.size() - size;
@@ -165,9 +164,7 @@ absl::Status SubdivideBezierPiece(const double* control,
 absl::Status ValidateCurveRequest(const absl::Status& validation,
                                   double tolerance, size_t max_points) {
   if (!validation.ok()) return validation;
-  if (absl::Status status = ValidateTolerance(tolerance); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateTolerance(tolerance));
   if (max_points < 2) {
     return TessellationTooLarge("tolerance", "points", max_points);
   }
@@ -187,11 +184,7 @@ struct PieceControl {
 absl::StatusOr<PieceControl> ResolvableControl(const PointsView& points,
                                                absl::Span<const double> weights,
                                                int degree, double tolerance) {
-  if (absl::Status status =
-          CheckResolvable(tolerance, points.coordinates, degree);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(CheckResolvable(tolerance, points.coordinates, degree));
   return PieceControl{.shape = {.degree = degree,
                                 .dimension = points.dimension,
                                 .rational = !weights.empty()},
@@ -211,10 +204,7 @@ absl::StatusOr<Polyline> PolylineAt(int dimension,
       absl::MakeSpan(polyline.points)};
   ExecutionContext context;
   context.cancellation = cancel;
-  if (absl::Status status = evaluate(parameters, output, context);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(evaluate(parameters, output, context));
   polyline.parameters = std::move(parameters);
   return polyline;
 }
@@ -252,21 +242,15 @@ void BlossomBezierPoints(const std::vector<double>& control, int stride, int p,
 absl::StatusOr<Polyline> TessellateBezierCurve(
     const BezierCurveView& curve, double tolerance, size_t max_points,
     const CancellationToken* cancel) {
-  if (absl::Status status = ValidateCurveRequest(ValidateBezierCurve(curve),
-                                                 tolerance, max_points);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidateCurveRequest(ValidateBezierCurve(curve), tolerance, max_points));
   absl::StatusOr<PieceControl> control = ResolvableControl(
       curve.control_points, curve.weights, curve.degree(), tolerance);
   if (!control.ok()) return control.status();
   std::vector<double> parameters = {0.0};
-  if (absl::Status status =
-          SubdivideBezierPiece(control->values.data(), control->shape, 0.0, 1.0,
-                               tolerance, max_points, cancel, parameters);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(SubdivideBezierPiece(control->values.data(), control->shape,
+                                       0.0, 1.0, tolerance, max_points, cancel,
+                                       parameters));
   return PolylineAt(
       control->shape.dimension, std::move(parameters),
       [&](absl::Span<const double> t, CurveOutput output,
@@ -279,11 +263,8 @@ absl::StatusOr<Polyline> TessellateBezierCurve(
 absl::StatusOr<Polyline> TessellateBSplineCurve(
     const BSplineCurveView& curve, double tolerance, size_t max_points,
     const CancellationToken* cancel) {
-  if (absl::Status status = ValidateCurveRequest(ValidateBSplineCurve(curve),
-                                                 tolerance, max_points);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidateCurveRequest(ValidateBSplineCurve(curve), tolerance, max_points));
   const int p = curve.degree;
   absl::StatusOr<PieceControl> control =
       ResolvableControl(curve.control_points, curve.weights, p, tolerance);
@@ -294,16 +275,12 @@ absl::StatusOr<Polyline> TessellateBSplineCurve(
   std::vector<double> bezier(shape.size()), work;
   for (int s = p; s <= n; ++s) {
     if (!(curve.knots[s] < curve.knots[s + 1])) continue;
-    if (absl::Status status = CheckCancelled(cancel); !status.ok())
-      return status;
+    RETURN_IF_ERROR(CheckCancelled(cancel));
     BlossomBezierPoints(control->values, shape.stride(), p, s, curve.knots,
                         work, bezier.data());
-    if (absl::Status status = SubdivideBezierPiece(
-            bezier.data(), shape, curve.knots[s], curve.knots[s + 1], tolerance,
-            max_points, cancel, parameters);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(SubdivideBezierPiece(bezier.data(), shape, curve.knots[s],
+                                         curve.knots[s + 1], tolerance,
+                                         max_points, cancel, parameters));
   }
   return PolylineAt(
       shape.dimension, std::move(parameters),
@@ -321,11 +298,8 @@ namespace {
 absl::StatusOr<Polyline> TessellatePieces(const Curve& curve, double tolerance,
                                           size_t max_points,
                                           const CancellationToken* cancel) {
-  if (absl::Status status =
-          ValidateCurveRequest(absl::OkStatus(), tolerance, max_points);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(
+      ValidateCurveRequest(absl::OkStatus(), tolerance, max_points));
   absl::StatusOr<BezierDecomposition> pieces = DecomposeCurve(curve, cancel);
   if (!pieces.ok()) return pieces.status();
   std::vector<double> parameters = {pieces->breakpoints.front()};
@@ -334,13 +308,9 @@ absl::StatusOr<Polyline> TessellatePieces(const Curve& curve, double tolerance,
     absl::StatusOr<PieceControl> control = ResolvableControl(
         piece.control_points, piece.weights, piece.degree(), tolerance);
     if (!control.ok()) return control.status();
-    if (absl::Status status = SubdivideBezierPiece(
-            control->values.data(), control->shape, pieces->breakpoints[k],
-            pieces->breakpoints[k + 1], tolerance, max_points, cancel,
-            parameters);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(SubdivideBezierPiece(
+        control->values.data(), control->shape, pieces->breakpoints[k],
+        pieces->breakpoints[k + 1], tolerance, max_points, cancel, parameters));
   }
   return PolylineAt(
       DimensionOf(curve), std::move(parameters),

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/core/tensor_surface.h"
 #include "homogeneous.h"
 #include "validated.h"
@@ -120,13 +122,7 @@ absl::Status ValidateWeights(absl::Span<const double> weights, int degree,
         "weights", absl::StrCat("has ", weights.size(), " weights for ", count,
                                 " control points"));
   }
-  for (size_t i = 0; i < count; ++i) {
-    if (!std::isfinite(weights[i]) || weights[i] < 0) {
-      return InvalidFieldError(
-          IndexedField("weights", i),
-          absl::StrCat("weights must be finite and >= 0, got ", weights[i]));
-    }
-  }
+  RETURN_IF_ERROR(ValidateWeightValues(weights));
   // See ValidateTriangularPatch: the corners decide positivity.
   for (const size_t corner :
        {TriangularIndex(degree, degree, 0), TriangularIndex(degree, 0, degree),
@@ -149,10 +145,7 @@ absl::Status ValidateDomainTriangle(absl::Span<const double> triangle) {
         absl::StrCat("holds ", triangle.size(),
                      " values, expected 6 (vertices A, B, C in 2D)"));
   }
-  if (absl::Status status = ValidateFinite(triangle, "domain_triangle");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateFinite(triangle, "domain_triangle"));
   const double abx = triangle[2] - triangle[0], aby = triangle[3] - triangle[1];
   const double acx = triangle[4] - triangle[0], acy = triangle[5] - triangle[1];
   const double bcx = acx - abx, bcy = acy - aby;
@@ -297,11 +290,7 @@ absl::Status ValidateTriangularPatch(const TriangularPatchView& patch) {
     return InvalidFieldError("degree",
                              absl::StrCat("must be >= 0, got ", patch.degree));
   }
-  if (absl::Status status =
-          ValidatePoints(patch.control_points, "control_points");
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePoints(patch.control_points, "control_points"));
   const size_t count = TriangularPointCount(patch.degree);
   if (patch.control_points.size() != count) {
     return InvalidFieldError(
@@ -311,11 +300,7 @@ absl::Status ValidateTriangularPatch(const TriangularPatchView& patch) {
                      " needs (n+1)(n+2)/2 = ", count));
   }
   if (patch.rational()) {
-    if (absl::Status status =
-            ValidateWeights(patch.weights, patch.degree, count);
-        !status.ok()) {
-      return status;
-    }
+    RETURN_IF_ERROR(ValidateWeights(patch.weights, patch.degree, count));
   }
   return ValidateDomainTriangle(patch.domain_triangle);
 }
@@ -324,9 +309,7 @@ absl::Status EvaluateTriangularPatch(const TriangularPatchView& patch,
                                      absl::Span<const double> uv,
                                      SurfaceOutput output,
                                      const ExecutionContext& context) {
-  if (absl::Status status = ValidateTriangularPatch(patch); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateTriangularPatch(patch));
   return internal::EvaluateValidTriangularPatch(patch, uv, output, context);
 }
 
@@ -342,15 +325,10 @@ absl::Status EvaluateValidTriangularPatch(const TriangularPatchView& patch,
                                           SurfaceOutput output,
                                           const ExecutionContext& context) {
   const ParameterMap map(patch.domain_triangle);
-  if (absl::Status status = ValidatePairs(uv, map); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePairs(uv, map));
   const size_t count = uv.size() / 2;
   const int dimension = patch.control_points.dimension;
-  if (absl::Status status = ValidateSurfaceOutput(output, count, dimension);
-      !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidateSurfaceOutput(output, count, dimension));
   const PatchEvaluator evaluator(patch, MaxOrderOf(output), map);
   const size_t dim = static_cast<size_t>(dimension);
   return ParallelFor(count, context, [&](size_t begin, size_t end) {
@@ -378,9 +356,7 @@ absl::Status EvaluateTriangularBasis(int n, absl::Span<const double> uv,
     return InvalidFieldError("degree", absl::StrCat("must be >= 0, got ", n));
   }
   const ParameterMap map({});
-  if (absl::Status status = ValidatePairs(uv, map); !status.ok()) {
-    return status;
-  }
+  RETURN_IF_ERROR(ValidatePairs(uv, map));
   const size_t points = uv.size() / 2;
   const size_t functions = TriangularPointCount(n);
   if (values.size() / functions != points || values.size() % functions != 0) {

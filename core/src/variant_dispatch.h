@@ -1,14 +1,15 @@
 // The forwarding the core's geometry variants share (Curve, CurveBasis and
 // Surface): every kind has domain() and Evaluate(...), so the free
 // functions of curve.h, basis.h and surface.h visit with one generic call;
-// and Overloaded, for visits that handle each kind on its own. Internal to
-// the core.
+// and Overloaded (overloaded.h), for visits that handle each kind on its
+// own. Internal to the core.
 #ifndef FREEFORM_CORE_SRC_VARIANT_DISPATCH_H_
 #define FREEFORM_CORE_SRC_VARIANT_DISPATCH_H_
 
 #include <variant>
 
 #include "absl/status/status.h"
+#include "freeform/core/overloaded.h"
 
 namespace freeform::internal {
 
@@ -27,14 +28,8 @@ absl::Status EvaluateKind(const Variant& geometry,
       [&](const auto& kind) { return kind.Evaluate(arguments...); }, geometry);
 }
 
-// Overloaded{handler...}: one visitor from a handler per kind.
-template <typename... Handlers>
-struct Overloaded : Handlers... {
-  using Handlers::operator()...;
-};
-// Needed by clang 14, which does not deduce an aggregate's arguments.
-template <typename... Handlers>
-Overloaded(Handlers...) -> Overloaded<Handlers...>;
+// The core's visits name it internal::Overloaded (freeform/core/overloaded.h).
+using ::freeform::Overloaded;
 
 }  // namespace freeform::internal
 

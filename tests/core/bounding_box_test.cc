@@ -413,7 +413,12 @@ TEST(SurfaceBoundingBox, CornerAtInfinityEndsTheSearchAtOnce) {
                                        2.07226151461452e-317,
                                        2.07226151461452e-317,
                                        1.3481685079097897e-225,
-                                       1e-06};
+                                       // 1e-06 in the fuzz input, whose
+                                       // smallest weights are now refused
+                                       // (below 2^-1021 of the largest,
+                                       // rational.h); the same ratios
+                                       // otherwise
+                                       1e-10};
   absl::StatusOr<Surface> surface =
       BezierSurface::Create({.control_net = {.dimension = 3,
                                              .count_u = 3,
@@ -469,9 +474,9 @@ TEST(SurfaceBoundingBox, HighDegreeSearchStopsAtTheWorkBudget) {
   EXPECT_LE(static_cast<size_t>(counter.polls), units / (size_t{1} << 16) + 1);
 }
 
-// A rational quadratic triangular patch with weights from 1.3e-321 to 2
-// (found by the BoundingBox fuzzer: 1.2 s under ASan). The control point of
-// weight 1.3e-321 keeps its hull far from the surface, so the search for
+// A rational quadratic triangular patch with weights from 1e-300 to 2
+// (found by the BoundingBox fuzzer with 1.3e-321: 1.2 s under ASan). The
+// control point of weight 1e-300 keeps its hull far from the surface, so the search for
 // that side halves until its budget; the answer must still hold every
 // sample, and the whole search must stay within the budget of its six
 // sides: 16,384 halvings each, a halving reporting 4 units per control
@@ -499,7 +504,11 @@ TEST(SurfaceBoundingBox, NearZeroWeightSearchHoldsTheSurfaceWithinBudget) {
                                        1.4693679385278594e-39,
                                        2.0000000000291007,
                                        4.57763671875e-05,
-                                       1.26480805335359e-321,
+                                       // 1.3e-321 in the fuzz input: now
+                                       // refused (below 2^-1021 of the
+                                       // largest, rational.h), and 1e-300
+                                       // keeps its hull as far
+                                       1e-300,
                                        1};
   const Surface patch = *TriangularPatch::Create(
       {.degree = 2, .control_points = {3, points}, .weights = weights});

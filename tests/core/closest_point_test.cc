@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "freeform/core/rational.h"
 #include "freeform/core/status.h"
 #include "shapes.h"
 #include "teapot.h"
@@ -794,17 +795,23 @@ TEST(ClosestPointTest, ExtremeWeightsOnSurfacesAreAnsweredOrRefused) {
 // two, and a direction divided only like the points there moved the
 // geometry: the fuzzer's biquadratic with the middle weight 0 (weights up to
 // 2) had a point 0.45 from the query while the search certified 0.66.
-// A subnormal weight (below 2^-1024, whose reciprocal overflows) still
-// weighs a point: a degree-0 rational B-spline is its control points
-// whatever their weights, and a quadratic's end is its end point. A fuzz
-// finding of issue 30: the Bezier pieces took w P times 1 / w, which was
-// 0 * inf, and the first step vanished (distance 1 for 0).
-TEST(ClosestPointTest, SubnormalWeightsKeepTheirPoints) {
+// The smallest weight ratio the geometry takes (2^-1021, rational.h) still
+// weighs its point: a degree-0 rational B-spline is its control points
+// whatever their weights, and a quadratic's end is its end point (the
+// Bezier pieces divide by w; multiplied by 1 / w they took w P times an
+// infinite reciprocal below 2^-1024). Below the ratio, the homogeneous
+// point w P underflows (0.3 times 5e-324 is 0), so such weights are
+// refused: a fuzz finding of issue 30 lost the first step of such a
+// B-spline (distance 1 for 0), another answered an intersection point 1
+// off its curve.
+TEST(ClosestPointTest, TheSmallestWeightRatioKeepsItsPoint) {
   const std::vector<double> points = {0, 0, 0, 1, 0, 0, 3, 2, 0, 4, 0, 0};
   const std::vector<double> knots = {0, 0.25, 0.5, 0.75, 1};
+  const std::vector<double> clamped = {0, 0, 0, 0.5, 1, 1, 1};
   const std::vector<double> origin = {0, 0, 0};
-  for (double weight : {1e-310, 4.9406564584124654e-324}) {
-    const std::vector<double> weights = {weight, 1, 1, 1};
+  for (double largest : {1.0, 0x1p1000}) {
+    const std::vector<double> weights = {largest * kSmallestWeightRatio,
+                                         largest, largest, largest};
     const Curve steps = *BSplineCurve::Create({.degree = 0,
                                                .control_points = {3, points},
                                                .knots = knots,
@@ -812,20 +819,35 @@ TEST(ClosestPointTest, SubnormalWeightsKeepTheirPoints) {
     const absl::StatusOr<ClosestPoints> answer =
         CurveClosestPoints(steps, {3, origin});
     ASSERT_TRUE(answer.ok()) << answer.status();
-    EXPECT_EQ(answer->distances[0], 0.0) << weight;
-    EXPECT_EQ(answer->parameters[0], 0.0) << weight;
+    EXPECT_EQ(answer->distances[0], 0.0) << largest;
+    EXPECT_EQ(answer->parameters[0], 0.0) << largest;
 
-    const std::vector<double> clamped = {0, 0, 0, 0.5, 1, 1, 1};
-    const Curve quadratic =
-        *BSplineCurve::Create({.degree = 2,
-                               .control_points = {3, points},
-                               .knots = clamped,
-                               .weights = weights});
+    const Curve quadratic = *BSplineCurve::Create({.degree = 2,
+                                                   .control_points = {3, points},
+                                                   .knots = clamped,
+                                                   .weights = weights});
     const absl::StatusOr<ClosestPoints> end =
         CurveClosestPoints(quadratic, {3, origin});
     ASSERT_TRUE(end.ok()) << end.status();
-    EXPECT_LE(end->distances[0], 1e-9) << weight;
+    EXPECT_LE(end->distances[0], 1e-9) << largest;
   }
+  for (double weight : {1e-310, 4.9406564584124654e-324}) {
+    const std::vector<double> weights = {weight, 1, 1, 1};
+    const absl::StatusOr<BSplineCurve> refused = BSplineCurve::Create(
+        {.degree = 0,
+         .control_points = {3, points},
+         .knots = knots,
+         .weights = weights});
+    ASSERT_FALSE(refused.ok()) << weight;
+    EXPECT_EQ(FieldPathOf(refused.status()), "weights[0]") << weight;
+  }
+  // Only the ratio counts: weights scaled alike are the same geometry.
+  const std::vector<double> tiny = {1e-310, 2e-310, 1e-310, 3e-310};
+  EXPECT_TRUE(BSplineCurve::Create({.degree = 0,
+                                    .control_points = {3, points},
+                                    .knots = knots,
+                                    .weights = tiny})
+                  .ok());
 }
 
 TEST(ClosestPointTest, ZeroWeightsAreDirectionsInTheScaledCopy) {

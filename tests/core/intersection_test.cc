@@ -274,6 +274,40 @@ void ExpectOneInterval(const std::vector<double>& intervals, double start,
 // there it is (x, x^2) on either piece (x = 2 s - 1 for s >= 1/2), so the
 // inputs are within the tolerance e only where |x| <= sqrt(e): the point
 // returned is common within e and lies there.
+// A segment from (-2, -2) to (2, 0) on the knot span [1e15 + 0.25, 1e15 +
+// 0.375] (two ulps of its position; degree 1, then constant), crossed by the
+// line x = 0 at the span's middle, 1e15 + 0.3125, which no double is: the
+// nearest parameters are the span's ends, 2 away from the crossing. The
+// answer refuses, naming the curve, rather than give a parameter whose
+// point is not the intersection (a fuzz finding of issue 30); the same
+// segment on the span [0.25, 0.375] gives the crossing.
+TEST(IntersectionTest, AParameterNoDoubleResolvesIsRefused) {
+  const std::vector<double> line = {0, -3, 0, 3};
+  const absl::StatusOr<Curve> vertical = BezierCurve::Create({{2, line}, {}});
+  const std::vector<double> points = {-2, -2, 2, 0, 2, 0, 2, 0};
+  for (const double origin : {1e15, 0.0}) {
+    std::vector<double> knots;
+    for (const double knot : {0.0, 0.25, 0.375, 0.625, 0.75, 1.0}) {
+      knots.push_back(origin + knot);
+    }
+    const absl::StatusOr<Curve> segment =
+        BSplineCurve::Create({1, {2, points}, knots, {}});
+    ASSERT_TRUE(segment.ok()) << segment.status();
+    const absl::StatusOr<CurveIntersections> found =
+        IntersectCurves(*vertical, *segment, {.tolerance = 1e-9});
+    if (origin == 0.0) {
+      ASSERT_TRUE(found.ok()) << found.status();
+      ASSERT_EQ(found->second_parameters.size(), 1u);
+      EXPECT_NEAR(found->second_parameters[0], 0.3125, 1e-12);
+      ExpectCommonPoints(*vertical, *segment, *found, 1e-9);
+      continue;
+    }
+    ASSERT_FALSE(found.ok());
+    EXPECT_EQ(found.status().code(), absl::StatusCode::kInvalidArgument);
+    EXPECT_EQ(FieldPathOf(found.status()), "second") << found.status();
+  }
+}
+
 TEST(IntersectionTest, TangencyOnAKnotIsOnePoint) {
   const std::vector<double> net = {-1, 1, -0.5, 0, 0.5, 0, 1, 1};
   const std::vector<double> knots = {0, 0, 0, 0.5, 1, 1, 1};

@@ -73,5 +73,51 @@ TEST(DecomposeSurface, PiecesAreTheSurfaceOnTheirRectangles) {
       1);
 }
 
+// A rational triangle whose weights span 1e20 (one weight 1e20 among
+// weights near 1, and one direction of weight 0) keeps its shape in its
+// degenerate tensor form: raising a row's degree combines its weights
+// with nonnegative coefficients, so a weight 1e-20 of the largest is a
+// real weight, not rounding to be snapped to 0 (the snap turned the
+// light points into directions: a fuzz finding of issue 30 whose closest
+// point was 0.0676 for 0.0665, and whose tensor form was 0.04 off).
+TEST(DecomposeSurface, ExtremeTriangleWeightsKeepTheirTensorForm) {
+  std::mt19937_64 rng(12);
+  const int n = 6;
+  const size_t count = static_cast<size_t>((n + 1) * (n + 2) / 2);
+  const std::vector<double> net = RandomValues(rng, 2 * count);
+  std::vector<double> weights = RandomValues(rng, count, 0.05, 2.0);
+  weights[4] = 1e20;
+  weights[count / 2] = 0.0;  // an interior direction
+  const absl::StatusOr<TriangularPatch> patch =
+      TriangularPatch::Create({n, {2, net}, weights, {}});
+  ASSERT_TRUE(patch.ok()) << patch.status();
+  const absl::StatusOr<SurfaceDecomposition> pieces =
+      DecomposeSurface(Surface(*patch));
+  ASSERT_TRUE(pieces.ok()) << pieces.status();
+  std::vector<double> st, uv;
+  for (int i = 0; i <= 10; ++i) {
+    for (int j = 0; j <= 10; ++j) {
+      const double s_value = i / 10.0, t_value = j / 10.0;
+      st.insert(st.end(), {s_value, t_value});
+      const std::array<double, 2> p =
+          SurfacePieceParameters(*pieces, 0, s_value, t_value);
+      uv.insert(uv.end(), p.begin(), p.end());
+    }
+  }
+  std::vector<double> on_piece(st.size()), on_patch(st.size());
+  const absl::Span<double> out_piece[] = {absl::MakeSpan(on_piece)};
+  const absl::Span<double> out_patch[] = {absl::MakeSpan(on_patch)};
+  ASSERT_TRUE(EvaluateBezierSurface(pieces->pieces.patches[0].bezier_view(),
+                                    SurfaceSamples::Pairs(st), out_piece)
+                  .ok());
+  ASSERT_TRUE(EvaluateSurface(Surface(*patch), SurfaceSamples::Pairs(uv),
+                              out_patch, {})
+                  .ok());
+  for (size_t i = 0; i < on_piece.size(); ++i) {
+    // The points lie within the hull of net (coordinates in [-1, 1]).
+    EXPECT_NEAR(on_piece[i], on_patch[i], 1e-12) << i;
+  }
+}
+
 }  // namespace
 }  // namespace freeform

@@ -352,6 +352,15 @@ TEST_F(CurveKindsTest, KnotAndWeightRulesNameTheField) {
             {1, 0, 0, 1, -1, 0});
   Append(bezier.mutable_bezier()->mutable_weights(), {0, 1, 1});
   ExpectInvalid(Evaluate(bezier, {0.5}).status(), "curve.bezier.weights[0]");
+  // A nonzero weight below 2^-1021 of the largest loses its point in
+  // homogeneous form (5e-324 times 0.3 is 0): refused. Only the ratio
+  // counts, so the same weights scaled together are fine.
+  bezier.mutable_bezier()->clear_weights();
+  Append(bezier.mutable_bezier()->mutable_weights(), {1, 5e-324, 1});
+  ExpectInvalid(Evaluate(bezier, {0.5}).status(), "curve.bezier.weights[1]");
+  bezier.mutable_bezier()->clear_weights();
+  Append(bezier.mutable_bezier()->mutable_weights(), {1e-300, 5e-310, 1e-300});
+  EXPECT_TRUE(Evaluate(bezier, {0.5}).ok());
 }
 
 TEST_F(CurveKindsTest, InvalidBasesNameTheField) {

@@ -13,10 +13,24 @@
 
 #include <vector>
 
+#include "absl/status/status.h"
 #include "absl/types/span.h"
 #include "freeform/core/points.h"
 
 namespace freeform {
+
+// The smallest ratio of a nonzero weight to the largest weight. Geometry is
+// computed on a copy whose largest weight is about 1 (scaled_geometry.h);
+// a weight below 2^-1022 there is subnormal, and its homogeneous point
+// w P loses the low bits of P, all of them at 5e-324.
+inline constexpr double kSmallestWeightRatio = 0x1p-1021;
+
+// ValidateWeightValues checks that every weight is finite and >= 0 and
+// that every nonzero one is at least kSmallestWeightRatio of the largest,
+// naming "weights[i]". Weights scaled alike give the same geometry, so only
+// their ratios count: 1e-300 and 1e-310 together are fine, 1 and 1e-310
+// are not.
+absl::Status ValidateWeightValues(absl::Span<const double> weights);
 
 // HomogeneousPoints returns (w_i P_i, w_i) for every point, dimension + 1
 // values each ((D, 0) for a zero weight). `weights` has one weight per point.
