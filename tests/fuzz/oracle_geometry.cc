@@ -97,7 +97,14 @@ struct PieceMeasures {
     const size_t dim = static_cast<size_t>(dimension);
     for (size_t k = 0; k < coordinates.size(); ++k) {
       const double x = coordinates[k];
-      if (!std::isfinite(x)) continue;
+      if (!std::isfinite(x)) {
+        // The Bezier form overflows in the geometry's own units (w x past
+        // 1e308; the queries work on a rescaled copy): this axis has no
+        // known hull.
+        lower[k % dim] = -kInf;
+        upper[k % dim] = kInf;
+        continue;
+      }
       scale = std::max(scale, std::abs(x));
       axis_scale[k % dim] = std::max(axis_scale[k % dim], std::abs(x));
       lower[k % dim] = std::min(lower[k % dim], x);
