@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/status_macros.h"
+#include "vectors.h"
 
 namespace freeform::internal {
 namespace {
@@ -15,11 +16,7 @@ namespace {
 // The smallest pivot^2 / diagonal accepted by Factor.
 constexpr double kPivotRatio = 1e-12;
 
-double Dot(const double* a, const double* b, size_t count) {
-  double sum = 0;
-  for (size_t k = 0; k < count; ++k) sum += a[k] * b[k];
-  return sum;
-}
+using internal::Dot;
 
 }  // namespace
 

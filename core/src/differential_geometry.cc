@@ -17,6 +17,7 @@
 #include "freeform/core/surface_output.h"
 #include "scaled.h"
 #include "scaled_geometry.h"
+#include "vectors.h"
 
 namespace freeform {
 namespace {
@@ -30,21 +31,12 @@ constexpr double kSingularSurface = 1e-10;
 // Principal curvatures closer than this fraction of their size are equal.
 constexpr double kUmbilic = 1e-10;
 
-double Dot(const double* a, const double* b, int d) {
-  double sum = 0.0;
-  for (int j = 0; j < d; ++j) sum += a[j] * b[j];
-  return sum;
-}
+using internal::Cross;
+using internal::Dot;
 
 // Norm is |a|, its squares scaled so that they neither underflow nor
 // overflow (scaled.h).
 double Norm(const double* a, int d) { return internal::ScaledNorm(a, d); }
-
-void Cross(const double* a, const double* b, double* out) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 // ---------------------------------------------------------------- curves --
 

@@ -15,6 +15,7 @@
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "scaled.h"
+#include "vectors.h"
 
 namespace freeform {
 namespace {
@@ -40,11 +41,7 @@ constexpr int kRefineContactSteps = 8;
 // rounding never prunes a pair within tolerance.
 constexpr double kPruneSlack = 64 * std::numeric_limits<double>::epsilon();
 
-double Dot(const double* a, const double* b, int dimension) {
-  double sum = 0.0;
-  for (int x = 0; x < dimension; ++x) sum += a[x] * b[x];
-  return sum;
-}
+using internal::Dot;
 
 // A cone of directions: every tangent of a part is within `angle` of
 // `axis` (a unit vector).
@@ -1283,14 +1280,13 @@ absl::Status CheckResolved(const Found& found, const Anchor& at, double s,
   const bool first_moved = first_gap > second_gap;
   return InvalidFieldError(
       first_moved ? "first" : "second",
-      absl::StrCat("an intersection lies at a parameter near ",
-                   first_moved ? s : t,
-                   " that double precision cannot resolve: the nearest "
-                   "double parameter moves the curve's point ",
-                   std::ldexp(first_moved ? first_gap : second_gap,
-                              found.exponent),
-                   " away, beyond the tolerance; its knot spans are too "
-                   "short for their position (move the parameters nearer 0)"));
+      absl::StrCat(
+          "an intersection lies at a parameter near ", first_moved ? s : t,
+          " that double precision cannot resolve: the nearest "
+          "double parameter moves the curve's point ",
+          std::ldexp(first_moved ? first_gap : second_gap, found.exponent),
+          " away, beyond the tolerance; its knot spans are too "
+          "short for their position (move the parameters nearer 0)"));
 }
 
 // CurveAnswer returns the points and overlaps of two curves.

@@ -9,6 +9,7 @@
 #include "absl/types/span.h"
 #include "freeform/core/subdivision.h"
 #include "freeform/core/tessellation.h"
+#include "scaled.h"
 #include "tessellation_checks.h"
 #include "variant_dispatch.h"
 
@@ -41,16 +42,7 @@ size_t ToBound(double points) {
 // points of subnormal weights) do not underflow to 0 nor huge ones
 // overflow.
 double Norm(const double* a, int dimension) {
-  double largest = 0.0;
-  for (int j = 0; j < dimension; ++j)
-    largest = std::max(largest, std::abs(a[j]));
-  if (largest == 0.0 || !std::isfinite(largest)) return largest;
-  double sum = 0.0;
-  for (int j = 0; j < dimension; ++j) {
-    const double scaled = a[j] / largest;
-    sum += scaled * scaled;
-  }
-  return largest * std::sqrt(sum);
+  return internal::ScaledNorm(a, dimension);
 }
 
 // Differences returns the control points of a B-spline's derivative
