@@ -13,7 +13,7 @@
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "homogeneous.h"
-#include "knot_remover.h"
+#include "certified_knot_removal.h"
 
 namespace freeform {
 namespace {

@@ -3,8 +3,8 @@
 // the lines of a surface's net), certified against the original geometry
 // by refining every candidate back onto the original knots with the Oslo
 // algorithm (docs/references.md, 'Knot removal'). Internal to the core.
-#ifndef FREEFORM_CORE_SRC_KNOT_REMOVER_H_
-#define FREEFORM_CORE_SRC_KNOT_REMOVER_H_
+#ifndef FREEFORM_CORE_SRC_CERTIFIED_KNOT_REMOVAL_H_
+#define FREEFORM_CORE_SRC_CERTIFIED_KNOT_REMOVAL_H_
 
 #include <cstddef>
 #include <limits>
@@ -184,4 +184,4 @@ class KnotRemover {
 
 }  // namespace freeform::internal
 
-#endif  // FREEFORM_CORE_SRC_KNOT_REMOVER_H_
+#endif  // FREEFORM_CORE_SRC_CERTIFIED_KNOT_REMOVAL_H_

@@ -1,4 +1,4 @@
-#include "knot_remover.h"
+#include "certified_knot_removal.h"
 
 #include <algorithm>
 #include <cmath>
