@@ -6,6 +6,7 @@
 
 #include "freeform/core/status_macros.h"
 #include "piece_values.h"
+#include "scaled_evaluation.h"
 #include "validated.h"
 #include "variant_dispatch.h"
 
@@ -97,6 +98,9 @@ absl::Status EvaluateCurve(const Curve& curve,
                            absl::Span<const double> parameters,
                            CurveOutput output,
                            const ExecutionContext& context) {
+  if (internal::NeedsScaledEvaluation(curve)) {
+    return internal::EvaluateScaledCurve(curve, parameters, output, context);
+  }
   return internal::EvaluateKind(curve, parameters, output, context);
 }
 

@@ -12,6 +12,7 @@
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "piece_values.h"
+#include "scaled_evaluation.h"
 #include "validated.h"
 #include "variant_dispatch.h"
 
@@ -206,7 +207,11 @@ absl::Status EvaluateSurface(const Surface& surface,
                              const SurfaceSamples& samples,
                              SurfaceOutput partials, absl::Span<double> normals,
                              const ExecutionContext& context) {
+  const bool scaled = internal::NeedsScaledEvaluation(surface);
   const auto evaluate = [&](SurfaceOutput output) {
+    if (scaled) {
+      return internal::EvaluateScaledSurface(surface, samples, output, context);
+    }
     return internal::EvaluateKind(surface, samples, output, context);
   };
   if (normals.empty()) return evaluate(partials);

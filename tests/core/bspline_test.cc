@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "freeform/core/bezier.h"
+#include "freeform/core/curve.h"
 #include "freeform/core/status.h"
+#include "freeform/core/surface.h"
 #include "test_util.h"
 
 namespace freeform {
@@ -857,6 +859,70 @@ TEST(BSplineTest, WronglySizedOutputIsRejected) {
   EXPECT_THAT(basis_status.message(), HasSubstr("output[0]"));
   EXPECT_EQ(EvaluateBSplineCurve(Curve(1, points, 2, knots), params, {}).code(),
             absl::StatusCode::kInvalidArgument);
+}
+
+// A constant rational curve is its point whatever its weights: with
+// coordinates of 2.5e-155 and an end weight of 1e-300 the homogeneous
+// point w P (6e-456) underflows, and the end evaluated to the origin (a
+// fuzz finding of issue 30). EvaluateCurve and EvaluateSurface evaluate
+// such geometry on a copy rescaled by powers of two and scale back
+// exactly: the points, and the derivatives (0 here; for the scaled line
+// below, the slope).
+TEST(BSplineTest, TinyCoordinatesWithTinyWeightsKeepTheirPoints) {
+  const double c = 2.5e-155;
+  const std::vector<double> points(2 * 11, c);
+  std::vector<double> weights(11, 1.0);
+  weights.back() = 1e-300;
+  std::vector<double> knots(7, 0.0);
+  for (double k : {0.2, 0.4, 0.6, 0.8}) knots.push_back(k);
+  knots.insert(knots.end(), 7, 1.0);
+  const ::freeform::Curve constant =
+      *BSplineCurve::Create({.degree = 6,
+                             .control_points = {2, points},
+                             .knots = knots,
+                             .weights = weights});
+  const std::vector<double> at = {0.0, 0.5, 1.0};
+  std::vector<double> values(6), slopes(6);
+  const absl::Span<double> output[] = {absl::MakeSpan(values),
+                                       absl::MakeSpan(slopes)};
+  ASSERT_TRUE(EvaluateCurve(constant, at, output).ok());
+  for (size_t i = 0; i < values.size(); ++i) {
+    EXPECT_NEAR(values[i], c, 4e-16 * c) << i;
+    EXPECT_NEAR(slopes[i], 0.0, 1e-12 * c) << i;
+  }
+  // A line from 0 to 1e-160 with weights 1 and 1e-290, on knots [0, 4]:
+  // its end is 1e-160, and its speed there, by the quotient rule, is
+  // (w0 / w1) (P1 - P0) / 4 = 2.5e129 ... scaled by exactly the same powers.
+  const std::vector<double> line = {0.0, 1e-160};
+  const std::vector<double> line_weights = {1.0, 1e-290};
+  const std::vector<double> line_knots = {0, 0, 4, 4};
+  const ::freeform::Curve segment =
+      *BSplineCurve::Create({.degree = 1,
+                             .control_points = {1, line},
+                             .knots = line_knots,
+                             .weights = line_weights});
+  const std::vector<double> end = {4.0};
+  std::vector<double> point(1), speed(1);
+  const absl::Span<double> end_output[] = {absl::MakeSpan(point),
+                                           absl::MakeSpan(speed)};
+  ASSERT_TRUE(EvaluateCurve(segment, end, end_output).ok());
+  EXPECT_NEAR(point[0], 1e-160, 4e-16 * 1e-160);
+  EXPECT_NEAR(speed[0], 1e-160 / 4 / 1e-290, 1e-14 * (1e-160 / 4 / 1e-290));
+
+  // A bilinear patch of corners c with one corner weight 1e-300.
+  const std::vector<double> net(3 * 4, c);
+  const std::vector<double> net_weights = {1, 1, 1, 1e-300};
+  const Surface patch = *BezierSurface::Create(
+      {.control_net = {3, 2, 2, net}, .weights = net_weights});
+  const std::vector<double> uv = {1.0, 1.0, 0.5, 0.5};
+  std::vector<double> corner(6);
+  const absl::Span<double> surface_output[] = {absl::MakeSpan(corner)};
+  ASSERT_TRUE(
+      EvaluateSurface(patch, SurfaceSamples::Pairs(uv), surface_output, {})
+          .ok());
+  for (size_t i = 0; i < corner.size(); ++i) {
+    EXPECT_NEAR(corner[i], c, 4e-16 * c) << i;
+  }
 }
 
 }  // namespace
