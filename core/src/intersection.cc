@@ -1270,23 +1270,26 @@ absl::Status CheckResolved(const Found& found, const Anchor& at, double s,
   const int dim = found.first.dimension;
   const double* exact = found.search.PointOf(at);
   const std::vector<double> point(exact, exact + dim);
-  const double* first = found.search.PointOf(rounded);
-  const double first_gap = internal::ScaledDistanceOf(first, point.data(), dim);
+  const double* first_at = found.search.PointOf(rounded);
+  const std::vector<double> first(first_at, first_at + dim);
   const double* second = found.search.SecondPointOf(rounded);
-  const double second_gap =
-      internal::ScaledDistanceOf(second, point.data(), dim);
+  // The answer's point is the first curve's at s, and the curves meet
+  // there within the tolerance.
+  const double first_moved =
+      internal::ScaledDistanceOf(first.data(), point.data(), dim);
+  const double gap = internal::ScaledDistanceOf(second, first.data(), dim);
   const double allowed = tolerance + rounding;
-  if (first_gap <= allowed && second_gap <= allowed) return absl::OkStatus();
-  const bool first_moved = first_gap > second_gap;
+  if (first_moved <= allowed && gap <= allowed) return absl::OkStatus();
+  const bool first_fails = first_moved > allowed;
   return InvalidFieldError(
-      first_moved ? "first" : "second",
-      absl::StrCat(
-          "an intersection lies at a parameter near ", first_moved ? s : t,
-          " that double precision cannot resolve: the nearest "
-          "double parameter moves the curve's point ",
-          std::ldexp(first_moved ? first_gap : second_gap, found.exponent),
-          " away, beyond the tolerance; its knot spans are too "
-          "short for their position (move the parameters nearer 0)"));
+      first_fails ? "first" : "second",
+      absl::StrCat("an intersection lies at a parameter near ",
+                   first_fails ? s : t,
+                   " that double precision cannot resolve: at the nearest "
+                   "double parameters the curves are ",
+                   std::ldexp(first_fails ? first_moved : gap, found.exponent),
+                   " apart, beyond the tolerance; its knot spans are too "
+                   "short for their position (move the parameters nearer 0)"));
 }
 
 // CurveAnswer returns the points and overlaps of two curves.
@@ -1301,20 +1304,25 @@ absl::StatusOr<CurveIntersections> CurveAnswer(
       found.second.parameters(at.second_piece, at.x[1], 0.0, &t);
       return t;
     };
+    const double tolerance = std::ldexp(options.tolerance, -found.exponent);
     if (run.parallel) {
+      const double second_from = second_at(run.start);
+      const double second_to = second_at(run.end);
+      RETURN_IF_ERROR(CheckResolved(found, run.start, run.from, second_from,
+                                    tolerance, found.search.rounding()));
+      RETURN_IF_ERROR(CheckResolved(found, run.end, run.to, second_to,
+                                    tolerance, found.search.rounding()));
       result.first_intervals.insert(result.first_intervals.end(),
                                     {run.from, run.to});
-      result.second_intervals.insert(
-          result.second_intervals.end(),
-          {second_at(run.start), second_at(run.end)});
+      result.second_intervals.insert(result.second_intervals.end(),
+                                     {second_from, second_to});
       continue;
     }
     double s = 0.0;
     found.first.parameters(run.point.first_piece, run.point.x[0], 0.0, &s);
     const double t = second_at(run.point);
-    RETURN_IF_ERROR(CheckResolved(
-        found, run.point, s, t, std::ldexp(options.tolerance, -found.exponent),
-        found.search.rounding()));
+    RETURN_IF_ERROR(CheckResolved(found, run.point, s, t, tolerance,
+                                  found.search.rounding()));
     result.first_parameters.push_back(s);
     result.second_parameters.push_back(t);
     found.AppendPoint(run.point, result.points);
