@@ -20,8 +20,8 @@
 #include "freeform/core/status_macros.h"
 #include "scaled.h"
 #include "scaled_geometry.h"
-#include "variant_dispatch.h"
 #include "tessellation_checks.h"
+#include "variant_dispatch.h"
 
 namespace freeform {
 namespace {

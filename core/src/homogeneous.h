@@ -49,8 +49,7 @@ PointArray Lift(const PointsView& points, absl::Span<const double> weights);
 enum class ZeroWeights { kExact, kWithinRounding };
 void ProjectAllowingDirections(const PointArray& points, bool rational,
                                std::vector<double>& coordinates,
-                               std::vector<double>& weights,
-                               ZeroWeights zeros);
+                               std::vector<double>& weights, ZeroWeights zeros);
 
 // ProjectPositive writes the Cartesian point P = h / w of the homogeneous
 // point `homogeneous` (dimension + 1 values, weight last) into `point`;

@@ -10,10 +10,10 @@
 
 #include "absl/functional/function_ref.h"
 #include "absl/strings/str_cat.h"
+#include "certified_knot_removal.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "homogeneous.h"
-#include "certified_knot_removal.h"
 
 namespace freeform {
 namespace {

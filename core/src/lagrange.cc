@@ -8,6 +8,7 @@
 #include "double_double.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
+#include "scaled.h"
 #include "validated.h"
 
 namespace freeform {
@@ -416,14 +417,6 @@ absl::Status BezierFormError(double relative, int degree) {
           "toward the ends like Chebyshev points"));
 }
 
-// PowerOfTwoAbove returns 2^e with max / 2^e in [0.5, 1), 1 for max = 0.
-double PowerOfTwoAbove(double max) {
-  if (!(max > 0.0)) return 1.0;
-  int exponent = 0;
-  std::frexp(max, &exponent);
-  return std::ldexp(1.0, exponent);
-}
-
 }  // namespace
 
 absl::Status CheckLagrangeBezierForm(const LagrangeCurveView& curve) {
@@ -457,9 +450,10 @@ absl::StatusOr<std::vector<double>> LagrangeToBezier(
       ScaledBinomials(static_cast<size_t>(n));
   BernsteinBasisOfLagrange basis(nodes, /*exact=*/true);
   ConversionErrorBound bound(curve.points, binomials);
-  // The points scaled by a power of two to below 1 (exactly, but for
+  // The points scaled by a power of two to at most 1 (exactly, but for
   // coordinates 2^-1022 below the largest), so that no sum overflows.
-  const double scale = PowerOfTwoAbove(PointSizes(curve.points).back());
+  const double scale =
+      std::ldexp(1.0, internal::ExponentAbove(PointSizes(curve.points).back()));
   std::vector<DoubleDouble> sums(nodes.size() * d);
   for (size_t i = 0; i < nodes.size(); ++i) {
     basis.Compute(i);

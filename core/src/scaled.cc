@@ -53,6 +53,14 @@ double LargestWeight(const Net& net) {
 
 }  // namespace
 
+int LargestExponent(absl::Span<const double> values) {
+  double largest = 0.0;
+  for (const double value : values) {
+    largest = std::max(largest, std::abs(value));
+  }
+  return ExponentAbove(largest);
+}
+
 int ExponentAbove(double x) {
   if (x == 0.0 || !std::isfinite(x)) return 0;
   int e = 0;

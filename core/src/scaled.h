@@ -19,6 +19,9 @@ namespace freeform::internal {
 // and 0 for 0 or a value that is not finite.
 int ExponentAbove(double x);
 
+// LargestExponent is ExponentAbove of the largest |value| (0 for none).
+int LargestExponent(absl::Span<const double> values);
+
 // SafeExponent returns 0 when values of magnitude up to `largest` (itself
 // in [2^-500, 2^500]) square safely, else ExponentAbove(largest): the
 // exponent by which to divide them first.

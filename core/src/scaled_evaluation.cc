@@ -18,22 +18,18 @@ constexpr int kSafeProductExponent = 960;
 bool ProductsLeaveTheSafeRange(absl::Span<const double> coordinates,
                                absl::Span<const double> weights) {
   if (weights.empty()) return false;
-  double largest_coordinate = 0.0;
-  for (const double c : coordinates) {
-    largest_coordinate = std::max(largest_coordinate, std::abs(c));
-  }
-  double largest_weight = 0.0;
   double smallest_weight = 0.0;
   for (const double w : weights) {
-    largest_weight = std::max(largest_weight, w);
     if (w > 0.0 && (smallest_weight == 0.0 || w < smallest_weight)) {
       smallest_weight = w;
     }
   }
-  if (largest_coordinate == 0.0 || smallest_weight == 0.0) return false;
-  const int e = ExponentAbove(largest_coordinate);
+  if (smallest_weight == 0.0) return false;
+  // Points all at the origin give e = 0 as coordinates near 1 do: either
+  // way the copy evaluates right.
+  const int e = LargestExponent(coordinates);
   return e + ExponentAbove(smallest_weight) < -kSafeProductExponent ||
-         e + ExponentAbove(largest_weight) > kSafeProductExponent;
+         e + LargestExponent(weights) > kSafeProductExponent;
 }
 
 // Rescale multiplies every value of `buffer` by 2^exponent.

@@ -11,13 +11,6 @@
 namespace freeform::internal {
 namespace {
 
-int LargestExponent(absl::Span<const double> values) {
-  double largest = 0.0;
-  for (const double value : values)
-    largest = std::max(largest, std::abs(value));
-  return ExponentAbove(largest);
-}
-
 // Scaled returns values * 2^-e.
 std::vector<double> Scaled(absl::Span<const double> values, int e) {
   std::vector<double> result(values.size());

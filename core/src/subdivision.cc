@@ -216,8 +216,8 @@ void FillNet(const PointArray& rows, bool in_u, bool rational,
   PointArray net{point_dim, in_u ? rows.values
                                  : TransposeBlocks(rows.values, lines, per_line,
                                                    point_dim)};
-  ProjectAllowingDirections(net, rational, surface.coordinates,
-                            surface.weights, internal::ZeroWeights::kExact);
+  ProjectAllowingDirections(net, rational, surface.coordinates, surface.weights,
+                            internal::ZeroWeights::kExact);
 }
 
 // ---------------------------------------------------------------------------

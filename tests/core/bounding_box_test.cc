@@ -405,20 +405,15 @@ TEST(SurfaceBoundingBox, CornerAtInfinityEndsTheSearchAtOnce) {
                                    4,
                                    7.2048658145058678e+252,
                                    4.0000000000116946};
-  const std::vector<double> weights = {5.31017013119972e-315,
-                                       0,
-                                       5.30498947741318e-315,
-                                       0,
-                                       5.32577027372978e-315,
-                                       2.07226151461452e-317,
-                                       2.07226151461452e-317,
-                                       1.3481685079097897e-225,
-                                       // 1e-06 in the fuzz input, whose
-                                       // smallest weights are now refused
-                                       // (below 2^-1021 of the largest,
-                                       // rational.h); the same ratios
-                                       // otherwise
-                                       1e-10};
+  const std::vector<double> weights = {
+      5.31017013119972e-315, 0, 5.30498947741318e-315, 0, 5.32577027372978e-315,
+      2.07226151461452e-317, 2.07226151461452e-317, 1.3481685079097897e-225,
+      // 1e-06 in the fuzz input, whose
+      // smallest weights are now refused
+      // (below 2^-1021 of the largest,
+      // rational.h); the same ratios
+      // otherwise
+      1e-10};
   absl::StatusOr<Surface> surface =
       BezierSurface::Create({.control_net = {.dimension = 3,
                                              .count_u = 3,
@@ -476,9 +471,9 @@ TEST(SurfaceBoundingBox, HighDegreeSearchStopsAtTheWorkBudget) {
 
 // A rational quadratic triangular patch with weights from 1e-300 to 2
 // (found by the BoundingBox fuzzer with 1.3e-321: 1.2 s under ASan). The
-// control point of weight 1e-300 keeps its hull far from the surface, so the search for
-// that side halves until its budget; the answer must still hold every
-// sample, and the whole search must stay within the budget of its six
+// control point of weight 1e-300 keeps its hull far from the surface, so the
+// search for that side halves until its budget; the answer must still hold
+// every sample, and the whole search must stay within the budget of its six
 // sides: 16,384 halvings each, a halving reporting 4 units per control
 // value (18), one poll per 2^16 units.
 TEST(SurfaceBoundingBox, NearZeroWeightSearchHoldsTheSurfaceWithinBudget) {
@@ -500,16 +495,13 @@ TEST(SurfaceBoundingBox, NearZeroWeightSearchHoldsTheSurfaceWithinBudget) {
                                       0,
                                       -131072,
                                       1.06099789548264e-313};
-  const std::vector<double> weights = {1,
-                                       1.4693679385278594e-39,
-                                       2.0000000000291007,
-                                       4.57763671875e-05,
+  const std::vector<double> weights = {1, 1.4693679385278594e-39,
+                                       2.0000000000291007, 4.57763671875e-05,
                                        // 1.3e-321 in the fuzz input: now
                                        // refused (below 2^-1021 of the
                                        // largest, rational.h), and 1e-300
                                        // keeps its hull as far
-                                       1e-300,
-                                       1};
+                                       1e-300, 1};
   const Surface patch = *TriangularPatch::Create(
       {.degree = 2, .control_points = {3, points}, .weights = weights});
   PollCounter counter;

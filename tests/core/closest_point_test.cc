@@ -822,10 +822,11 @@ TEST(ClosestPointTest, TheSmallestWeightRatioKeepsItsPoint) {
     EXPECT_EQ(answer->distances[0], 0.0) << largest;
     EXPECT_EQ(answer->parameters[0], 0.0) << largest;
 
-    const Curve quadratic = *BSplineCurve::Create({.degree = 2,
-                                                   .control_points = {3, points},
-                                                   .knots = clamped,
-                                                   .weights = weights});
+    const Curve quadratic =
+        *BSplineCurve::Create({.degree = 2,
+                               .control_points = {3, points},
+                               .knots = clamped,
+                               .weights = weights});
     const absl::StatusOr<ClosestPoints> end =
         CurveClosestPoints(quadratic, {3, origin});
     ASSERT_TRUE(end.ok()) << end.status();
@@ -833,11 +834,11 @@ TEST(ClosestPointTest, TheSmallestWeightRatioKeepsItsPoint) {
   }
   for (double weight : {1e-310, 4.9406564584124654e-324}) {
     const std::vector<double> weights = {weight, 1, 1, 1};
-    const absl::StatusOr<BSplineCurve> refused = BSplineCurve::Create(
-        {.degree = 0,
-         .control_points = {3, points},
-         .knots = knots,
-         .weights = weights});
+    const absl::StatusOr<BSplineCurve> refused =
+        BSplineCurve::Create({.degree = 0,
+                              .control_points = {3, points},
+                              .knots = knots,
+                              .weights = weights});
     ASSERT_FALSE(refused.ok()) << weight;
     EXPECT_EQ(FieldPathOf(refused.status()), "weights[0]") << weight;
   }

@@ -110,9 +110,9 @@ TEST(DecomposeSurface, ExtremeTriangleWeightsKeepTheirTensorForm) {
   ASSERT_TRUE(EvaluateBezierSurface(pieces->pieces.patches[0].bezier_view(),
                                     SurfaceSamples::Pairs(st), out_piece)
                   .ok());
-  ASSERT_TRUE(EvaluateSurface(Surface(*patch), SurfaceSamples::Pairs(uv),
-                              out_patch, {})
-                  .ok());
+  ASSERT_TRUE(
+      EvaluateSurface(Surface(*patch), SurfaceSamples::Pairs(uv), out_patch, {})
+          .ok());
   for (size_t i = 0; i < on_piece.size(); ++i) {
     // The points lie within the hull of net (coordinates in [-1, 1]).
     EXPECT_NEAR(on_piece[i], on_patch[i], 1e-12) << i;
