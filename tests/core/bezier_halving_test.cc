@@ -1,12 +1,12 @@
-// The flat halvings of the bounding-box search (core/src/bezier_halving.h)
-// against the library's own splits, an independent algorithm each:
-// HalveNet against SplitBezierSurface at 1/2 (de Casteljau per line of the
-// lifted net), BisectTriangle (de Casteljau per row parallel to the split
-// edge) against BisectTriangularPatch (the triangular de Casteljau pyramid),
-// on random rational pieces of degrees 0 to 7 in 1 to 4 dimensions; each
-// half must also still be the same geometry (its corners where the whole's
-// split points are).
-#include "bezier_halving.h"
+// The flat halvings of the bounding-box search
+// (core/src/refine/bezier_halving.h) against the library's own splits, an
+// independent algorithm each: HalveNet against SplitBezierSurface at 1/2 (de
+// Casteljau per line of the lifted net), BisectTriangle (de Casteljau per row
+// parallel to the split edge) against BisectTriangularPatch (the triangular de
+// Casteljau pyramid), on random rational pieces of degrees 0 to 7 in 1 to 4
+// dimensions; each half must also still be the same geometry (its corners where
+// the whole's split points are).
+#include "refine/bezier_halving.h"
 
 #include <gtest/gtest.h>
 

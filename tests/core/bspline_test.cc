@@ -709,7 +709,7 @@ TEST(BSplineTest, CancelledTokenStopsTheBatch) {
 }
 
 // The parameters of a large batch are checked chunk by chunk on the pool
-// (core/src/checked_chunks.h); the error still names the first offender
+// (core/src/base/checked_chunks.h); the error still names the first offender
 // of the whole batch, however the chunks were claimed, for B-spline and
 // Bezier curves alike.
 TEST(BSplineTest, LargeBatchOnThePoolNamesTheFirstBadParameter) {

@@ -1,10 +1,10 @@
 // The streaming collocation solver of global interpolation
-// (core/src/collocation_lu.h, open_interpolation.cc) against the general
-// banded LU it replaces (banded_lu.h): the same solution bit for bit on
+// (core/src/construct/collocation_lu.h, open_interpolation.cc) against the
+// general banded LU it replaces (banded_lu.h): the same solution bit for bit on
 // random totally positive collocation systems with and without derivative
 // rows, the same largest residual as EvaluateBSplineCurve measures, and the
 // W5 interpolation of 10^5 points through its points.
-#include "collocation_lu.h"
+#include "construct/collocation_lu.h"
 
 #include <gtest/gtest.h>
 
@@ -17,13 +17,13 @@
 #include <utility>
 #include <vector>
 
-#include "banded_lu.h"
-#include "bspline_spans.h"
+#include "construct/interpolation_knots.h"
+#include "construct/interpolation_result.h"
+#include "construct/open_interpolation.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/interpolation.h"
-#include "interpolation_knots.h"
-#include "interpolation_result.h"
-#include "open_interpolation.h"
+#include "kinds/bspline_spans.h"
+#include "linalg/banded_lu.h"
 
 namespace freeform::internal {
 namespace {

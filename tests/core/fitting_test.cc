@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "absl/status/status.h"
-#include "banded_cholesky.h"
 #include "freeform/core/bspline.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/geometry_data.h"
@@ -26,7 +25,8 @@
 #include "freeform/core/tensor_surface.h"
 #include "gmock/gmock.h"
 #include "gtest/gtest.h"
-#include "symmetric_eigen.h"
+#include "linalg/banded_cholesky.h"
+#include "linalg/symmetric_eigen.h"
 #include "test_util.h"
 
 namespace freeform {

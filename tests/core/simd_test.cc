@@ -1,4 +1,4 @@
-// The kernels across parameters and grid columns (core/src/simd/) against
+// The kernels across parameters and grid columns (core/src/kinds/simd/) against
 // the scalar reference evaluators, bit for bit, on every instruction set
 // Highway compiled them for and this CPU runs (forced one at a time).
 #include <gtest/gtest.h>
@@ -19,8 +19,8 @@
 #include "freeform/core/surface_output.h"
 #include "freeform/core/tensor_surface.h"
 #include "hwy/targets.h"
-#include "scalar_reference.h"
-#include "simd/curve_simd.h"
+#include "kinds/scalar_reference.h"
+#include "kinds/simd/curve_simd.h"
 #include "test_util.h"
 
 namespace freeform {

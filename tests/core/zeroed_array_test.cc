@@ -1,8 +1,8 @@
-// ZeroedArray (core/src/zeroed_array.h), the solvers' work arrays: every
+// ZeroedArray (core/src/base/zeroed_array.h), the solvers' work arrays: every
 // element starts at zero, small arrays come from the heap, arrays of a huge
 // page or more are mapped at a huge-page boundary and given back on release,
 // and a move hands the block over without a copy.
-#include "zeroed_array.h"
+#include "base/zeroed_array.h"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 // reallocarray, posix_memalign, aligned_alloc, memalign, valloc, pvalloc:
 // libstdc++'s operator new and delete call them) with glibc's own
 // functions plus a count, and counts the anonymous mappings made with
-// mmap and given back with munmap (core/src/zeroed_array.cc maps large
+// mmap and given back with munmap (core/src/base/zeroed_array.cc maps large
 // work arrays itself; glibc's internal mappings for large blocks are
 // counted as the blocks they hold). A block counts its usable size
 // (malloc_usable_size), a mapping its length in whole pages. Link it into

@@ -1,0 +1,17 @@
+// Must build (tests/layering/CMakeLists.txt): the top subject sees a private
+// and a public header of every subject below it and of its own.
+#include "base/homogeneous.h"
+#include "construct/interpolation_result.h"
+#include "freeform/core/bezier.h"
+#include "freeform/core/closest_point.h"
+#include "freeform/core/curve.h"
+#include "freeform/core/interpolation.h"
+#include "freeform/core/mesh.h"
+#include "freeform/core/points.h"
+#include "freeform/core/subdivision.h"
+#include "geometry/variant_dispatch.h"
+#include "kinds/validated_bezier.h"
+#include "linalg/banded_lu.h"
+#include "meshing/mesh_plan.h"
+#include "queries/bezier_net.h"
+#include "refine/knot_insertion.h"
