@@ -16,7 +16,7 @@ install(TARGETS freeform_client freeform_proto freeform_core freeform_file
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY client/include/ core/include/
+install(DIRECTORY client/include/ core/include/ io/include/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(DIRECTORY ${CMAKE_BINARY_DIR}/proto/gen/
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}

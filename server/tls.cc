@@ -20,7 +20,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
-#include "freeform/client/file.h"
+#include "freeform/io/file.h"
 #include "freeform/core/status_macros.h"
 #include "grpc_handoff.h"
 #include "spdlog/spdlog.h"

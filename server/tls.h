@@ -5,7 +5,7 @@
 //
 // The configuration fails closed: any TLS option set without what it needs
 // refuses to start, never serves plaintext. Each file is read once, as a
-// regular file of at most kMaxCredentialFileBytes (freeform/client/file.h);
+// regular file of at most kMaxCredentialFileBytes (freeform/io/file.h);
 // the private key must match the certificate; the CA must hold a
 // certificate. docs/operations.md states the rules and the identity
 // matching. Thread-safe.

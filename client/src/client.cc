@@ -7,7 +7,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_replace.h"
-#include "freeform/client/file.h"
+#include "freeform/io/file.h"
 #include "google/rpc/error_details.pb.h"
 #include "google/rpc/status.pb.h"
 #include "grpc/health/v1/health.grpc.pb.h"
@@ -35,7 +35,7 @@ constexpr char kRetryServiceConfig[] = R"({
 })";
 
 // ReadCredentialFile reads a certificate, key or CA file of at most
-// kMaxCredentialFileBytes (freeform/client/file.h).
+// kMaxCredentialFileBytes (freeform/io/file.h).
 absl::StatusOr<std::string> ReadCredentialFile(const std::string& path) {
   return ReadRegularFile(path, kMaxCredentialFileBytes);
 }

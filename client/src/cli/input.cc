@@ -13,7 +13,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "absl/strings/strip.h"
-#include "freeform/client/file.h"
+#include "freeform/io/file.h"
 #include "nlohmann/json.hpp"
 
 namespace freeform::cli {

@@ -1,8 +1,8 @@
 // Reading small files (TLS certificates and keys, request files) into
 // memory, with errors as absl::Status: the file I/O of the client library,
 // the CLI and the server (the core does none). Thread-safe.
-#ifndef FREEFORM_CLIENT_FILE_H_
-#define FREEFORM_CLIENT_FILE_H_
+#ifndef FREEFORM_IO_FILE_H_
+#define FREEFORM_IO_FILE_H_
 
 #include <cstddef>
 #include <limits>
@@ -43,4 +43,4 @@ absl::StatusOr<std::string> ReadRegularFile(const std::string& path,
 
 }  // namespace freeform
 
-#endif  // FREEFORM_CLIENT_FILE_H_
+#endif  // FREEFORM_IO_FILE_H_

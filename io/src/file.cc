@@ -1,7 +1,7 @@
 // ReadFileToString, ReadStandardInput and ReadRegularFile
-// (freeform/client/file.h): the file
+// (freeform/io/file.h): the file
 // through POSIX read, so that a failure names its reason (errno).
-#include "freeform/client/file.h"
+#include "freeform/io/file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
