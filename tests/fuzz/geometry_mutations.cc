@@ -347,6 +347,13 @@ bool MutatePowerCurve(v1::PowerCurve& curve, const MutationLimits& limits,
 }
 
 // The control points (and weights) of any curve kind, for a conversion.
+// KindCount returns the number of cases of a geometry message's oneof
+// `kind`, numbered 1..count: a new kind is drawn too, and the switches below
+// (no default) fail to compile until they handle it.
+int KindCount(const google::protobuf::Descriptor& message) {
+  return message.FindOneofByName("kind")->field_count();
+}
+
 struct CurvePoints {
   PointArray points;
   std::vector<double> weights;
@@ -368,9 +375,10 @@ CurvePoints PointsOf(const v1::Curve& curve) {
       return {Read(curve.hermite().points()), {}};
     case v1::Curve::kPower:
       return {Read(curve.power().coefficients()), {}};
-    default:
-      return {};
+    case v1::Curve::KIND_NOT_SET:
+      break;
   }
+  return {};
 }
 
 // ConvertCurve makes the curve another kind from the same points: a
@@ -391,9 +399,10 @@ bool ConvertCurve(v1::Curve& curve, const MutationLimits& limits,
     }
   };
   const bool weighted = from.weights.size() == from.points.count();
-  int kind = static_cast<int>(random.Below(5)) + 1;
-  if (kind == curve.kind_case()) kind = kind % 5 + 1;
-  switch (kind) {
+  const int kinds = KindCount(*v1::Curve::descriptor());
+  int kind = static_cast<int>(random.Below(static_cast<size_t>(kinds))) + 1;
+  if (kind == curve.kind_case()) kind = kind % kinds + 1;
+  switch (static_cast<v1::Curve::KindCase>(kind)) {
     case v1::Curve::kBezier: {
       polynomial_points();
       v1::BezierCurve& bezier = *curve.mutable_bezier();
@@ -436,11 +445,14 @@ bool ConvertCurve(v1::Curve& curve, const MutationLimits& limits,
       Write(tangents, *hermite.mutable_tangents());
       return true;
     }
-    default:
+    case v1::Curve::kPower:
       polynomial_points();
       Write(from.points, *curve.mutable_power()->mutable_coefficients());
       return true;
+    case v1::Curve::KIND_NOT_SET:
+      break;
   }
+  return false;
 }
 
 // ------------------------------------------------------------- surfaces --
@@ -643,9 +655,10 @@ SurfaceNet NetOf(const v1::Surface& surface) {
               {surface.triangular_bezier().weights().begin(),
                surface.triangular_bezier().weights().end()}};
     }
-    default:
-      return {};
+    case v1::Surface::KIND_NOT_SET:
+      break;
   }
+  return {};
 }
 
 // ConvertSurface makes the surface another kind from the same net: a
@@ -662,9 +675,10 @@ bool ConvertSurface(v1::Surface& surface, const MutationLimits& limits,
   const bool weighted =
       static_cast<size_t>(weights.size()) == net.count_u * net.count_v;
   const size_t max_count = static_cast<size_t>(limits.max_degree) + 1;
-  int kind = static_cast<int>(random.Below(5)) + 1;
-  if (kind == surface.kind_case()) kind = kind % 5 + 1;
-  switch (kind) {
+  const int kinds = KindCount(*v1::Surface::descriptor());
+  int kind = static_cast<int>(random.Below(static_cast<size_t>(kinds))) + 1;
+  if (kind == surface.kind_case()) kind = kind % kinds + 1;
+  switch (static_cast<v1::Surface::KindCase>(kind)) {
     case v1::Surface::kBezier: {
       ResizeNet(net, &weights, std::min(net.count_u, max_count),
                 std::min(net.count_v, max_count), random);
@@ -717,7 +731,7 @@ bool ConvertSurface(v1::Surface& surface, const MutationLimits& limits,
       Write(dv, *patch.mutable_derivatives_v());
       return true;
     }
-    default: {
+    case v1::Surface::kTriangularBezier: {
       size_t degree = 0;
       const size_t count = net.count_u * net.count_v;
       while (degree < 8 && TriangleCount(degree + 1) <= count) ++degree;
@@ -729,7 +743,10 @@ bool ConvertSurface(v1::Surface& surface, const MutationLimits& limits,
       if (weighted) *patch.mutable_weights() = weights;
       return true;
     }
+    case v1::Surface::KIND_NOT_SET:
+      break;
   }
+  return false;
 }
 
 // ---------------------------------------------------------------- bases --

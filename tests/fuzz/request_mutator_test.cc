@@ -208,9 +208,10 @@ std::string SizesAgree(const v1::Curve& curve) {
     case v1::Curve::kPower:
       return PointCount(curve.power().coefficients()) >= 1 ? ""
                                                            : "power points";
-    default:
-      return "no kind";
+    case v1::Curve::KIND_NOT_SET:
+      break;
   }
+  return "no kind";
 }
 
 std::string SizesAgree(const v1::Surface& surface) {
@@ -265,9 +266,10 @@ std::string SizesAgree(const v1::Surface& surface) {
       if (count != (n + 1) * (n + 2) / 2) return "triangular points";
       return WeightsFit(t.weights_size(), count) ? "" : "triangular weights";
     }
-    default:
-      return "no kind";
+    case v1::Surface::KIND_NOT_SET:
+      break;
   }
+  return "no kind";
 }
 
 const char* const kCurves[] = {
