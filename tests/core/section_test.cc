@@ -396,6 +396,37 @@ TEST(SectionTest, ExtremeWeightsAreCutCorrectlyOrRefused) {
   EXPECT_GE(refused, 3);
 }
 
+// The plane x = 0 cuts ShortSpanWall(origin) along v = origin + 0.3125:
+// at origin 0 a segment from z = -1 to 1 on the surface at its parameters;
+// at 1e15, where no double is that v and the surface at the nearest ones is
+// 2 from the plane, the call is refused naming the surface rather than
+// give vertices whose parameters are not theirs (a fuzz finding: a vertex
+// at v = 2e15 where the surface was 1.0 away).
+TEST(SectionTest, AParameterNoDoubleResolvesIsRefused) {
+  const std::vector<double> point = {0, 0, 0};
+  const std::vector<double> normal = {1, 0, 0};
+  for (const double origin : {1e15, 0.0}) {
+    const SurfaceData data = testing_util::ShortSpanWall(origin);
+    const absl::StatusOr<Surface> wall =
+        BSplineSurface::Create(data.bspline_view());
+    ASSERT_TRUE(wall.ok()) << wall.status();
+    const absl::StatusOr<Sections> cut =
+        IntersectSurfacePlane(*wall, point, normal, {.tolerance = 1e-6});
+    if (origin != 0.0) {
+      ExpectRefused(cut.status(), absl::StatusCode::kInvalidArgument,
+                    "surface");
+      continue;
+    }
+    ASSERT_TRUE(cut.ok()) << cut.status();
+    ASSERT_EQ(cut->offsets.size(), 2u);
+    CheckOnSurface(*wall, *cut);
+    for (size_t r = 0; r < cut->parameters.size() / 2; ++r) {
+      EXPECT_NEAR(cut->parameters[2 * r + 1], 0.3125, 1e-12);
+      EXPECT_NEAR(cut->points[3 * r], 0.0, 1e-12);
+    }
+  }
+}
+
 // max_points caps the vertices returned exactly: the cut x = 1/2 of the
 // square is a segment of 3 vertices, the section z = 1 of the sphere patch
 // N of them, the square in z = 0 a region of 4 corners.
