@@ -401,6 +401,29 @@ TEST(ArcLength, ToleranceBelowTheResolutionIsRefused) {
   EXPECT_DOUBLE_EQ(*ArcLength(line, 0.0, 1.0, 5e-324), 5.0);
 }
 
+// The quartic through (0, 0), (0.75, 0.75), (1.5, 0.5), (2.25, 0.25) and
+// (5.5340232221128655e19, 1) at nodes 0..4 (a fuzz finding): x' crosses 0
+// near t = 0.38, 1.5 and 2.62 while y' is about 1, so the speed has three
+// kinks, where the 16-point rule on [0, 4] and on its halves agreed to
+// 3.3e14 and both were 2.2e16 short. Its length, by mpmath's tanh-sinh
+// quadrature at 50 digits split at those crossings (the roots of x', from
+// the power form), is 67157677643348836533.568; the answer must be within
+// the tolerance 2^53 = 9.0e15 (and at 1e-3 of that tolerance, within it).
+TEST(ArcLength, SpeedKinksMeetTheTolerance) {
+  const std::vector<double> points = {
+      0, 0, 0.75, 0.75, 1.5, 0.5, 2.25, 0.25, 5.5340232221128655e19, 1};
+  const std::vector<double> nodes = {0, 1, 2, 3, 4};
+  const Curve quartic =
+      *LagrangeCurve::Create({.points = {2, points}, .nodes = nodes});
+  const double exact = 67157677643348836533.568;
+  for (const double tolerance : {0x1p53, 0x1p53 * 1e-3}) {
+    const absl::StatusOr<double> length =
+        ArcLength(quartic, 0.0, 4.0, tolerance);
+    ASSERT_TRUE(length.ok()) << length.status();
+    EXPECT_NEAR(*length, exact, tolerance) << "tolerance " << tolerance;
+  }
+}
+
 TEST(ArcLength, RationalCornerWithExtremeWeightsHasItsLength) {
   for (const double w : {1.0, 1e5, 1e10, 1e15, 1e50, 1e150, 1e300}) {
     const BezierCurveData data = RationalCorner(w);

@@ -550,6 +550,55 @@ TEST(SurfaceBoundingBox, TriangularPatches) {
   }
 }
 
+// A rational curve and surface whose x reaches -2.5e304 at weight 1e103
+// while y stays in [1e25, 1e25 + 1e10], next to weights of 1e203 (the
+// fuzz finding's ranges). With positive weights every y of the geometry is
+// a convex combination of the control points' y, so the box's y sides lie
+// within that range widened by twice the margin 2^-44 of 1e25 (and the
+// tolerance), and hold the ends, which the geometry attains. Scaled by one
+// power of two for x, y became 2e-280 and w y (weight 8e-101 then)
+// underflowed to 0: the lower y side was -5.7e11 = -2^-44 1e25.
+constexpr double kHugeX = -2.5e304;
+constexpr double kBaseY = 1e25;
+constexpr double kRiseY = 1e10;
+
+void ExpectYWithinItsHull(const BoundingBox& box, const std::string& name) {
+  const double slack = 2 * 0x1p-44 * (kBaseY + kRiseY) + 1e-6;
+  EXPECT_GE(box.lower[1], kBaseY - slack) << name;
+  EXPECT_LE(box.lower[1], kBaseY) << name;
+  EXPECT_GE(box.upper[1], kBaseY) << name;
+  EXPECT_LE(box.upper[1], kBaseY + kRiseY + slack) << name;
+}
+
+TEST(CurveBoundingBox, HugeAxisKeepsTheDigitsOfAnother) {
+  const std::vector<double> points = {0, kBaseY, kHugeX, kBaseY + kRiseY,
+                                      1, kBaseY};
+  const std::vector<double> weights = {1e103, 1e103, 1e203};
+  absl::StatusOr<Curve> curve = BezierCurve::Create(
+      {.control_points = {.dimension = 2, .coordinates = points},
+       .weights = weights});
+  ASSERT_TRUE(curve.ok()) << curve.status();
+  absl::StatusOr<BoundingBox> box = CurveBoundingBox(*curve, 1e-6);
+  ASSERT_TRUE(box.ok()) << box.status();
+  ExpectYWithinItsHull(*box, "curve");
+}
+
+TEST(SurfaceBoundingBox, HugeAxisKeepsTheDigitsOfAnother) {
+  const std::vector<double> net = {0, kBaseY, kHugeX, kBaseY + kRiseY,
+                                   1, kBaseY, 2,      kBaseY};
+  const std::vector<double> weights = {1e103, 1e103, 1e203, 1e103};
+  absl::StatusOr<Surface> surface =
+      BezierSurface::Create({.control_net = {.dimension = 2,
+                                             .count_u = 2,
+                                             .count_v = 2,
+                                             .coordinates = net},
+                             .weights = weights});
+  ASSERT_TRUE(surface.ok()) << surface.status();
+  absl::StatusOr<BoundingBox> box = SurfaceBoundingBox(*surface, 1e-6);
+  ASSERT_TRUE(box.ok()) << box.status();
+  ExpectYWithinItsHull(*box, "surface");
+}
+
 TEST(BoundingBox, Errors) {
   const BSplineCurveData data = NurbsCircle(1.0);
   const Curve circle = *BSplineCurve::Create(data.view());

@@ -925,5 +925,49 @@ TEST(BSplineTest, TinyCoordinatesWithTinyWeightsKeepTheirPoints) {
   }
 }
 
+// A rational curve and patch whose x reaches -2.5e304 at weight 1e103
+// while y stays in [1e25, 1e25 + 1e10], next to a weight of 1e203 (a fuzz
+// finding's ranges): w x overflows, so they are evaluated on the rescaled
+// copy, where with one power of two for both axes y became 2e-280 and
+// w y (weight 6e-101 there) underflowed: points at (0, 0). Scaled per
+// axis, the ends are their control points and every y lies in the y range
+// of the control points (a convex combination of them: positive weights).
+TEST(BSplineTest, HugeAxisKeepsTheDigitsOfAnother) {
+  const std::vector<double> points = {0, 1e25, -2.5e304, 1e25 + 1e10, 1, 1e25};
+  const std::vector<double> weights = {1e103, 1e103, 1e203};
+  const ::freeform::Curve curve =
+      *BezierCurve::Create({.control_points = {2, points}, .weights = weights});
+  const std::vector<double> at = {0.0, 0.25, 0.5, 1.0};
+  std::vector<double> values(8);
+  const absl::Span<double> output[] = {absl::MakeSpan(values)};
+  ASSERT_TRUE(EvaluateCurve(curve, at, output).ok());
+  EXPECT_EQ(values[0], 0.0);
+  EXPECT_NEAR(values[1], 1e25, 4e-16 * 1e25);
+  EXPECT_NEAR(values[6], 1.0, 4e-16);
+  EXPECT_NEAR(values[7], 1e25, 4e-16 * 1e25);
+  for (size_t r = 0; r < at.size(); ++r) {
+    EXPECT_GE(values[2 * r + 1], 1e25 * (1 - 4e-16)) << r;
+    EXPECT_LE(values[2 * r + 1], (1e25 + 1e10) * (1 + 4e-16)) << r;
+  }
+  const std::vector<double> net = {0, 1e25, -2.5e304, 1e25 + 1e10,
+                                   1, 1e25, 2,        1e25};
+  const std::vector<double> net_weights = {1e103, 1e103, 1e203, 1e103};
+  const Surface patch = *BezierSurface::Create(
+      {.control_net = {2, 2, 2, net}, .weights = net_weights});
+  const std::vector<double> uv = {0.0, 0.0, 1.0, 1.0, 0.5, 0.5};
+  std::vector<double> samples(6);
+  const absl::Span<double> surface_output[] = {absl::MakeSpan(samples)};
+  ASSERT_TRUE(
+      EvaluateSurface(patch, SurfaceSamples::Pairs(uv), surface_output, {})
+          .ok());
+  // (x of the corner (1, 1), 2 at weight 1e103, is 2^-1010 of its axis's
+  // largest and still underflows in the copy: only y is checked there.)
+  EXPECT_EQ(samples[0], 0.0);
+  EXPECT_NEAR(samples[1], 1e25, 4e-16 * 1e25);
+  EXPECT_NEAR(samples[3], 1e25, 4e-16 * 1e25);
+  EXPECT_GE(samples[5], 1e25 * (1 - 4e-16));
+  EXPECT_LE(samples[5], (1e25 + 1e10) * (1 + 4e-16));
+}
+
 }  // namespace
 }  // namespace freeform

@@ -308,6 +308,57 @@ TEST(IntersectionTest, AParameterNoDoubleResolvesIsRefused) {
   }
 }
 
+// The same class against a surface: the line x = 0, z = 1/2 (y from -3 to
+// 3) crosses ShortSpanWall(origin) at v = origin + 0.3125, which at 1e15 no
+// double is, so the answer refuses naming the surface; and the segment of
+// AParameterNoDoubleResolvesIsRefused (on knots at origin) in the plane
+// z = 1/2 crosses the plane x = 0 at its parameter origin + 0.3125, refused
+// naming the curve (a fuzz finding: a point at curve 1e10 + 0.5 where the
+// inputs were 1 apart). At origin 0 both are found, on both inputs.
+TEST(IntersectionTest, ACurveSurfaceParameterNoDoubleResolvesIsRefused) {
+  const std::vector<double> line = {0, -3, 0.5, 0, 3, 0.5};
+  const absl::StatusOr<Curve> vertical = BezierCurve::Create({{3, line}, {}});
+  const std::vector<double> plane_x0 = {0, -3, -1, 0, -3, 1, 0, 3, -1, 0, 3, 1};
+  const absl::StatusOr<Surface> plane =
+      BezierSurface::Create({{3, 2, 2, plane_x0}, {}});
+  const std::vector<double> points = {-2, -2, 0.5, 2, 0, 0.5,
+                                      2,  0,  0.5, 2, 0, 0.5};
+  for (const double origin : {1e15, 0.0}) {
+    const SurfaceData data = testing_util::ShortSpanWall(origin);
+    const absl::StatusOr<Surface> wall =
+        BSplineSurface::Create(data.bspline_view());
+    ASSERT_TRUE(wall.ok()) << wall.status();
+    const absl::StatusOr<Curve> segment =
+        BSplineCurve::Create({1, {3, points}, data.knots_v, {}});
+    ASSERT_TRUE(segment.ok()) << segment.status();
+    const std::pair<const Curve*, const Surface*> cases[] = {
+        {&*vertical, &*wall}, {&*segment, &*plane}};
+    for (const auto& [curve, surface] : cases) {
+      const absl::StatusOr<CurveSurfaceIntersections> found =
+          IntersectCurveSurface(*curve, *surface, {.tolerance = 1e-9});
+      const bool on_wall = surface == &*wall;
+      if (origin == 0.0) {
+        ASSERT_TRUE(found.ok()) << found.status();
+        ASSERT_EQ(found->curve_parameters.size(), 1u);
+        EXPECT_NEAR(
+            on_wall ? found->surface_parameters[1] : found->curve_parameters[0],
+            0.3125, 1e-12);
+        const std::vector<double> on_curve =
+            CurvePoint(*curve, found->curve_parameters[0]);
+        EXPECT_LE(Distance(on_curve,
+                           SurfacePoint(*surface, found->surface_parameters[0],
+                                        found->surface_parameters[1])),
+                  1e-9);
+        continue;
+      }
+      ASSERT_FALSE(found.ok());
+      EXPECT_EQ(found.status().code(), absl::StatusCode::kInvalidArgument);
+      EXPECT_EQ(FieldPathOf(found.status()), on_wall ? "surface" : "curve")
+          << found.status();
+    }
+  }
+}
+
 TEST(IntersectionTest, TangencyOnAKnotIsOnePoint) {
   const std::vector<double> net = {-1, 1, -0.5, 0, 0.5, 0, 1, 1};
   const std::vector<double> knots = {0, 0, 0, 0.5, 1, 1, 1};

@@ -396,9 +396,115 @@ TEST(SectionTest, ExtremeWeightsAreCutCorrectlyOrRefused) {
   EXPECT_GE(refused, 3);
 }
 
+// The plane x = 0 cuts ShortSpanWall(origin) along v = origin + 0.3125:
+// at origin 0 a segment from z = -1 to 1 on the surface at its parameters;
+// at 1e15, where no double is that v and the surface at the nearest ones is
+// 2 from the plane, the call is refused naming the surface rather than
+// give vertices whose parameters are not theirs (a fuzz finding: a vertex
+// at v = 2e15 where the surface was 1.0 away).
+TEST(SectionTest, AParameterNoDoubleResolvesIsRefused) {
+  const std::vector<double> point = {0, 0, 0};
+  const std::vector<double> normal = {1, 0, 0};
+  for (const double origin : {1e15, 0.0}) {
+    const SurfaceData data = testing_util::ShortSpanWall(origin);
+    const absl::StatusOr<Surface> wall =
+        BSplineSurface::Create(data.bspline_view());
+    ASSERT_TRUE(wall.ok()) << wall.status();
+    const absl::StatusOr<Sections> cut =
+        IntersectSurfacePlane(*wall, point, normal, {.tolerance = 1e-6});
+    if (origin != 0.0) {
+      ExpectRefused(cut.status(), absl::StatusCode::kInvalidArgument,
+                    "surface");
+      continue;
+    }
+    ASSERT_TRUE(cut.ok()) << cut.status();
+    ASSERT_EQ(cut->offsets.size(), 2u);
+    CheckOnSurface(*wall, *cut);
+    for (size_t r = 0; r < cut->parameters.size() / 2; ++r) {
+      EXPECT_NEAR(cut->parameters[2 * r + 1], 0.3125, 1e-12);
+      EXPECT_NEAR(cut->points[3 * r], 0.0, 1e-12);
+    }
+  }
+}
+
 // max_points caps the vertices returned exactly: the cut x = 1/2 of the
 // square is a segment of 3 vertices, the section z = 1 of the sphere patch
 // N of them, the square in z = 0 a region of 4 corners.
+// Arc ends are joined only within the tolerance: on a surface about 1e10
+// from the origin (a space curve of degree 3 swept by degree 0 in u, a
+// campaign finding), 1e-9 of the largest coordinate is 10, far above the
+// tolerance 0.5, and a closed polyline's last vertex took the first one's
+// point 1.5 from the surface at its own parameters. Every vertex is on the
+// surface at its parameters and in the plane, within the tolerance, and a
+// closed polyline ends at its first vertex, point and parameters.
+TEST(SectionTest, ArcEndsJoinOnlyWithinTheTolerance) {
+  const std::vector<double> net = {
+      10000000000,        10000000000,        10000000000,
+      10000000000,        10000000000,        10000000000,
+      10000000000,        10000000001.113636, 10000000001.386364,
+      10000000000,        10000000003,        10000000002,
+      10000000001,        10000000002.795454, 10000000000.704546,
+      10000000001.789135, 10000000000.022728, 10000000001.977272,
+      10000000003,        10000000000.59091,  10000000001.385876,
+      10000000003,        10000000002.818182, 10000000000.181818,
+      10000000004,        10000000001.15909,  10000000000.738636,
+      10000000004,        10000000001.15909,  10000000000.738636,
+      10000000004,        10000000001.15909,  10000000000.738636,
+      10000000004,        10000000003,        10000000001,
+      10000000004,        10000000001.181818, 10000000000.772728,
+      10000000004,        10000000001.181818, 10000000000.772728,
+      10000000004,        10000000001.181818, 10000000000.772728,
+      10000000004,        10000000002.295454, 10000000001.704546,
+      10000000004,        10000000001.75,     10000000001.625,
+      10000000004,        10000000001.204546, 10000000000.806818,
+      10000000004,        10000000000.65909,  10000000000.84091};
+  const std::vector<double> knots_u = {0, 1};
+  const std::vector<double> knots_v = {
+      0,      0,      0.03125, 0.0625, 0.09375, 0.125,  0.125, 0.15625,
+      0.1875, 0.25,   0.25,    0.3125, 0.375,   0.4375, 0.5,   0.5625,
+      0.625,  0.6875, 0.75,    0.8125, 0.875,   0.9375, 1};
+  const absl::StatusOr<Surface> surface =
+      BSplineSurface::Create({0, 3, {3, 1, 19, net}, knots_u, knots_v, {}});
+  ASSERT_TRUE(surface.ok()) << surface.status();
+  const std::vector<double> point = {0.5, 0.5, 0.5};
+  const std::vector<double> normal = {0, -1, 1};
+  const double tolerance = 0.5;
+  const absl::StatusOr<Sections> sections =
+      IntersectSurfacePlane(*surface, point, normal, {.tolerance = tolerance});
+  ASSERT_TRUE(sections.ok()) << sections.status();
+  ASSERT_GE(sections->offsets.size(), 2u);
+  // Rounding of coordinates near 1e10 (ulp 2e-6) on top of the tolerance.
+  const double allowed = tolerance + 1e-5;
+  for (size_t r = 0; r < sections->parameters.size() / 2; ++r) {
+    const std::vector<double> on_surface = testing_util::SurfacePoints(
+        *surface, SurfaceSamples::Pairs(absl::MakeConstSpan(
+                      sections->parameters.data() + 2 * r, 2)));
+    double distance = 0.0;
+    for (int x = 0; x < 3; ++x) {
+      const double d = on_surface[x] - sections->points[3 * r + x];
+      distance += d * d;
+    }
+    EXPECT_LE(std::sqrt(distance), allowed) << "vertex " << r;
+    const double height =
+        (sections->points[3 * r + 2] - sections->points[3 * r + 1]) /
+        std::sqrt(2.0);
+    EXPECT_LE(std::abs(height), allowed) << "vertex " << r;
+  }
+  for (size_t k = 0; k + 1 < sections->offsets.size(); ++k) {
+    if (!sections->closed[k]) continue;
+    const size_t first = sections->offsets[k];
+    const size_t last = sections->offsets[k + 1] - 1;
+    for (int x = 0; x < 3; ++x) {
+      EXPECT_EQ(sections->points[3 * first + x],
+                sections->points[3 * last + x]);
+    }
+    for (int x = 0; x < 2; ++x) {
+      EXPECT_EQ(sections->parameters[2 * first + x],
+                sections->parameters[2 * last + x]);
+    }
+  }
+}
+
 TEST(SectionTest, MaxPointsIsExact) {
   const absl::StatusOr<Surface> square = UnitSquare();
   const SurfaceData data = testing_util::SpherePatch(2.0);

@@ -180,6 +180,31 @@ inline long double CornerLength(long double w, double t) {
   return sum * h / 3;
 }
 
+// A segment from (-2, -2) to (2, 0) on the knot span [origin + 0.25,
+// origin + 0.375] (degree 1, then constant at (2, 0) to origin + 0.75),
+// extruded along z from -1 to 1 (u in [0, 1]): a surface crossed by the
+// plane x = 0, or by a line in it, at v = origin + 0.3125. At origin 1e15
+// the span is two ulps of its position and no double is that v: the nearest
+// doubles are the span's ends, where the surface is 2 from the crossing.
+inline SurfaceData ShortSpanWall(double origin) {
+  SurfaceData wall{.degree_u = 1,
+                   .degree_v = 1,
+                   .dimension = 3,
+                   .count_u = 2,
+                   .count_v = 4,
+                   .knots_u = {0, 0, 1, 1}};
+  for (const double z : {-1.0, 1.0}) {
+    for (const auto& [x, y] :
+         {std::pair{-2.0, -2.0}, {2.0, 0.0}, {2.0, 0.0}, {2.0, 0.0}}) {
+      wall.coordinates.insert(wall.coordinates.end(), {x, y, z});
+    }
+  }
+  for (const double knot : {0.0, 0.25, 0.375, 0.625, 0.75, 1.0}) {
+    wall.knots_v.push_back(origin + knot);
+  }
+  return wall;
+}
+
 // CurvePoints returns the curve's points at `parameters`.
 inline std::vector<double> CurvePoints(const Curve& curve,
                                        const std::vector<double>& parameters) {

@@ -20,25 +20,50 @@ std::vector<double> Scaled(absl::Span<const double> values, int e) {
   return result;
 }
 
-// ScaleCoordinates fills the coordinates (exponent e) and the weights
-// (exponent f). A control point of weight 0 is a direction, whose
-// homogeneous point (P, 0) is not w P: dividing the other weights by 2^f
-// divides their homogeneous points by 2^f, so a direction is divided by
-// 2^(e + f) to stay the same geometry (by 2^e alone it would count 2^f times
-// as much). When that overflows the copy does not validate (the geometry
-// itself is used).
-void ScaleCoordinates(absl::Span<const double> coordinates,
-                      absl::Span<const double> weights, ScaledValues& values) {
+// Whether a copy scales its coordinates by one exponent or each axis by
+// its own (ScaledCurve::OfAxes).
+enum class Axes { kTogether, kEach };
+
+// AxisExponents returns, per axis of `dimension`, the exponent of its
+// largest coordinate.
+std::vector<int> AxisExponents(int dimension,
+                               absl::Span<const double> coordinates) {
+  const size_t d = static_cast<size_t>(dimension);
+  std::vector<double> largest(d, 0.0);
+  for (size_t c = 0; c < coordinates.size(); ++c) {
+    largest[c % d] = std::max(largest[c % d], std::abs(coordinates[c]));
+  }
+  std::vector<int> exponents(d);
+  for (size_t j = 0; j < d; ++j) exponents[j] = ExponentAbove(largest[j]);
+  return exponents;
+}
+
+// ScaleCoordinates fills the coordinates (exponent e, or each axis's with
+// Axes::kEach) and the weights (exponent f). A control point of weight 0 is
+// a direction, whose homogeneous point (P, 0) is not w P: dividing the
+// other weights by 2^f divides their homogeneous points by 2^f, so a
+// direction is divided by 2^(e + f) to stay the same geometry (by 2^e
+// alone it would count 2^f times as much). When that overflows the copy
+// does not validate (the geometry itself is used).
+void ScaleCoordinates(int dimension, absl::Span<const double> coordinates,
+                      absl::Span<const double> weights, Axes axes,
+                      ScaledValues& values) {
   values.coordinate_exponent = LargestExponent(coordinates);
-  values.coordinates = Scaled(coordinates, values.coordinate_exponent);
+  if (axes == Axes::kEach) {
+    values.axis_exponents = AxisExponents(dimension, coordinates);
+  }
+  const size_t d = static_cast<size_t>(dimension);
+  values.coordinates.resize(coordinates.size());
+  for (size_t c = 0; c < coordinates.size(); ++c) {
+    values.coordinates[c] =
+        std::ldexp(coordinates[c], -values.AxisExponent(c % d));
+  }
   const int weight_exponent = LargestExponent(weights);
   values.weights = Scaled(weights, weight_exponent);
-  if (weights.empty()) return;
-  const size_t dimension = coordinates.size() / weights.size();
   for (size_t i = 0; i < weights.size(); ++i) {
     if (weights[i] != 0.0) continue;
-    for (size_t x = 0; x < dimension; ++x) {
-      double& value = values.coordinates[i * dimension + x];
+    for (size_t x = 0; x < d; ++x) {
+      double& value = values.coordinates[i * d + x];
       value = std::ldexp(value, -weight_exponent);
     }
   }
@@ -65,17 +90,21 @@ std::optional<Surface> SurfaceOf(Made made) {
   return Surface(*std::move(made));
 }
 
-std::optional<Curve> Copy(const BezierCurve& curve, ScaledValues& values) {
+std::optional<Curve> Copy(const BezierCurve& curve, Axes axes,
+                          ScaledValues& values) {
   const BezierCurveView& view = curve.view();
-  ScaleCoordinates(view.control_points.coordinates, view.weights, values);
+  ScaleCoordinates(view.control_points.dimension,
+                   view.control_points.coordinates, view.weights, axes, values);
   return CurveOf(BezierCurve::Create(
       {.control_points = {view.control_points.dimension, values.coordinates},
        .weights = values.weights}));
 }
 
-std::optional<Curve> Copy(const BSplineCurve& curve, ScaledValues& values) {
+std::optional<Curve> Copy(const BSplineCurve& curve, Axes axes,
+                          ScaledValues& values) {
   const BSplineCurveView& view = curve.view();
-  ScaleCoordinates(view.control_points.coordinates, view.weights, values);
+  ScaleCoordinates(view.control_points.dimension,
+                   view.control_points.coordinates, view.weights, axes, values);
   const ParameterDomain domain = curve.domain();
   values.u_exponent =
       ScaleKnots(view.knots, domain.end - domain.start, values.knots_u);
@@ -91,9 +120,13 @@ double NodeWidth(absl::Span<const double> nodes) {
   return nodes.empty() ? 0.0 : nodes.back() - nodes.front();
 }
 
-std::optional<Curve> Copy(const LagrangeCurve& curve, ScaledValues& values) {
+// The polynomial kinds keep one exponent: without weights no product w P
+// can lose a small axis.
+std::optional<Curve> Copy(const LagrangeCurve& curve, Axes,
+                          ScaledValues& values) {
   const LagrangeCurveView& view = curve.view();
-  ScaleCoordinates(view.points.coordinates, {}, values);
+  ScaleCoordinates(view.points.dimension, view.points.coordinates, {},
+                   Axes::kTogether, values);
   values.u_exponent =
       ScaleKnots(view.nodes, NodeWidth(view.nodes), values.knots_u);
   return CurveOf(LagrangeCurve::Create(
@@ -101,7 +134,8 @@ std::optional<Curve> Copy(const LagrangeCurve& curve, ScaledValues& values) {
        .nodes = values.knots_u}));
 }
 
-std::optional<Curve> Copy(const HermiteCurve& curve, ScaledValues& values) {
+std::optional<Curve> Copy(const HermiteCurve& curve, Axes,
+                          ScaledValues& values) {
   const HermiteCurveView& view = curve.view();
   // A piece reaches about |T| h / 3 beyond its end points (its Bezier
   // points), h the widest node spacing.
@@ -136,19 +170,21 @@ ControlNetView ScaledNet(const ControlNetView& net,
           .coordinates = values.coordinates};
 }
 
-std::optional<Surface> Copy(const BezierSurface& surface,
+std::optional<Surface> Copy(const BezierSurface& surface, Axes axes,
                             ScaledValues& values) {
   const BezierSurfaceView& view = surface.view();
-  ScaleCoordinates(view.control_net.coordinates, view.weights, values);
+  ScaleCoordinates(view.control_net.dimension, view.control_net.coordinates,
+                   view.weights, axes, values);
   return SurfaceOf(
       BezierSurface::Create({.control_net = ScaledNet(view.control_net, values),
                              .weights = values.weights}));
 }
 
-std::optional<Surface> Copy(const BSplineSurface& surface,
+std::optional<Surface> Copy(const BSplineSurface& surface, Axes axes,
                             ScaledValues& values) {
   const BSplineSurfaceView& view = surface.view();
-  ScaleCoordinates(view.control_net.coordinates, view.weights, values);
+  ScaleCoordinates(view.control_net.dimension, view.control_net.coordinates,
+                   view.weights, axes, values);
   const SurfaceDomain domain = surface.domain();
   values.u_exponent =
       ScaleKnots(view.knots_u, domain.u_end - domain.u_start, values.knots_u);
@@ -163,10 +199,11 @@ std::optional<Surface> Copy(const BSplineSurface& surface,
        .weights = values.weights}));
 }
 
-std::optional<Surface> Copy(const TriangularPatch& patch,
+std::optional<Surface> Copy(const TriangularPatch& patch, Axes axes,
                             ScaledValues& values) {
   const TriangularPatchView& view = patch.view();
-  ScaleCoordinates(view.control_points.coordinates, view.weights, values);
+  ScaleCoordinates(view.control_points.dimension,
+                   view.control_points.coordinates, view.weights, axes, values);
   // The domain triangle is kept as it is (its (u, v) are the answers').
   values.knots_u.assign(view.domain_triangle.begin(),
                         view.domain_triangle.end());
@@ -179,10 +216,14 @@ std::optional<Surface> Copy(const TriangularPatch& patch,
 
 }  // namespace
 
-ScaledCurve ScaledCurve::Of(const Curve& curve) {
+// Copied makes the copy (each axis by its own exponent when `each_axis`), or
+// keeps the geometry (exponents 0) when the copy does not validate.
+ScaledCurve ScaledCurve::Copied(const Curve& curve, bool each_axis) {
   ScaledCurve result;
+  const Axes axes = each_axis ? Axes::kEach : Axes::kTogether;
   result.curve_ = std::visit(
-      [&](const auto& kind) { return Copy(kind, result.values_); }, curve);
+      [&](const auto& kind) { return Copy(kind, axes, result.values_); },
+      curve);
   if (!result.curve_.has_value()) {
     result.values_ = ScaledValues{};
     result.curve_ = curve;
@@ -190,15 +231,31 @@ ScaledCurve ScaledCurve::Of(const Curve& curve) {
   return result;
 }
 
-ScaledSurface ScaledSurface::Of(const Surface& surface) {
+ScaledCurve ScaledCurve::Of(const Curve& curve) { return Copied(curve, false); }
+
+ScaledCurve ScaledCurve::OfAxes(const Curve& curve) {
+  return Copied(curve, true);
+}
+
+ScaledSurface ScaledSurface::Copied(const Surface& surface, bool each_axis) {
   ScaledSurface result;
+  const Axes axes = each_axis ? Axes::kEach : Axes::kTogether;
   result.surface_ = std::visit(
-      [&](const auto& kind) { return Copy(kind, result.values_); }, surface);
+      [&](const auto& kind) { return Copy(kind, axes, result.values_); },
+      surface);
   if (!result.surface_.has_value()) {
     result.values_ = ScaledValues{};
     result.surface_ = surface;
   }
   return result;
+}
+
+ScaledSurface ScaledSurface::Of(const Surface& surface) {
+  return Copied(surface, false);
+}
+
+ScaledSurface ScaledSurface::OfAxes(const Surface& surface) {
+  return Copied(surface, true);
 }
 
 SurfaceSamples ScaledSurface::Samples(const SurfaceSamples& samples,
@@ -228,9 +285,12 @@ SurfaceSamples ScaledSurface::Samples(const SurfaceSamples& samples,
 namespace {
 
 // The bytes of a copy holding `values` doubles twice in `blocks` heap
-// blocks each, with glibc's header and rounding per block.
+// blocks each, with glibc's header and rounding per block, and of a copy
+// scaled per axis its exponents and their largest coordinates (one int and
+// one double per axis, fewer than the values).
 uint64_t CopyBytes(uint64_t values, uint64_t blocks) {
-  return 2 * (8 * values + 32 * blocks) + sizeof(ScaledValues);
+  return 2 * (8 * values + 32 * blocks) + sizeof(ScaledValues) +
+         (4 + 8) * values + 2 * 32;
 }
 
 }  // namespace

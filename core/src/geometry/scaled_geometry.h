@@ -11,12 +11,17 @@
 // parameters by 2^k, curvatures by 2^-e): docs/references.md, 'Scale-safe
 // norms'. A copy whose scaled values no longer validate (a value so small
 // next to the largest that it underflows, changing the geometry) is the
-// geometry itself with exponents 0. Internal to the core; the copy owns its
-// values (move-only), thread-safe once made.
+// geometry itself with exponents 0. A bounding box, which treats each axis
+// on its own, may use a copy scaled per axis (OfAxes): coordinate j divided
+// by the power of two at or above the largest on axis j, an affine image of
+// the geometry whose box is the box's image, so that a tiny axis next to a
+// huge one keeps its digits in the homogeneous points w P. Internal to the
+// core; the copy owns its values (move-only), thread-safe once made.
 #ifndef FREEFORM_CORE_SRC_GEOMETRY_SCALED_GEOMETRY_H_
 #define FREEFORM_CORE_SRC_GEOMETRY_SCALED_GEOMETRY_H_
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -35,7 +40,10 @@ struct ScaledValues {
   std::vector<double> knots_u;  // knots or nodes of a curve
   std::vector<double> knots_v;
   int coordinate_exponent = 0;  // e: original coordinates = scaled * 2^e
-  int u_exponent = 0;           // k: original parameter = scaled * 2^k
+  // The exponent of each axis of a copy scaled per axis (OfAxes), else
+  // empty: every axis has coordinate_exponent.
+  std::vector<int> axis_exponents;
+  int u_exponent = 0;  // k: original parameter = scaled * 2^k
   int v_exponent = 0;
 
   // Length returns a length (or point coordinate) of the scaled geometry in
@@ -46,11 +54,18 @@ struct ScaledValues {
   double Unlength(double original) const {
     return std::ldexp(original, -coordinate_exponent);
   }
+  // AxisExponent returns the exponent of axis j.
+  int AxisExponent(size_t j) const {
+    return axis_exponents.empty() ? coordinate_exponent : axis_exponents[j];
+  }
 };
 
 class ScaledCurve {
  public:
   static ScaledCurve Of(const Curve& curve);
+  // OfAxes returns the copy scaled per axis (for boxes only: its shape is
+  // not the curve's when the axes' exponents differ).
+  static ScaledCurve OfAxes(const Curve& curve);
 
   ScaledCurve(ScaledCurve&&) = default;
   ScaledCurve& operator=(ScaledCurve&&) = default;
@@ -66,6 +81,7 @@ class ScaledCurve {
 
  private:
   ScaledCurve() = default;
+  static ScaledCurve Copied(const Curve& curve, bool each_axis);
 
   ScaledValues values_;
   std::optional<Curve> curve_;
@@ -74,6 +90,8 @@ class ScaledCurve {
 class ScaledSurface {
  public:
   static ScaledSurface Of(const Surface& surface);
+  // OfAxes returns the copy scaled per axis, as ScaledCurve::OfAxes.
+  static ScaledSurface OfAxes(const Surface& surface);
 
   ScaledSurface(ScaledSurface&&) = default;
   ScaledSurface& operator=(ScaledSurface&&) = default;
@@ -93,6 +111,7 @@ class ScaledSurface {
 
  private:
   ScaledSurface() = default;
+  static ScaledSurface Copied(const Surface& surface, bool each_axis);
 
   ScaledValues values_;
   std::optional<Surface> surface_;

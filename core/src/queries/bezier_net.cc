@@ -1,11 +1,14 @@
 #include "queries/bezier_net.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
 #include "base/homogeneous.h"
 #include "base/scaled.h"
 #include "base/tessellation_checks.h"
@@ -19,6 +22,44 @@
 
 namespace freeform::internal {
 namespace {
+
+// LocalOf returns where x lies in [a, b] as a fraction in [0, 1] (0 for an
+// empty interval).
+double LocalOf(double x, double a, double b) {
+  if (!(b > a)) return 0.0;
+  return std::clamp((x - a) / (b - a), 0.0, 1.0);
+}
+
+// SurfaceLocals inverts SurfacePieceParameters: the (s, t) of piece k at
+// the surface parameters uv, clamped to [0, 1]^2. For a triangular patch,
+// the barycentric (u, v) of uv in its domain triangle (Cramer's rule), then
+// s = u, t = v / (1 - s).
+void SurfaceLocals(const SurfaceDecomposition& decomposition, size_t k,
+                   const double* uv, double* st) {
+  if (!decomposition.triangular) {
+    const std::array<double, 2> low =
+        SurfacePieceParameters(decomposition, k, 0.0, 0.0);
+    const std::array<double, 2> high =
+        SurfacePieceParameters(decomposition, k, 1.0, 1.0);
+    st[0] = LocalOf(uv[0], low[0], high[0]);
+    st[1] = LocalOf(uv[1], low[1], high[1]);
+    return;
+  }
+  double u = uv[0];
+  double v = uv[1];
+  const std::vector<double>& d = decomposition.domain_triangle;
+  if (!d.empty()) {
+    // uv - C = u (A - C) + v (B - C).
+    const double a0 = d[0] - d[4], a1 = d[1] - d[5];
+    const double b0 = d[2] - d[4], b1 = d[3] - d[5];
+    const double r0 = uv[0] - d[4], r1 = uv[1] - d[5];
+    const double det = a0 * b1 - a1 * b0;
+    u = det != 0.0 ? (r0 * b1 - r1 * b0) / det : 0.0;
+    v = det != 0.0 ? (a0 * r1 - a1 * r0) / det : 0.0;
+  }
+  st[0] = std::clamp(u, 0.0, 1.0);
+  st[1] = st[0] < 1.0 ? std::clamp(v / (1.0 - st[0]), 0.0, 1.0) : 0.0;
+}
 
 Net Lifted(int dimension, int count_u, int count_v,
            const std::vector<double>& coordinates,
@@ -217,10 +258,15 @@ absl::StatusOr<Pieces> LiftPieces(const Curve& curve,
     result.nets.push_back(LiftCurve(segment));
     segment = {};
   }
-  result.parameters = [breaks = std::move(pieces->breakpoints)](
-                          size_t k, double s, double, double* out) {
-    out[0] =
-        s >= 1.0 ? breaks[k + 1] : breaks[k] + s * (breaks[k + 1] - breaks[k]);
+  auto breaks = std::make_shared<const std::vector<double>>(
+      std::move(pieces->breakpoints));
+  result.parameters = [breaks](size_t k, double s, double, double* out) {
+    const std::vector<double>& b = *breaks;
+    out[0] = s >= 1.0 ? b[k + 1] : b[k] + s * (b[k + 1] - b[k]);
+  };
+  result.locals = [breaks](size_t k, const double* global, double* st) {
+    st[0] = LocalOf(global[0], (*breaks)[k], (*breaks)[k + 1]);
+    st[1] = 0.0;
   };
   return result;
 }
@@ -239,13 +285,30 @@ absl::StatusOr<Pieces> LiftPieces(const Surface& surface,
     patch = {};
   }
   std::vector<SurfaceData>().swap(pieces->pieces.patches);
-  result.parameters = [shared = *std::move(pieces)](size_t k, double s,
-                                                    double t, double* out) {
-    const std::array<double, 2> uv = SurfacePieceParameters(shared, k, s, t);
+  auto shared =
+      std::make_shared<const SurfaceDecomposition>(*std::move(pieces));
+  result.parameters = [shared](size_t k, double s, double t, double* out) {
+    const std::array<double, 2> uv = SurfacePieceParameters(*shared, k, s, t);
     out[0] = uv[0];
     out[1] = uv[1];
   };
+  result.locals = [shared](size_t k, const double* uv, double* st) {
+    SurfaceLocals(*shared, k, uv, st);
+  };
   return result;
+}
+
+absl::Status UnresolvedError(absl::string_view field,
+                             absl::Span<const double> near, double apart) {
+  return InvalidFieldError(
+      field,
+      absl::StrCat("an answer lies at parameters near (",
+                   absl::StrJoin(near, ", "),
+                   ") that double precision cannot resolve: at the nearest "
+                   "doubles the inputs are ",
+                   apart,
+                   " apart, beyond the tolerance (knot spans too short for "
+                   "their position, or weights too far apart)"));
 }
 
 void Halve(const Net& net, bool in_u, Net& low, Net& high) {

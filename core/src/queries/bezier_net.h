@@ -55,6 +55,11 @@ struct Pieces {
   int parameter_count = 1;
   std::vector<Net> nets;
   std::function<void(size_t, double, double, double*)> parameters;
+  // locals(k, global, st) maps the geometry's parameters `global` back to
+  // piece k's (s, t), clamped to [0, 1]^2 (t = 0 for a curve): where an
+  // answer's parameters, rounded to doubles, lie on the piece that found
+  // them.
+  std::function<void(size_t, const double*, double*)> locals;
 };
 
 // LiftPieces returns the pieces of a valid curve or surface; it fails only
@@ -63,6 +68,17 @@ absl::StatusOr<Pieces> LiftPieces(const Curve& curve,
                                   const CancellationToken* cancel);
 absl::StatusOr<Pieces> LiftPieces(const Surface& surface,
                                   const CancellationToken* cancel);
+
+// An answer found on a piece at (s, t) reports the geometry's parameters
+// there, rounded to doubles. Where a piece spans only a few ulps of its
+// parameters (knot spans of 0.25 at 2e15) or the geometry moves far between
+// neighbouring doubles (extreme weights), the point at the rounded
+// parameters (Pieces::locals) is not the answer's: the queries check it
+// and refuse such an answer. UnresolvedError is that refusal, naming
+// `field`: at the doubles nearest `near` (one or two parameters) the inputs
+// lie `apart` (in their units), beyond the tolerance.
+absl::Status UnresolvedError(absl::string_view field,
+                             absl::Span<const double> near, double apart);
 
 // Halve writes the halves [0, 1/2] and [1/2, 1] of `net` in u (in_u) or v
 // (reusing the memory `low` and `high` hold).

@@ -347,9 +347,11 @@ std::vector<double> AxisScales(const std::vector<Net>& nets) {
   return scales;
 }
 
-// BoxOf returns the box of the geometry made of the Bezier pieces `nets`.
+// BoxOf returns the box of the geometry made of the Bezier pieces `nets`,
+// each axis j within tolerances[j].
 template <typename Net>
-absl::StatusOr<BoundingBox> BoxOf(std::vector<Net> nets, double tolerance,
+absl::StatusOr<BoundingBox> BoxOf(std::vector<Net> nets,
+                                  const std::vector<double>& tolerances,
                                   const CancellationToken* cancel) {
   const int dimension = nets.front().dimension;
   const std::vector<double> scales = AxisScales(nets);
@@ -362,7 +364,8 @@ absl::StatusOr<BoundingBox> BoxOf(std::vector<Net> nets, double tolerance,
   std::vector<double> scratch;
   for (int j = 0; j < dimension; ++j) {
     const double margin = kMargin * scales[static_cast<size_t>(j)];
-    const double reachable = std::max(tolerance, margin);
+    const double reachable =
+        std::max(tolerances[static_cast<size_t>(j)], margin);
     for (const double sign : {1.0, -1.0}) {
       absl::StatusOr<double> extreme =
           Extreme(pieces, j, sign, reachable, poll, scratch);
@@ -374,21 +377,29 @@ absl::StatusOr<BoundingBox> BoxOf(std::vector<Net> nets, double tolerance,
   return box;
 }
 
-// Scaled returns a tolerance in the units of a scaled copy
-// (scaled_geometry.h), at most the largest double.
-double Scaled(double tolerance, const internal::ScaledValues& scale) {
-  return std::min(scale.Unlength(tolerance),
-                  std::numeric_limits<double>::max());
+// AxisTolerances returns `tolerance` in the units of each axis of a copy
+// scaled per axis (scaled_geometry.h), at most the largest double.
+std::vector<double> AxisTolerances(double tolerance, int dimension,
+                                   const internal::ScaledValues& scale) {
+  std::vector<double> tolerances(static_cast<size_t>(dimension));
+  for (size_t j = 0; j < tolerances.size(); ++j) {
+    tolerances[j] = std::min(std::ldexp(tolerance, -scale.AxisExponent(j)),
+                             std::numeric_limits<double>::max());
+  }
+  return tolerances;
 }
 
-// Unscaled returns the box of a scaled copy in the geometry's own units
-// (exact: powers of two; a side beyond the largest double is infinite,
-// which still holds the geometry).
+// Unscaled returns the box of a copy scaled per axis in the geometry's own
+// units (exact: powers of two; a side beyond the largest double is
+// infinite, which still holds the geometry).
 absl::StatusOr<BoundingBox> Unscaled(absl::StatusOr<BoundingBox> box,
                                      const internal::ScaledValues& scale) {
   if (!box.ok()) return box;
-  for (double& side : box->lower) side = scale.Length(side);
-  for (double& side : box->upper) side = scale.Length(side);
+  for (std::vector<double>* sides : {&box->lower, &box->upper}) {
+    for (size_t j = 0; j < sides->size(); ++j) {
+      (*sides)[j] = std::ldexp((*sides)[j], scale.AxisExponent(j));
+    }
+  }
   return box;
 }
 
@@ -529,7 +540,8 @@ absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
                                              double tolerance,
                                              const CancellationToken* cancel) {
   RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
-  const internal::ScaledCurve scaled = internal::ScaledCurve::Of(curve);
+  // Each axis is scaled on its own: a box is affine-invariant per axis.
+  const internal::ScaledCurve scaled = internal::ScaledCurve::OfAxes(curve);
   absl::StatusOr<BezierDecomposition> pieces =
       DecomposeCurve(scaled.curve(), cancel);
   if (!pieces.ok()) return pieces.status();
@@ -540,7 +552,9 @@ absl::StatusOr<BoundingBox> CurveBoundingBox(const Curve& curve,
   }
   std::vector<BezierCurveData>().swap(pieces->segments);
   return Unscaled(
-      BoxOf(std::move(nets), Scaled(tolerance, scaled.scale()), cancel),
+      BoxOf(std::move(nets),
+            AxisTolerances(tolerance, DimensionOf(curve), scaled.scale()),
+            cancel),
       scaled.scale());
 }
 
@@ -549,8 +563,11 @@ absl::StatusOr<BoundingBox> SurfaceBoundingBox(
   RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
   // A triangular patch is halved as a triangle (BisectTriangularPatch), a
   // tensor surface as its Bezier pieces.
-  const internal::ScaledSurface scaled = internal::ScaledSurface::Of(surface);
-  const double scaled_tolerance = Scaled(tolerance, scaled.scale());
+  // Each axis is scaled on its own: a box is affine-invariant per axis.
+  const internal::ScaledSurface scaled =
+      internal::ScaledSurface::OfAxes(surface);
+  const std::vector<double> scaled_tolerance =
+      AxisTolerances(tolerance, DimensionOf(surface), scaled.scale());
   const auto tensor = [&]() -> absl::StatusOr<BoundingBox> {
     ASSIGN_OR_RETURN(SurfaceDecomposition pieces,
                      DecomposeSurface(scaled.surface(), cancel));

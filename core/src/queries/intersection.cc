@@ -1245,51 +1245,50 @@ auto Intersect(const Curve& first, const Second& second,
   return finish(Found{*a, *b, exponent, search});
 }
 
-// LocalParameter returns where a curve's parameter t lies on piece
-// `piece` (0 to 1 over the piece), from the piece's ends.
-double LocalParameter(const Pieces& pieces, size_t piece, double t) {
-  double start = 0.0;
-  double end = 0.0;
-  pieces.parameters(piece, 0.0, 0.0, &start);
-  pieces.parameters(piece, 1.0, 0.0, &end);
-  if (!(end > start)) return 0.0;
-  return std::clamp((t - start) / (end - start), 0.0, 1.0);
-}
-
-// CheckResolved checks that the curves at the rounded parameters (s, t) of
-// a point still meet within the tolerance: where a knot span is only a few
-// ulps of its position (spans of 0.125 at 1e15), the nearest double
-// parameter lies on another span, and the answer would name a parameter
-// whose point is not the intersection. The search works in units of
+// CheckResolved checks that the inputs at the rounded parameters of an
+// answer found at `at` still meet within the tolerance: the first's at `s`,
+// the second's at `second` (t, or (u, v)), each mapped back onto the piece
+// that found it (Pieces::locals). Where a knot span is only a few ulps of
+// its position (spans of 0.125 at 1e15) or extreme weights move the
+// geometry far between neighbouring doubles, the nearest double parameter
+// lies elsewhere, and the answer would name a parameter whose point is not
+// the intersection (UnresolvedError, naming the input that moved: `first`
+// or `second`, `curve` or `surface`). The search works in units of
 // 2^exponent; `rounding` is what its evaluations may differ by.
 absl::Status CheckResolved(const Found& found, const Anchor& at, double s,
-                           double t, double tolerance, double rounding) {
+                           const double* second, double tolerance,
+                           double rounding) {
   Anchor rounded = at;
-  rounded.x[0] = LocalParameter(found.first, at.first_piece, s);
-  rounded.x[1] = LocalParameter(found.second, at.second_piece, t);
+  double local[2];
+  found.first.locals(at.first_piece, &s, local);
+  rounded.x[0] = local[0];
+  found.second.locals(at.second_piece, second, local);
+  rounded.x[1] = local[0];
+  rounded.x[2] = local[1];
   const int dim = found.first.dimension;
   const double* exact = found.search.PointOf(at);
   const std::vector<double> point(exact, exact + dim);
   const double* first_at = found.search.PointOf(rounded);
   const std::vector<double> first(first_at, first_at + dim);
-  const double* second = found.search.SecondPointOf(rounded);
-  // The answer's point is the first curve's at s, and the curves meet
+  const double* second_point = found.search.SecondPointOf(rounded);
+  // The answer's point is the first input's at s, and the inputs meet
   // there within the tolerance.
   const double first_moved =
       internal::ScaledDistanceOf(first.data(), point.data(), dim);
-  const double gap = internal::ScaledDistanceOf(second, first.data(), dim);
+  const double gap =
+      internal::ScaledDistanceOf(second_point, first.data(), dim);
   const double allowed = tolerance + rounding;
   if (first_moved <= allowed && gap <= allowed) return absl::OkStatus();
-  const bool first_fails = first_moved > allowed;
-  return InvalidFieldError(
-      first_fails ? "first" : "second",
-      absl::StrCat("an intersection lies at a parameter near ",
-                   first_fails ? s : t,
-                   " that double precision cannot resolve: at the nearest "
-                   "double parameters the curves are ",
-                   std::ldexp(first_fails ? first_moved : gap, found.exponent),
-                   " apart, beyond the tolerance; its knot spans are too "
-                   "short for their position (move the parameters nearer 0)"));
+  const bool curves = found.second.parameter_count == 1;
+  if (first_moved > allowed) {
+    return internal::UnresolvedError(curves ? "first" : "curve", {s},
+                                     std::ldexp(first_moved, found.exponent));
+  }
+  return internal::UnresolvedError(
+      curves ? "second" : "surface",
+      absl::MakeConstSpan(second,
+                          static_cast<size_t>(SecondCount(found.second))),
+      std::ldexp(gap, found.exponent));
 }
 
 // CurveAnswer returns the points and overlaps of two curves.
@@ -1308,9 +1307,9 @@ absl::StatusOr<CurveIntersections> CurveAnswer(
     if (run.parallel) {
       const double second_from = second_at(run.start);
       const double second_to = second_at(run.end);
-      RETURN_IF_ERROR(CheckResolved(found, run.start, run.from, second_from,
+      RETURN_IF_ERROR(CheckResolved(found, run.start, run.from, &second_from,
                                     tolerance, found.search.rounding()));
-      RETURN_IF_ERROR(CheckResolved(found, run.end, run.to, second_to,
+      RETURN_IF_ERROR(CheckResolved(found, run.end, run.to, &second_to,
                                     tolerance, found.search.rounding()));
       result.first_intervals.insert(result.first_intervals.end(),
                                     {run.from, run.to});
@@ -1321,7 +1320,7 @@ absl::StatusOr<CurveIntersections> CurveAnswer(
     double s = 0.0;
     found.first.parameters(run.point.first_piece, run.point.x[0], 0.0, &s);
     const double t = second_at(run.point);
-    RETURN_IF_ERROR(CheckResolved(found, run.point, s, t, tolerance,
+    RETURN_IF_ERROR(CheckResolved(found, run.point, s, &t, tolerance,
                                   found.search.rounding()));
     result.first_parameters.push_back(s);
     result.second_parameters.push_back(t);
@@ -1337,17 +1336,28 @@ absl::StatusOr<CurveSurfaceIntersections> SurfaceAnswer(
   const std::vector<Candidate>& runs = found.search.runs();
   RETURN_IF_ERROR(CheckResults(runs.size(), options));
   CurveSurfaceIntersections result{.dimension = found.first.dimension};
+  const double tolerance = std::ldexp(options.tolerance, -found.exponent);
+  auto surface_at = [&](const Anchor& at, double* uv) {
+    found.second.parameters(at.second_piece, at.x[1], at.x[2], uv);
+  };
   for (const Candidate& run : runs) {
+    double uv[2];
     if (run.parallel) {
+      for (const auto& [end, t] :
+           {std::pair{&run.start, run.from}, std::pair{&run.end, run.to}}) {
+        surface_at(*end, uv);
+        RETURN_IF_ERROR(CheckResolved(found, *end, t, uv, tolerance,
+                                      found.search.rounding()));
+      }
       result.curve_intervals.insert(result.curve_intervals.end(),
                                     {run.from, run.to});
       continue;
     }
     double t = 0.0;
     found.first.parameters(run.point.first_piece, run.point.x[0], 0.0, &t);
-    double uv[2];
-    found.second.parameters(run.point.second_piece, run.point.x[1],
-                            run.point.x[2], uv);
+    surface_at(run.point, uv);
+    RETURN_IF_ERROR(CheckResolved(found, run.point, t, uv, tolerance,
+                                  found.search.rounding()));
     result.curve_parameters.push_back(t);
     result.surface_parameters.insert(result.surface_parameters.end(),
                                      {uv[0], uv[1]});

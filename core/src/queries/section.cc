@@ -12,6 +12,7 @@
 
 #include "absl/functional/function_ref.h"
 #include "absl/strings/str_cat.h"
+#include "base/scaled.h"
 #include "base/tessellation_checks.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/status.h"
@@ -28,6 +29,10 @@ using internal::Pieces;
 // Coefficients of g within this many rounding errors of the magnitude of
 // their terms (RoundingOf) are zero: the surface lies in the plane there.
 constexpr double kZeroRounding = 64 * std::numeric_limits<double>::epsilon();
+// Two evaluations of a piece at nearly the same parameters may differ by
+// this fraction of its largest coordinate by rounding alone.
+constexpr double kEvaluationRounding =
+    64 * std::numeric_limits<double>::epsilon();
 // The most evaluations of g one root takes (Slicer::Root).
 constexpr int kRootSteps = 200;
 
@@ -135,13 +140,16 @@ uint64_t ValueCost(const Net& net) {
 // n . x = offset (n a unit vector) to `tolerance` (in the pieces' units).
 class Slicer {
  public:
+  // The pieces are in units of 2^exponent, of largest coordinate `largest`.
   Slicer(const Pieces& pieces, absl::Span<const double> normal, double offset,
-         double tolerance, const SectionOptions& options,
-         const CancellationToken* cancel)
+         double tolerance, int exponent, double largest,
+         const SectionOptions& options, const CancellationToken* cancel)
       : pieces_(pieces),
         normal_(normal.begin(), normal.end()),
         offset_(offset),
         tolerance_(tolerance),
+        exponent_(exponent),
+        rounding_(kEvaluationRounding * largest),
         options_(options),
         cancel_(cancel),
         budget_(options.max_work, "max_work", "the section's quadtree", cancel),
@@ -186,12 +194,15 @@ class Slicer {
                    absl::FunctionRef<double(double)> locate);
   absl::StatusOr<Vertex> MakeVertex(size_t piece, int along, double c,
                                     double a);
+  absl::Status CheckResolved(const Vertex& vertex);
   absl::Status CountVertex();
 
   const Pieces& pieces_;
   const std::vector<double> normal_;
   const double offset_;
   const double tolerance_;
+  const int exponent_;
+  const double rounding_;
   const SectionOptions& options_;
   const CancellationToken* cancel_;
   internal::WorkBudget budget_;
@@ -367,7 +378,27 @@ absl::StatusOr<Vertex> Slicer::MakeVertex(size_t piece, int along, double c,
                      "neighbouring parameter values there (weights too far "
                      "apart)"));
   }
+  RETURN_IF_ERROR(CheckResolved(vertex));
   return vertex;
+}
+
+// CheckResolved checks that the surface at the vertex's parameters as the
+// answer reports them, rounded to doubles and mapped back onto its piece,
+// is within the tolerance of the vertex (where a knot span is a few ulps of
+// its position, spans of 0.25 at 2e15, the nearest double lies on another
+// span): else UnresolvedError, naming "surface".
+absl::Status Slicer::CheckResolved(const Vertex& vertex) {
+  double uv[2];
+  pieces_.parameters(vertex.piece, vertex.x[0], vertex.x[1], uv);
+  double st[2];
+  pieces_.locals(vertex.piece, uv, st);
+  if (st[0] == vertex.x[0] && st[1] == vertex.x[1]) return absl::OkStatus();
+  evaluator_.Evaluate(pieces_.nets[vertex.piece], st[0], st[1],
+                      partials_.data());
+  const double moved = internal::ScaledDistanceOf(
+      partials_.data(), vertex.point.data(), pieces_.dimension);
+  if (moved <= tolerance_ + rounding_) return absl::OkStatus();
+  return internal::UnresolvedError("surface", uv, std::ldexp(moved, exponent_));
 }
 
 // Arc adds the arc from c0 to c1 (c across; `locate` gives the coordinate
@@ -633,10 +664,13 @@ void Chain::Walk(size_t start_end, const Pieces& pieces, Sections& sections) {
   if (closed) {
     // The last vertex is the first one's partner, within the slack: a
     // closed polyline repeats its first vertex exactly (the proto's
-    // promise), so its last point is the first's.
+    // promise), so its last vertex is the first's, point and parameters.
     const size_t d = static_cast<size_t>(dimension_);
-    const size_t first = sections.offsets.back() * d;
-    std::copy_n(sections.points.begin() + first, d, sections.points.end() - d);
+    const size_t first = sections.offsets.back();
+    std::copy_n(sections.points.begin() + first * d, d,
+                sections.points.end() - d);
+    std::copy_n(sections.parameters.begin() + first * 2, 2,
+                sections.parameters.end() - 2);
   }
   sections.closed.push_back(closed ? 1 : 0);
   sections.offsets.push_back(sections.points.size() /
@@ -825,9 +859,14 @@ absl::StatusOr<Sections> IntersectSurfacePlane(
   Sections sections{.dimension = dimension};
   if (!std::isfinite(offset)) return sections;  // far beyond the surface
   Slicer slicer(*pieces, normal, offset,
-                std::ldexp(options.tolerance, -exponent), options, cancel);
+                std::ldexp(options.tolerance, -exponent), exponent,
+                scale->largest, options, cancel);
   RETURN_IF_ERROR(slicer.Run());
-  Chain chain(slicer.arcs(), dimension, 1e-9 * scale->largest);
+  // Ends closer than this are one point: 1e-9 of the geometry's size, at
+  // most the tolerance, so a joined end stays within it of the other.
+  const double slack =
+      std::min(1e-9 * scale->largest, std::ldexp(options.tolerance, -exponent));
+  Chain chain(slicer.arcs(), dimension, slack);
   chain.Write(*pieces, sections);
   for (double& x : sections.points) x = std::ldexp(x, exponent);
   WriteRegions(slicer.regions(), *pieces, sections);

@@ -22,7 +22,10 @@
 // Accuracy contract: the box contains every point of the geometry (as far
 // as double arithmetic can tell: each side is widened by the margin 2^-44
 // of the control points' largest coordinate on its axis, about 6e-14 of it,
-// which covers the rounding of the subdivision and of the evaluators), and
+// which covers the rounding of the subdivision and of the evaluators; each
+// axis is computed on the geometry's copy scaled by its own power of two, so
+// that a huge coordinate on one axis costs no digits of another in the
+// homogeneous points w P), and
 // no side is
 // farther than `tolerance` plus twice that margin from a point of the
 // geometry. A tolerance below the margin is met as the margin: hull bounds

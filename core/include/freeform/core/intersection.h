@@ -121,9 +121,12 @@ struct CurveIntersections {
 // INVALID_ARGUMENT naming "second.dimension" when the dimensions differ,
 // "tolerance" or "separation" for bad options ("tolerance" also below what
 // double precision resolves on the inputs: kResolution (2^-48) times their
-// largest control point coordinate, tessellation_checks.h), RESOURCE_EXHAUSTED
-// naming "max_results" or "max_work", and with the token's CANCELLED /
-// DEADLINE_EXCEEDED.
+// largest control point coordinate, tessellation_checks.h), "first" or
+// "second" for an intersection whose parameters double precision cannot
+// resolve (at the nearest doubles, a point or an overlap's end, that input
+// moves beyond the tolerance: knot spans a few ulps of their position,
+// extreme weights), RESOURCE_EXHAUSTED naming "max_results" or "max_work",
+// and with the token's CANCELLED / DEADLINE_EXCEEDED.
 absl::StatusOr<CurveIntersections> IntersectCurves(
     const Curve& first, const Curve& second,
     const IntersectionOptions& options = {},
@@ -147,7 +150,8 @@ struct CurveSurfaceIntersections {
 
 // IntersectCurveSurface returns the points and overlaps where a valid curve
 // meets a valid surface. Fails as IntersectCurves, "surface.dimension"
-// naming a surface of another dimension.
+// naming a surface of another dimension, and "curve" or "surface" (not
+// "first" or "second") for parameters double precision cannot resolve.
 absl::StatusOr<CurveSurfaceIntersections> IntersectCurveSurface(
     const Curve& curve, const Surface& surface,
     const IntersectionOptions& options = {},

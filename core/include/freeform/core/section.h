@@ -110,7 +110,9 @@ struct Sections {
 // "tolerance" (also below the resolution), "fit_tolerance", "surface" (a
 // vertex that double precision cannot place within the tolerance of the
 // plane: where extreme weights make the surface jump between neighbouring
-// parameters), RESOURCE_EXHAUSTED naming "max_points" or "max_work", and
+// parameters; or one whose parameters, rounded to doubles, put the surface
+// beyond the tolerance of it: knot spans a few ulps of their position),
+// RESOURCE_EXHAUSTED naming "max_points" or "max_work", and
 // with the token's CANCELLED / DEADLINE_EXCEEDED.
 absl::StatusOr<Sections> IntersectSurfacePlane(
     const Surface& surface, absl::Span<const double> plane_point,
