@@ -180,7 +180,7 @@ else
     # build's install tree in docker/prebuilt.
     context="$WORK_DIR/context"
     mkdir -p "$context"
-    for entry in CMakeLists.txt CMakePresets.json scripts proto core server client cmake docker; do
+    for entry in CMakeLists.txt CMakePresets.json scripts proto core io server client cmake docker; do
       cp -a "$REPO_ROOT/$entry" "$context/"
     done
     cmake --install "$PREBUILT_BUILD" --prefix "$context/docker/prebuilt" --strip >"$WORK_DIR/install.log" 2>&1 \
