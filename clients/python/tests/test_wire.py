@@ -191,6 +191,19 @@ class EncodeTest(unittest.TestCase):
         self.assertEqual(freeform._geometry.parameters([]).WhichOneof("kind"),
                          "list")
 
+    def test_every_kind_has_its_points(self):
+        # A kind added to geometry.proto fails here until to_array knows
+        # which of its fields holds the points.
+        for message, table in ((geometry_pb2.Curve,
+                                freeform._geometry._CURVE_POINTS),
+                               (geometry_pb2.Surface,
+                                freeform._geometry._SURFACE_POINTS)):
+            kinds = message.DESCRIPTOR.oneofs_by_name["kind"].fields
+            self.assertEqual({field.name for field in kinds}, set(table))
+            for field in kinds:
+                self.assertIn(table[field.name],
+                              field.message_type.fields_by_name)
+
 
 if __name__ == "__main__":
     unittest.main()
