@@ -97,13 +97,6 @@ absl::StatusOr<ParameterSet> ParameterSet::Resolve(
   return InvalidFieldError("", "set either a parameter list or a range");
 }
 
-absl::Status CheckEnum(int value, bool (*is_valid)(int),
-                       absl::string_view field) {
-  if (is_valid(value)) return absl::OkStatus();
-  return InvalidFieldError(field,
-                           absl::StrCat(value, " is not one of its values"));
-}
-
 absl::Status PrefixFieldPathExcept(
     const absl::Status& status, absl::string_view prefix,
     std::initializer_list<absl::string_view> top_fields) {
@@ -143,40 +136,6 @@ absl::Span<const double> ParameterSet::Values(size_t begin, size_t end,
   }
   if (count_ > 1 && end == count_) values[count - 1] = end_;
   return absl::MakeConstSpan(values, count);
-}
-
-Parameterization ToCore(v1::Parameterization parameterization) {
-  switch (parameterization) {
-    case v1::PARAMETERIZATION_UNIFORM:
-      return Parameterization::kUniform;
-    case v1::PARAMETERIZATION_CENTRIPETAL:
-      return Parameterization::kCentripetal;
-    case v1::PARAMETERIZATION_UNIVERSAL:
-      return Parameterization::kUniversal;
-    case v1::PARAMETERIZATION_UNSPECIFIED:
-    case v1::PARAMETERIZATION_CHORD_LENGTH:
-    case v1::Parameterization_INT_MIN_SENTINEL_DO_NOT_USE_:
-    case v1::Parameterization_INT_MAX_SENTINEL_DO_NOT_USE_:
-      break;
-  }
-  // Chord length, the default; an unknown value was refused before.
-  return Parameterization::kChordLength;
-}
-
-KnotRule ToCore(v1::KnotRule rule) {
-  switch (rule) {
-    case v1::KNOT_RULE_UNIFORM:
-      return KnotRule::kUniform;
-    case v1::KNOT_RULE_AT_PARAMETERS:
-      return KnotRule::kAtParameters;
-    case v1::KNOT_RULE_UNSPECIFIED:
-    case v1::KNOT_RULE_AVERAGING:
-    case v1::KnotRule_INT_MIN_SENTINEL_DO_NOT_USE_:
-    case v1::KnotRule_INT_MAX_SENTINEL_DO_NOT_USE_:
-      break;
-  }
-  // Averaging, the default; an unknown value was refused before.
-  return KnotRule::kAveraging;
 }
 
 }  // namespace freeform::server

@@ -19,7 +19,6 @@
 #include "absl/strings/string_view.h"
 #include "absl/types/span.h"
 #include "freeform/core/bezier.h"
-#include "freeform/core/interpolation.h"
 #include "freeform/core/points.h"
 #include "freeform/v1/curve_service.pb.h"
 #include "freeform/v1/geometry.pb.h"
@@ -44,20 +43,6 @@ BezierCurveView ViewOf(const v1::BezierCurve& curve);
 absl::Span<double> UninitializedArray(
     google::protobuf::RepeatedField<double>& field, size_t size);
 
-// A resolved set of curve parameters: an explicit list (a view into the
-// request) or a uniform range generated on demand, chunk by chunk.
-// ToCore maps the interpolation enums of the curve and surface Interpolate
-// RPCs (checked with CheckEnum first): unspecified is chord length and
-// averaging.
-Parameterization ToCore(v1::Parameterization parameterization);
-KnotRule ToCore(v1::KnotRule rule);
-
-// CheckEnum returns INVALID_ARGUMENT naming `field` when `value` is none of
-// its enum's values (`is_valid` is the generated <Enum>_IsValid): proto3
-// keeps unknown numbers, which must not run as some other value.
-absl::Status CheckEnum(int value, bool (*is_valid)(int),
-                       absl::string_view field);
-
 // PrefixFieldPathExcept prefixes the field path of `status` with `prefix`
 // (PrefixFieldPath) unless the path is one of `top_fields` or inside one
 // ("knot", "points.coordinates[4]"): the core's errors about the request's
@@ -65,6 +50,9 @@ absl::Status CheckEnum(int value, bool (*is_valid)(int),
 absl::Status PrefixFieldPathExcept(
     const absl::Status& status, absl::string_view prefix,
     std::initializer_list<absl::string_view> top_fields);
+
+// A resolved set of curve parameters: an explicit list (a view into the
+// request) or a uniform range generated on demand, chunk by chunk.
 
 // Room for generated parameters, reused from chunk to chunk.
 struct ParameterStorage {

@@ -16,6 +16,7 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "visit.h"
 
 namespace freeform::server {

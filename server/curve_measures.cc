@@ -19,6 +19,7 @@
 #include "freeform/core/status_macros.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "queries.h"
 
 namespace freeform::server {

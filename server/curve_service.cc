@@ -13,6 +13,7 @@
 #include "freeform/core/status_macros.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 
 namespace freeform::server {
 namespace {

@@ -13,6 +13,7 @@
 #include "freeform/core/overloaded.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
+#include "prepare_options.h"
 
 namespace freeform::server {
 namespace {
@@ -50,23 +51,6 @@ absl::StatusOr<PointsView> LimitedPoints(const v1::Points& message,
       count, degree_from_count ? static_cast<int64_t>(count) - 1 : 0, limits,
       field));
   return points;
-}
-
-BezierAlgorithm ToCore(v1::BezierAlgorithm algorithm) {
-  switch (algorithm) {
-    case v1::BEZIER_ALGORITHM_DE_CASTELJAU:
-      return BezierAlgorithm::kDeCasteljau;
-    case v1::BEZIER_ALGORITHM_HORNER:
-      return BezierAlgorithm::kHorner;
-    case v1::BEZIER_ALGORITHM_LADDER:
-      return BezierAlgorithm::kLadder;
-    case v1::BEZIER_ALGORITHM_AUTO:
-    case v1::BezierAlgorithm_INT_MIN_SENTINEL_DO_NOT_USE_:
-    case v1::BezierAlgorithm_INT_MAX_SENTINEL_DO_NOT_USE_:
-      break;
-  }
-  // AUTO; an unknown value was refused by CheckEnum before.
-  return BezierAlgorithm::kAuto;
 }
 
 absl::StatusOr<Curve> BezierOf(const v1::BezierCurve& message,

@@ -10,6 +10,7 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "surface_service.h"
 #include "visit.h"
 
