@@ -1,10 +1,7 @@
 #include "convert.h"
 
 #include <cmath>
-#include <optional>
-#include <string>
 
-#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
@@ -95,22 +92,6 @@ absl::StatusOr<ParameterSet> ParameterSet::Resolve(
       break;
   }
   return InvalidFieldError("", "set either a parameter list or a range");
-}
-
-absl::Status PrefixFieldPathExcept(
-    const absl::Status& status, absl::string_view prefix,
-    std::initializer_list<absl::string_view> top_fields) {
-  const std::optional<std::string> path = FieldPathOf(status);
-  if (!path.has_value()) return status;
-  const absl::string_view field = *path;
-  for (absl::string_view top : top_fields) {
-    if (field == top ||
-        (absl::StartsWith(field, top) &&
-         (field[top.size()] == '[' || field[top.size()] == '.'))) {
-      return status;
-    }
-  }
-  return PrefixFieldPath(status, prefix);
 }
 
 absl::Span<const double> ParameterSet::Values(size_t begin, size_t end,

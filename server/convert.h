@@ -9,7 +9,6 @@
 #define FREEFORM_SERVER_CONVERT_H_
 
 #include <cstddef>
-#include <initializer_list>
 #include <memory>
 #include <string_view>
 #include <vector>
@@ -42,14 +41,6 @@ BezierCurveView ViewOf(const v1::BezierCurve& curve);
 // without zero-filling or copying.
 absl::Span<double> UninitializedArray(
     google::protobuf::RepeatedField<double>& field, size_t size);
-
-// PrefixFieldPathExcept prefixes the field path of `status` with `prefix`
-// (PrefixFieldPath) unless the path is one of `top_fields` or inside one
-// ("knot", "points.coordinates[4]"): the core's errors about the request's
-// own fields stay at the top, those about the geometry go under its path.
-absl::Status PrefixFieldPathExcept(
-    const absl::Status& status, absl::string_view prefix,
-    std::initializer_list<absl::string_view> top_fields);
 
 // A resolved set of curve parameters: an explicit list (a view into the
 // request) or a uniform range generated on demand, chunk by chunk.

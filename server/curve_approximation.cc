@@ -9,6 +9,7 @@
 #include "approximation.h"
 #include "convert.h"
 #include "curve_service.h"
+#include "errors.h"
 #include "freeform/core/fitting.h"
 #include "freeform/core/knot_removal.h"
 #include "freeform/core/status.h"

@@ -10,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "approximation.h"
 #include "convert.h"
+#include "errors.h"
 #include "freeform/core/fitting.h"
 #include "freeform/core/knot_removal.h"
 #include "freeform/core/status.h"
