@@ -19,8 +19,8 @@
 #include "plan.h"
 #include "prepare.h"
 #include "prepare_options.h"
+#include "prepare_samples.h"
 #include "queries.h"
-#include "surface_samples.h"
 #include "surface_service.h"
 
 namespace freeform::server {

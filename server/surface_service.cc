@@ -18,7 +18,7 @@
 #include "freeform/core/triangular.h"
 #include "plan.h"
 #include "prepare.h"
-#include "surface_samples.h"
+#include "prepare_samples.h"
 
 namespace freeform::server {
 namespace {

@@ -2,8 +2,8 @@
 // against the surface's domain and the server's limits before any work, and
 // cut into pieces for chunked answers. Shared by the evaluation and the
 // query RPCs of SurfaceService. Thread-compatible.
-#ifndef FREEFORM_SERVER_SURFACE_SAMPLES_H_
-#define FREEFORM_SERVER_SURFACE_SAMPLES_H_
+#ifndef FREEFORM_SERVER_PREPARE_SAMPLES_H_
+#define FREEFORM_SERVER_PREPARE_SAMPLES_H_
 
 #include <cstddef>
 #include <cstdint>
@@ -80,4 +80,4 @@ absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
 
 }  // namespace freeform::server
 
-#endif  // FREEFORM_SERVER_SURFACE_SAMPLES_H_
+#endif  // FREEFORM_SERVER_PREPARE_SAMPLES_H_

@@ -1,4 +1,4 @@
-#include "surface_samples.h"
+#include "prepare_samples.h"
 
 #include <algorithm>
 
