@@ -1,16 +1,77 @@
 #include "prepare_samples.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 #include "absl/strings/str_cat.h"
-#include "convert.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "freeform/core/triangular.h"
 #include "plan.h"
+#include "prepare.h"
+#include "prepare_options.h"
 
 namespace freeform::server {
 namespace {
+
+absl::Status CheckCount(size_t count, size_t max_count,
+                        absl::string_view field) {
+  if (count == 0) {
+    return InvalidFieldError(field, "needs at least one parameter");
+  }
+  if (count > max_count) {
+    return ExhaustedFieldError(
+        field, absl::StrCat(count, " parameters exceed the server's limit of ",
+                            max_count, " (--max_parameters)"));
+  }
+  return absl::OkStatus();
+}
+
+absl::StatusOr<double> RangeEnd(bool has_value, double value, double fallback,
+                                double lo, double hi, absl::string_view field) {
+  if (!has_value) return fallback;
+  if (!std::isfinite(value)) {
+    return InvalidFieldError(field,
+                             absl::StrCat("must be finite, got ", value));
+  }
+  if (value < lo || value > hi) {
+    return InvalidFieldError(
+        field,
+        absl::StrCat(value, " is outside the domain [", lo, ", ", hi, "]"));
+  }
+  return value;
+}
+
+absl::Status CheckDerivativeOrder(uint32_t order, const ServiceLimits& limits) {
+  if (order > static_cast<uint32_t>(limits.max_derivative_order)) {
+    return InvalidFieldError(
+        "derivative_order",
+        absl::StrCat("must be at most ", limits.max_derivative_order, ", got ",
+                     order));
+  }
+  return absl::OkStatus();
+}
+
+// Resolves the parameters against the domain and checks the output limit.
+template <typename Geometry>
+absl::StatusOr<Evaluation<Geometry>> Resolve(absl::StatusOr<Geometry> geometry,
+                                             int dimension,
+                                             const v1::Parameters& parameters,
+                                             uint32_t derivative_order,
+                                             const ServiceLimits& limits) {
+  if (!geometry.ok()) return geometry.status();
+  const ParameterDomain domain = DomainOf(*geometry);
+  absl::StatusOr<ParameterSet> resolved = ParameterSet::Resolve(
+      parameters, domain.start, domain.end, limits.max_parameters);
+  if (!resolved.ok()) return PrefixFieldPath(resolved.status(), "parameters");
+  Evaluation<Geometry> evaluation{.geometry = *std::move(geometry),
+                                  .parameters = *std::move(resolved),
+                                  .orders = derivative_order + size_t{1},
+                                  .dimension = dimension};
+  RETURN_IF_ERROR(CheckOutputLimit(evaluation.Values(), limits));
+  return evaluation;
+}
 
 absl::StatusOr<ParameterSet> ResolveAxis(const v1::Parameters& axis,
                                          double start, double end,
@@ -43,6 +104,98 @@ absl::Status CheckSampleCount(uint64_t count, uint64_t values_per_point,
 }
 
 }  // namespace
+
+absl::StatusOr<ParameterSet> ParameterSet::Resolve(
+    const v1::Parameters& parameters, double lo, double hi, size_t max_count) {
+  ParameterSet set;
+  switch (parameters.kind_case()) {
+    case v1::Parameters::kList: {
+      const auto& values = parameters.list().values();
+      RETURN_IF_ERROR(CheckCount(static_cast<size_t>(values.size()), max_count,
+                                 "list.values"));
+      set.list_ = absl::MakeConstSpan(values.data(), values.size());
+      RETURN_IF_ERROR(ValidateInRange(set.list_, lo, hi, "list.values"));
+      set.count_ = set.list_.size();
+      return set;
+    }
+    case v1::Parameters::kRange: {
+      const v1::UniformRange& range = parameters.range();
+      RETURN_IF_ERROR(CheckCount(range.count(), max_count, "range.count"));
+      absl::StatusOr<double> start =
+          RangeEnd(range.has_start(), range.start(), lo, lo, hi, "range.start");
+      if (!start.ok()) return start.status();
+      absl::StatusOr<double> end =
+          RangeEnd(range.has_end(), range.end(), hi, lo, hi, "range.end");
+      if (!end.ok()) return end.status();
+      set.is_range_ = true;
+      set.start_ = *start;
+      set.end_ = *end;
+      set.count_ = range.count();
+      return set;
+    }
+    case v1::Parameters::KIND_NOT_SET:
+      break;
+  }
+  return InvalidFieldError("", "set either a parameter list or a range");
+}
+
+absl::Span<const double> ParameterSet::Values(size_t begin, size_t end,
+                                              ParameterStorage& storage) const {
+  if (!is_range_) return list_.subspan(begin, end - begin);
+  const size_t count = end - begin;
+  if (storage.capacity < count) {
+    storage.values.reset(new double[count]);
+    storage.capacity = count;
+  }
+  double* values = storage.values.get();
+  // numpy.linspace's values: start + k step, the last one exactly `end`
+  // (kept inside the range against rounding).
+  const double step =
+      count_ > 1 ? (end_ - start_) / static_cast<double>(count_ - 1) : 0.0;
+  const double lo = std::min(start_, end_);
+  const double hi = std::max(start_, end_);
+  // The index counts in a double (exact below 2^53, far above any count
+  // allowed): converting a size_t per value costs more than the rest.
+  double index = static_cast<double>(begin);
+  for (size_t k = 0; k < count; ++k, index += 1.0) {
+    values[k] = std::min(std::max(start_ + index * step, lo), hi);
+  }
+  if (count_ > 1 && end == count_) values[count - 1] = end_;
+  return absl::MakeConstSpan(values, count);
+}
+
+absl::StatusOr<std::vector<double>> ResolveParameters(
+    const v1::Parameters& parameters, const Curve& curve,
+    const ServiceLimits& limits) {
+  const ParameterDomain domain = DomainOf(curve);
+  absl::StatusOr<ParameterSet> set = ParameterSet::Resolve(
+      parameters, domain.start, domain.end, limits.max_parameters);
+  if (!set.ok()) return PrefixFieldPath(set.status(), "parameters");
+  ParameterStorage storage;
+  const absl::Span<const double> values = set->Values(0, set->size(), storage);
+  return std::vector<double>(values.begin(), values.end());
+}
+
+absl::StatusOr<Evaluation<Curve>> PrepareCurveEvaluation(
+    const v1::EvaluateCurveRequest& request, const ServiceLimits& limits) {
+  RETURN_IF_ERROR(CheckDerivativeOrder(request.derivative_order(), limits));
+  RETURN_IF_ERROR(CheckEnum(request.bezier_algorithm(),
+                            v1::BezierAlgorithm_IsValid, "bezier_algorithm"));
+  absl::StatusOr<Curve> curve = PrepareCurveToEvaluate(
+      request.curve(), limits, "curve", request.bezier_algorithm());
+  const int dimension = curve.ok() ? DimensionOf(*curve) : 0;
+  return Resolve(std::move(curve), dimension, request.parameters(),
+                 request.derivative_order(), limits);
+}
+
+absl::StatusOr<Evaluation<CurveBasis>> PrepareBasisEvaluation(
+    const v1::EvaluateBasisRequest& request, const ServiceLimits& limits) {
+  RETURN_IF_ERROR(CheckDerivativeOrder(request.derivative_order(), limits));
+  absl::StatusOr<CurveBasis> basis = PrepareBasis(request.basis(), limits);
+  const int functions = basis.ok() ? FunctionCountOf(*basis) : 0;
+  return Resolve(std::move(basis), functions, request.parameters(),
+                 request.derivative_order(), limits);
+}
 
 // ResolvePairs returns the (u, v) pairs of `points` once they are pairs
 // (an even, non-zero number of values) within the limits.
@@ -138,6 +291,28 @@ absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
       break;
   }
   return InvalidFieldError("parameters", "set either points or a grid");
+}
+
+absl::StatusOr<SurfacePlan> PrepareSurfaceEvaluation(
+    const v1::EvaluateSurfaceRequest& request, const ServiceLimits& limits) {
+  RETURN_IF_ERROR(CheckDerivativeOrder(request.derivative_order(), limits));
+  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
+  if (!surface.ok()) return surface.status();
+  SurfacePlan plan;
+  plan.dimension = DimensionOf(*surface);
+  plan.domain = DomainOf(*surface);
+  plan.triangular = IsTriangular(*surface);
+  plan.surface = *std::move(surface);
+  if (request.normals() && plan.dimension != 3) {
+    return InvalidFieldError(
+        "normals", absl::StrCat("normals need a 3D surface, this one is ",
+                                plan.dimension, "D"));
+  }
+  plan.order = static_cast<int>(request.derivative_order());
+  plan.normals = request.normals();
+  RETURN_IF_ERROR(ResolveSamples(request.parameters(), limits,
+                                 plan.ValuesPerPoint(), plan));
+  return plan;
 }
 
 }  // namespace freeform::server
