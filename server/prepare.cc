@@ -13,7 +13,6 @@
 #include "freeform/core/overloaded.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
-#include "prepare_options.h"
 
 namespace freeform::server {
 namespace {
@@ -253,10 +252,10 @@ absl::StatusOr<ControlNetView> PrepareNet(const v1::ControlNet& message,
 absl::StatusOr<Curve> PrepareCurveToEvaluate(const v1::Curve& message,
                                              const ServiceLimits& limits,
                                              absl::string_view field,
-                                             v1::BezierAlgorithm algorithm) {
+                                             BezierAlgorithm algorithm) {
   switch (message.kind_case()) {
     case v1::Curve::kBezier:
-      return Prefixed(BezierOf(message.bezier(), ToCore(algorithm), limits),
+      return Prefixed(BezierOf(message.bezier(), algorithm, limits),
                       Join(field, "bezier"));
     case v1::Curve::kBspline:
       return Prefixed(BSplineOf(message.bspline(), limits),
@@ -268,7 +267,7 @@ absl::StatusOr<Curve> PrepareCurveToEvaluate(const v1::Curve& message,
       return Prefixed(HermiteOf(message.hermite(), limits),
                       Join(field, "hermite"));
     case v1::Curve::kPower:
-      return Prefixed(PowerOf(message.power(), ToCore(algorithm), limits),
+      return Prefixed(PowerOf(message.power(), algorithm, limits),
                       Join(field, "power"));
     case v1::Curve::KIND_NOT_SET:
       break;
@@ -281,7 +280,7 @@ absl::StatusOr<Curve> PrepareCurve(const v1::Curve& message,
                                    const ServiceLimits& limits,
                                    absl::string_view field) {
   absl::StatusOr<Curve> curve =
-      PrepareCurveToEvaluate(message, limits, field, v1::BEZIER_ALGORITHM_AUTO);
+      PrepareCurveToEvaluate(message, limits, field, BezierAlgorithm::kAuto);
   if (!curve.ok()) return curve.status();
   // Only a Lagrange curve's Bezier form can fail to exist in double
   // precision; a new kind must say whether its own can.

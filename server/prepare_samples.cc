@@ -182,7 +182,7 @@ absl::StatusOr<Evaluation<Curve>> PrepareCurveEvaluation(
   RETURN_IF_ERROR(CheckEnum(request.bezier_algorithm(),
                             v1::BezierAlgorithm_IsValid, "bezier_algorithm"));
   absl::StatusOr<Curve> curve = PrepareCurveToEvaluate(
-      request.curve(), limits, "curve", request.bezier_algorithm());
+      request.curve(), limits, "curve", ToCore(request.bezier_algorithm()));
   const int dimension = curve.ok() ? DimensionOf(*curve) : 0;
   return Resolve(std::move(curve), dimension, request.parameters(),
                  request.derivative_order(), limits);
