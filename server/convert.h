@@ -1,27 +1,17 @@
-// Conversions from freeform.v1 messages to core views, and the parameter
-// sets of evaluation requests.
-//
-// Views point into the request message's own arrays: nothing is copied, so a
-// view must not outlive the request. Validation errors carry field paths
-// relative to the message converted (the caller adds the prefix).
-// Thread-compatible: no shared state.
+// Views of the arrays of freeform.v1 messages: request arrays as core
+// views (SpanOf, ViewOf) and response arrays for the core to fill in place
+// (UninitializedArray). Nothing is copied or validated here: the prepare
+// step (prepare.h, prepare_options.h, prepare_samples.h) checks the request,
+// and a view must not outlive its message. Thread-compatible: no shared
+// state.
 #ifndef FREEFORM_SERVER_CONVERT_H_
 #define FREEFORM_SERVER_CONVERT_H_
 
 #include <cstddef>
-#include <initializer_list>
-#include <memory>
-#include <string_view>
-#include <vector>
 
-#include "absl/status/status.h"
-#include "absl/status/statusor.h"
-#include "absl/strings/string_view.h"
 #include "absl/types/span.h"
 #include "freeform/core/bezier.h"
-#include "freeform/core/interpolation.h"
 #include "freeform/core/points.h"
-#include "freeform/v1/curve_service.pb.h"
 #include "freeform/v1/geometry.pb.h"
 
 namespace freeform::server {
@@ -43,58 +33,6 @@ BezierCurveView ViewOf(const v1::BezierCurve& curve);
 // without zero-filling or copying.
 absl::Span<double> UninitializedArray(
     google::protobuf::RepeatedField<double>& field, size_t size);
-
-// A resolved set of curve parameters: an explicit list (a view into the
-// request) or a uniform range generated on demand, chunk by chunk.
-// ToCore maps the interpolation enums of the curve and surface Interpolate
-// RPCs (checked with CheckEnum first): unspecified is chord length and
-// averaging.
-Parameterization ToCore(v1::Parameterization parameterization);
-KnotRule ToCore(v1::KnotRule rule);
-
-// CheckEnum returns INVALID_ARGUMENT naming `field` when `value` is none of
-// its enum's values (`is_valid` is the generated <Enum>_IsValid): proto3
-// keeps unknown numbers, which must not run as some other value.
-absl::Status CheckEnum(int value, bool (*is_valid)(int),
-                       absl::string_view field);
-
-// PrefixFieldPathExcept prefixes the field path of `status` with `prefix`
-// (PrefixFieldPath) unless the path is one of `top_fields` or inside one
-// ("knot", "points.coordinates[4]"): the core's errors about the request's
-// own fields stay at the top, those about the geometry go under its path.
-absl::Status PrefixFieldPathExcept(
-    const absl::Status& status, absl::string_view prefix,
-    std::initializer_list<absl::string_view> top_fields);
-
-// Room for generated parameters, reused from chunk to chunk.
-struct ParameterStorage {
-  std::unique_ptr<double[]> values;
-  size_t capacity = 0;
-};
-
-class ParameterSet {
- public:
-  // Resolve checks `parameters` against the domain [lo, hi] and the count
-  // limit. Field paths are relative to the Parameters message
-  // ("list.values[3]", "range.count"); an empty message is an error naming "".
-  static absl::StatusOr<ParameterSet> Resolve(const v1::Parameters& parameters,
-                                              double lo, double hi,
-                                              size_t max_count);
-
-  size_t size() const { return count_; }
-
-  // Values returns parameters [begin, end): a view of the list, or range
-  // values generated into `storage` (grown as needed, never zero-filled).
-  absl::Span<const double> Values(size_t begin, size_t end,
-                                  ParameterStorage& storage) const;
-
- private:
-  absl::Span<const double> list_;
-  bool is_range_ = false;
-  double start_ = 0;
-  double end_ = 0;
-  size_t count_ = 0;
-};
 
 }  // namespace freeform::server
 

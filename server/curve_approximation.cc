@@ -9,6 +9,7 @@
 #include "approximation.h"
 #include "convert.h"
 #include "curve_service.h"
+#include "errors.h"
 #include "freeform/core/fitting.h"
 #include "freeform/core/knot_removal.h"
 #include "freeform/core/status.h"
@@ -16,6 +17,7 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "visit.h"
 
 namespace freeform::server {

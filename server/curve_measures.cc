@@ -19,6 +19,8 @@
 #include "freeform/core/status_macros.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
+#include "prepare_samples.h"
 #include "queries.h"
 
 namespace freeform::server {
@@ -67,19 +69,6 @@ std::pair<double, double> EndsOf(const v1::ParameterInterval& interval,
                                  const ParameterDomain& domain) {
   return {interval.has_start() ? interval.start() : domain.start,
           interval.has_end() ? interval.end() : domain.end};
-}
-
-// The parameters of an evaluation-like request, resolved and copied once.
-absl::StatusOr<std::vector<double>> ResolveParameters(
-    const v1::Parameters& parameters, const Curve& curve,
-    const ServiceLimits& limits) {
-  const ParameterDomain domain = DomainOf(curve);
-  absl::StatusOr<ParameterSet> set = ParameterSet::Resolve(
-      parameters, domain.start, domain.end, limits.max_parameters);
-  if (!set.ok()) return PrefixFieldPath(set.status(), "parameters");
-  ParameterStorage storage;
-  const absl::Span<const double> values = set->Values(0, set->size(), storage);
-  return std::vector<double>(values.begin(), values.end());
 }
 
 // ParameterError renames the core's "parameters[i]" (a parameter where the

@@ -12,6 +12,7 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "visit.h"
 
 namespace freeform::server {
@@ -142,27 +143,6 @@ absl::StatusOr<UnaryWork> PlanReduce(
                  Refuse<BSplineCurve, LagrangeCurve, HermiteCurve>{
                      "curve", kReductionTakes}},
       *curve);
-}
-
-// The interpolation enums' mappings (convert.h) beside this one.
-using ::freeform::server::ToCore;
-
-SplineEnd ToCore(v1::SplineEndCondition end) {
-  switch (end) {
-    case v1::SPLINE_END_CONDITION_NATURAL:
-      return SplineEnd::kNatural;
-    case v1::SPLINE_END_CONDITION_CLAMPED:
-      return SplineEnd::kClamped;
-    case v1::SPLINE_END_CONDITION_PERIODIC:
-      return SplineEnd::kPeriodic;
-    case v1::SPLINE_END_CONDITION_UNSPECIFIED:
-    case v1::SPLINE_END_CONDITION_NOT_A_KNOT:
-    case v1::SplineEndCondition_INT_MIN_SENTINEL_DO_NOT_USE_:
-    case v1::SplineEndCondition_INT_MAX_SENTINEL_DO_NOT_USE_:
-      break;
-  }
-  // Not-a-knot, the default; an unknown value was refused before.
-  return SplineEnd::kNotAKnot;
 }
 
 // Writes an interpolation's result into the response.

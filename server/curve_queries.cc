@@ -13,6 +13,7 @@
 #include "freeform/core/status.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "queries.h"
 
 namespace freeform::server {

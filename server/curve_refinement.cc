@@ -3,7 +3,6 @@
 // curve, so every curve kind is handled (or refused by name) explicitly.
 #include <algorithm>
 #include <cmath>
-#include <optional>
 
 #include "absl/strings/str_cat.h"
 #include "convert.h"
@@ -15,6 +14,7 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "visit.h"
 
 namespace freeform::server {
@@ -161,24 +161,8 @@ absl::StatusOr<UnaryWork> PlanSubdivide(const v1::SubdivideRequest& request,
   absl::StatusOr<PointsView> polygon =
       PreparePoints(request.polygon(), limits, "polygon");
   if (!polygon.ok()) return polygon.status();
-  std::optional<SubdivisionScheme> scheme;
-  switch (request.scheme()) {
-    case v1::SUBDIVISION_SCHEME_CHAIKIN:
-      scheme = SubdivisionScheme::kChaikin;
-      break;
-    case v1::SUBDIVISION_SCHEME_UNIFORM_BSPLINE:
-      scheme = SubdivisionScheme::kUniformBSpline;
-      break;
-    case v1::SUBDIVISION_SCHEME_UNSPECIFIED:
-    case v1::SubdivisionScheme_INT_MIN_SENTINEL_DO_NOT_USE_:
-    case v1::SubdivisionScheme_INT_MAX_SENTINEL_DO_NOT_USE_:
-      break;
-  }
-  if (!scheme.has_value()) {  // unspecified, or a value unknown to v1
-    return InvalidFieldError(
-        "scheme", absl::StrCat("choose CHAIKIN or UNIFORM_BSPLINE, got ",
-                               request.scheme()));
-  }
+  absl::StatusOr<SubdivisionScheme> scheme = ToCore(request.scheme());
+  if (!scheme.ok()) return scheme.status();
   if (request.levels() < 1) {
     return InvalidFieldError("levels", "must be at least 1");
   }

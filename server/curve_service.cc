@@ -1,4 +1,6 @@
 // CurveService evaluation RPCs: Evaluate, EvaluateStream and EvaluateBasis.
+// Each prepares its request into one Evaluation (prepare_samples.h), plans
+// the answer, and runs the core into the response.
 #include "curve_service.h"
 
 #include <algorithm>
@@ -7,81 +9,15 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "absl/strings/str_cat.h"
 #include "convert.h"
-#include "freeform/core/status.h"
+#include "freeform/core/basis.h"
+#include "freeform/core/curve.h"
 #include "freeform/core/status_macros.h"
 #include "plan.h"
-#include "prepare.h"
+#include "prepare_samples.h"
 
 namespace freeform::server {
 namespace {
-
-// What an evaluation resolves to before any math runs: a curve or a basis,
-// the parameters, and the orders wanted.
-template <typename Geometry>
-struct Evaluation {
-  Geometry geometry;
-  ParameterSet parameters;
-  size_t orders = 1;  // derivative orders 0..orders-1
-  int dimension = 0;  // values per point and order
-
-  uint64_t ValuesPerParameter() const {
-    return orders * static_cast<uint64_t>(dimension);
-  }
-  uint64_t Values() const { return parameters.size() * ValuesPerParameter(); }
-
-  absl::Status Run(absl::Span<const double> values, CurveOutput output,
-                   const ExecutionContext& execution) const {
-    if constexpr (std::is_same_v<Geometry, Curve>) {
-      return EvaluateCurve(geometry, values, output, execution);
-    } else {
-      return EvaluateBasis(geometry, values, output, execution);
-    }
-  }
-};
-
-absl::Status CheckDerivativeOrder(uint32_t order, const ServiceLimits& limits) {
-  if (order > static_cast<uint32_t>(limits.max_derivative_order)) {
-    return InvalidFieldError(
-        "derivative_order",
-        absl::StrCat("must be at most ", limits.max_derivative_order, ", got ",
-                     order));
-  }
-  return absl::OkStatus();
-}
-
-// Resolves the parameters against the domain and checks the output limit.
-template <typename Geometry>
-absl::StatusOr<Evaluation<Geometry>> Resolve(absl::StatusOr<Geometry> geometry,
-                                             int dimension,
-                                             const v1::Parameters& parameters,
-                                             uint32_t derivative_order,
-                                             const ServiceLimits& limits) {
-  if (!geometry.ok()) return geometry.status();
-  const ParameterDomain domain = DomainOf(*geometry);
-  absl::StatusOr<ParameterSet> resolved = ParameterSet::Resolve(
-      parameters, domain.start, domain.end, limits.max_parameters);
-  if (!resolved.ok()) return PrefixFieldPath(resolved.status(), "parameters");
-  Evaluation<Geometry> evaluation{.geometry = *std::move(geometry),
-                                  .parameters = *std::move(resolved),
-                                  .orders = derivative_order + size_t{1},
-                                  .dimension = dimension};
-  RETURN_IF_ERROR(CheckOutputLimit(evaluation.Values(), limits));
-  return evaluation;
-}
-
-absl::StatusOr<Evaluation<Curve>> CurveEvaluation(
-    const v1::EvaluateCurveRequest& request, const ServiceLimits& limits) {
-  RETURN_IF_ERROR(CheckDerivativeOrder(request.derivative_order(), limits));
-  RETURN_IF_ERROR(CheckEnum(request.bezier_algorithm(),
-                            v1::BezierAlgorithm_IsValid, "bezier_algorithm"));
-  absl::StatusOr<Curve> curve = PrepareCurveToEvaluate(
-      request.curve(), limits, "curve", request.bezier_algorithm());
-  const int dimension = curve.ok() ? DimensionOf(*curve) : 0;
-  return Resolve(std::move(curve), dimension, request.parameters(),
-                 request.derivative_order(), limits);
-}
 
 // Adds `orders` arrays of `size` values to a response and returns spans
 // over their (uninitialized) storage; `add` makes one array.
@@ -119,8 +55,9 @@ absl::Status EvaluateChunk(const Evaluation<Curve>& evaluation, size_t first,
   ParameterStorage call_storage;
   ParameterStorage& storage =
       last - first <= kReusedParameters ? chunk_storage : call_storage;
-  return evaluation.Run(evaluation.parameters.Values(first, last, storage),
-                        output, execution);
+  return EvaluateCurve(evaluation.geometry,
+                       evaluation.parameters.Values(first, last, storage),
+                       output, execution);
 }
 
 // Parameters per streamed chunk: the request's, or the default, within half
@@ -145,7 +82,7 @@ grpc::ServerUnaryReactor* CurveServiceImpl::Evaluate(
       [this, request, response]() -> absl::StatusOr<UnaryWork> {
         const ServiceLimits& limits = frame_->limits();
         absl::StatusOr<Evaluation<Curve>> evaluation =
-            CurveEvaluation(*request, limits);
+            PrepareCurveEvaluation(*request, limits);
         if (!evaluation.ok()) return evaluation.status();
         if (absl::Status status = CheckMessageLimit(
                 evaluation->Values(), limits, "; use EvaluateStream");
@@ -172,7 +109,7 @@ CurveServiceImpl::EvaluateStream(grpc::CallbackServerContext* context,
       [this, request]() -> absl::StatusOr<Work> {
         const ServiceLimits& limits = frame_->limits();
         absl::StatusOr<Evaluation<Curve>> evaluation =
-            CurveEvaluation(*request, limits);
+            PrepareCurveEvaluation(*request, limits);
         if (!evaluation.ok()) return evaluation.status();
         const size_t count = evaluation->parameters.size();
         const size_t chunk = StreamChunk(
@@ -200,14 +137,8 @@ grpc::ServerUnaryReactor* CurveServiceImpl::EvaluateBasis(
       "CurveService.EvaluateBasis", context, request, response,
       [this, request, response]() -> absl::StatusOr<UnaryWork> {
         const ServiceLimits& limits = frame_->limits();
-        RETURN_IF_ERROR(
-            CheckDerivativeOrder(request->derivative_order(), limits));
-        absl::StatusOr<CurveBasis> basis =
-            PrepareBasis(request->basis(), limits);
-        const int functions = basis.ok() ? FunctionCountOf(*basis) : 0;
         absl::StatusOr<Evaluation<CurveBasis>> evaluation =
-            Resolve(std::move(basis), functions, request->parameters(),
-                    request->derivative_order(), limits);
+            PrepareBasisEvaluation(*request, limits);
         if (!evaluation.ok()) return evaluation.status();
         RETURN_IF_ERROR(CheckMessageLimit(evaluation->Values(), limits));
         return UnaryWork{
@@ -223,7 +154,9 @@ grpc::ServerUnaryReactor* CurveServiceImpl::EvaluateBasis(
                     return response->add_derivatives()->mutable_values();
                   });
               ParameterStorage storage;
-              return evaluation.Run(
+              // The core's EvaluateBasis (basis.h), not this RPC's.
+              return ::freeform::EvaluateBasis(
+                  evaluation.geometry,
                   evaluation.parameters.Values(0, count, storage), output,
                   execution);
             }};

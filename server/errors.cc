@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "freeform/core/status.h"
 #include "google/rpc/error_details.pb.h"
@@ -29,6 +30,22 @@ grpc::Status ToGrpcStatus(const absl::Status& status,
   details.set_message(message);
   details.add_details()->PackFrom(bad_request);
   return grpc::Status(code, message, details.SerializeAsString());
+}
+
+absl::Status PrefixFieldPathExcept(
+    const absl::Status& status, absl::string_view prefix,
+    std::initializer_list<absl::string_view> top_fields) {
+  const std::optional<std::string> path = FieldPathOf(status);
+  if (!path.has_value()) return status;
+  const absl::string_view field = *path;
+  for (absl::string_view top : top_fields) {
+    if (field == top ||
+        (absl::StartsWith(field, top) &&
+         (field[top.size()] == '[' || field[top.size()] == '.'))) {
+      return status;
+    }
+  }
+  return PrefixFieldPath(status, prefix);
 }
 
 }  // namespace freeform::server

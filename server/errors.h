@@ -1,4 +1,5 @@
-// Translation of core errors into gRPC statuses with google.rpc details.
+// Translation of core errors into gRPC statuses with google.rpc details,
+// and the mapping of a core error's field path into the request's.
 //
 // An INVALID_ARGUMENT that carries a field path (see core/status.h) becomes a
 // grpc::Status whose binary details hold a google.rpc.Status with one
@@ -10,6 +11,8 @@
 
 #include <grpcpp/support/status.h>
 
+#include <initializer_list>
+
 #include "absl/status/status.h"
 #include "absl/strings/string_view.h"
 
@@ -19,6 +22,14 @@ namespace freeform::server {
 // `field_prefix` (for example "curve.bezier").
 grpc::Status ToGrpcStatus(const absl::Status& status,
                           absl::string_view field_prefix = "");
+
+// PrefixFieldPathExcept prefixes the field path of `status` with `prefix`
+// (PrefixFieldPath) unless the path is one of `top_fields` or inside one
+// ("knot", "points.coordinates[4]"): the core's errors about the request's
+// own fields stay at the top, those about the geometry go under its path.
+absl::Status PrefixFieldPathExcept(
+    const absl::Status& status, absl::string_view prefix,
+    std::initializer_list<absl::string_view> top_fields);
 
 }  // namespace freeform::server
 

@@ -52,23 +52,6 @@ absl::StatusOr<PointsView> LimitedPoints(const v1::Points& message,
   return points;
 }
 
-BezierAlgorithm ToCore(v1::BezierAlgorithm algorithm) {
-  switch (algorithm) {
-    case v1::BEZIER_ALGORITHM_DE_CASTELJAU:
-      return BezierAlgorithm::kDeCasteljau;
-    case v1::BEZIER_ALGORITHM_HORNER:
-      return BezierAlgorithm::kHorner;
-    case v1::BEZIER_ALGORITHM_LADDER:
-      return BezierAlgorithm::kLadder;
-    case v1::BEZIER_ALGORITHM_AUTO:
-    case v1::BezierAlgorithm_INT_MIN_SENTINEL_DO_NOT_USE_:
-    case v1::BezierAlgorithm_INT_MAX_SENTINEL_DO_NOT_USE_:
-      break;
-  }
-  // AUTO; an unknown value was refused by CheckEnum before.
-  return BezierAlgorithm::kAuto;
-}
-
 absl::StatusOr<Curve> BezierOf(const v1::BezierCurve& message,
                                BezierAlgorithm algorithm,
                                const ServiceLimits& limits) {
@@ -269,10 +252,10 @@ absl::StatusOr<ControlNetView> PrepareNet(const v1::ControlNet& message,
 absl::StatusOr<Curve> PrepareCurveToEvaluate(const v1::Curve& message,
                                              const ServiceLimits& limits,
                                              absl::string_view field,
-                                             v1::BezierAlgorithm algorithm) {
+                                             BezierAlgorithm algorithm) {
   switch (message.kind_case()) {
     case v1::Curve::kBezier:
-      return Prefixed(BezierOf(message.bezier(), ToCore(algorithm), limits),
+      return Prefixed(BezierOf(message.bezier(), algorithm, limits),
                       Join(field, "bezier"));
     case v1::Curve::kBspline:
       return Prefixed(BSplineOf(message.bspline(), limits),
@@ -284,7 +267,7 @@ absl::StatusOr<Curve> PrepareCurveToEvaluate(const v1::Curve& message,
       return Prefixed(HermiteOf(message.hermite(), limits),
                       Join(field, "hermite"));
     case v1::Curve::kPower:
-      return Prefixed(PowerOf(message.power(), ToCore(algorithm), limits),
+      return Prefixed(PowerOf(message.power(), algorithm, limits),
                       Join(field, "power"));
     case v1::Curve::KIND_NOT_SET:
       break;
@@ -297,7 +280,7 @@ absl::StatusOr<Curve> PrepareCurve(const v1::Curve& message,
                                    const ServiceLimits& limits,
                                    absl::string_view field) {
   absl::StatusOr<Curve> curve =
-      PrepareCurveToEvaluate(message, limits, field, v1::BEZIER_ALGORITHM_AUTO);
+      PrepareCurveToEvaluate(message, limits, field, BezierAlgorithm::kAuto);
   if (!curve.ok()) return curve.status();
   // Only a Lagrange curve's Bezier form can fail to exist in double
   // precision; a new kind must say whether its own can.

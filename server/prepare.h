@@ -14,6 +14,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "freeform/core/basis.h"
+#include "freeform/core/bezier.h"
 #include "freeform/core/curve.h"
 #include "freeform/core/surface.h"
 #include "freeform/v1/curve_service.pb.h"
@@ -23,12 +24,12 @@
 namespace freeform::server {
 
 // PrepareCurveToEvaluate validates a curve of any kind for evaluation;
-// `algorithm` applies to Bezier and power forms. Power-form curves become
-// Bezier curves.
+// `algorithm` (the request's, ToCore in prepare_options.h) applies to
+// Bezier and power forms. Power-form curves become Bezier curves.
 absl::StatusOr<Curve> PrepareCurveToEvaluate(const v1::Curve& message,
                                              const ServiceLimits& limits,
                                              absl::string_view field,
-                                             v1::BezierAlgorithm algorithm);
+                                             BezierAlgorithm algorithm);
 
 // PrepareCurve validates a curve for every other RPC, which work on its
 // Bezier pieces: as PrepareCurveToEvaluate, and a Lagrange curve must have

@@ -1,7 +1,6 @@
 #include "queries.h"
 
 #include <algorithm>
-#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -12,6 +11,7 @@
 #include "freeform/core/status_macros.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 
 namespace freeform::server {
 namespace {
@@ -20,14 +20,6 @@ namespace {
 // share of limits.max_closest_point_pieces): a query that needs more
 // answers complete = false.
 constexpr uint64_t kMaxPiecesPerQuery = 4096;
-
-absl::StatusOr<double> Separation(bool has_value, double value,
-                                  absl::string_view field) {
-  if (!has_value) return kDefaultSeparation;
-  if (std::isfinite(value) && value >= 0.0) return value;
-  return InvalidFieldError(
-      field, absl::StrCat("must be non-negative and finite, got ", value));
-}
 
 // WriteClosestPoints copies the minima of every query, without the unused
 // slots of the core's layout.
@@ -93,58 +85,6 @@ absl::StatusOr<uint64_t> CheckWorkBytes(uint64_t bytes,
       field, absl::StrCat("its Bezier pieces would take ", bytes >> 20,
                           " MiB, over the server's memory budget of ",
                           limits.memory_budget_bytes >> 20, " MiB"));
-}
-
-absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
-                                 absl::string_view field) {
-  if (!has_value) return fallback;
-  if (std::isfinite(value) && value > 0.0) return value;
-  return InvalidFieldError(
-      field, absl::StrCat("must be positive and finite, got ", value));
-}
-
-absl::StatusOr<ClosestPointOptions> ToCore(
-    const v1::ClosestPointOptions& options) {
-  absl::StatusOr<double> tolerance =
-      Tolerance(options.has_tolerance(), options.tolerance(),
-                kDefaultQueryTolerance, "options.tolerance");
-  if (!tolerance.ok()) return tolerance.status();
-  absl::StatusOr<double> separation = Separation(
-      options.has_separation(), options.separation(), "options.separation");
-  if (!separation.ok()) return separation.status();
-  const uint32_t max_minima =
-      options.max_minima() == 0 ? kDefaultMaxMinima : options.max_minima();
-  if (max_minima > static_cast<uint32_t>(kMaxMinimaPerQuery)) {
-    return InvalidFieldError(
-        "options.max_minima",
-        absl::StrCat("must be at most ", kMaxMinimaPerQuery, ", got ",
-                     max_minima));
-  }
-  return ClosestPointOptions{.tolerance = *tolerance,
-                             .separation = *separation,
-                             .max_minima = static_cast<int>(max_minima)};
-}
-
-absl::StatusOr<IntersectionOptions> ToCore(
-    const v1::IntersectionOptions& options, uint64_t values_per_result,
-    const ServiceLimits& limits) {
-  absl::StatusOr<double> tolerance =
-      Tolerance(options.has_tolerance(), options.tolerance(),
-                kDefaultQueryTolerance, "options.tolerance");
-  if (!tolerance.ok()) return tolerance.status();
-  absl::StatusOr<double> separation = Separation(
-      options.has_separation(), options.separation(), "options.separation");
-  if (!separation.ok()) return separation.status();
-  const uint64_t max_results = options.max_results() == 0
-                                   ? kDefaultMaxResults
-                                   : uint64_t{options.max_results()};
-  RETURN_IF_ERROR(
-      UnaryAnswerCheck(SaturatingProduct(max_results, values_per_result),
-                       limits, "options.max_results"));
-  return IntersectionOptions{.tolerance = *tolerance,
-                             .separation = *separation,
-                             .max_results = static_cast<size_t>(max_results),
-                             .max_work = limits.max_query_work};
 }
 
 absl::Status IntersectionError(const absl::Status& status) {

@@ -1,7 +1,8 @@
-// What the query RPCs of both services share (query.proto): the options
-// with their defaults and checks, the plans of closest points and bounding
-// boxes for a curve or a surface, and the writers of their answers.
-// Thread-compatible.
+// What the query RPCs of both services share (query.proto): the working
+// memory of their Bezier pieces, the plans of closest points and bounding
+// boxes for a curve or a surface, the writers of their answers, and the
+// mapping of the core's errors to the request's fields. The options and
+// their defaults are prepare_options.h's. Thread-compatible.
 #ifndef FREEFORM_SERVER_QUERIES_H_
 #define FREEFORM_SERVER_QUERIES_H_
 
@@ -19,13 +20,6 @@
 #include "service_limits.h"
 
 namespace freeform::server {
-
-// Defaults of the optional tolerances (query.proto).
-inline constexpr double kDefaultQueryTolerance = 1e-9;
-inline constexpr double kDefaultSeparation = 1e-7;
-inline constexpr uint32_t kDefaultMaxMinima = 8;
-// The default cap of intersection results (points plus overlaps).
-inline constexpr uint64_t kDefaultMaxResults = 1 << 16;
 
 // PieceWorkBytes returns the working memory of a query that cuts geometry
 // into Bezier pieces of `piece_values` doubles (DecomposedCurveValues,
@@ -68,32 +62,6 @@ absl::StatusOr<uint64_t> PieceWorkBytes(uint64_t piece_values, uint64_t pieces,
 absl::StatusOr<uint64_t> CheckWorkBytes(uint64_t bytes,
                                         const ServiceLimits& limits,
                                         absl::string_view field);
-
-// Tolerance returns `value` when `has_value` (it must be positive and
-// finite, else INVALID_ARGUMENT naming `field`), otherwise `fallback`.
-absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
-                                 absl::string_view field);
-
-// RequestTolerance returns the optional `tolerance` field of a query
-// request (Tolerance, naming "tolerance"), or `fallback` when it is unset.
-template <typename Request>
-absl::StatusOr<double> RequestTolerance(
-    const Request& request, double fallback = kDefaultQueryTolerance) {
-  return Tolerance(request.has_tolerance(), request.tolerance(), fallback,
-                   "tolerance");
-}
-
-// ToCore checks closest-point options (fields under "options.") and fills
-// in their defaults; the pieces one query may examine come from the server.
-absl::StatusOr<ClosestPointOptions> ToCore(
-    const v1::ClosestPointOptions& options);
-
-// ToCore checks intersection options whose answer holds `values_per_result`
-// doubles per result: the cap of results is the request's (or the
-// default), within the output and message limits.
-absl::StatusOr<IntersectionOptions> ToCore(
-    const v1::IntersectionOptions& options, uint64_t values_per_result,
-    const ServiceLimits& limits);
 
 // IntersectionError maps the core's errors of an intersection to the
 // request's fields: "max_results", "tolerance" (below what double precision

@@ -10,6 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "approximation.h"
 #include "convert.h"
+#include "errors.h"
 #include "freeform/core/fitting.h"
 #include "freeform/core/knot_removal.h"
 #include "freeform/core/status.h"
@@ -17,6 +18,7 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "surface_service.h"
 #include "visit.h"
 
@@ -33,31 +35,6 @@ uint64_t BSplineSurfaceValues(uint64_t count_u, uint64_t count_v,
          count_u + count_v + degree_u + degree_v + 2;
 }
 
-// A removal request's direction: U or V for one knot; U, V or BOTH to
-// simplify.
-absl::StatusOr<KnotDirections> DirectionsOf(
-    const v1::RemoveSurfaceKnotsRequest& request) {
-  RETURN_IF_ERROR(CheckEnum(request.direction(), v1::SurfaceDirection_IsValid,
-                            "direction"));
-  switch (request.direction()) {
-    case v1::SURFACE_DIRECTION_U:
-      return KnotDirections::kU;
-    case v1::SURFACE_DIRECTION_V:
-      return KnotDirections::kV;
-    case v1::SURFACE_DIRECTION_BOTH:
-      if (!request.has_knot()) return KnotDirections::kBoth;
-      return InvalidFieldError("direction",
-                               "a knot is removed in U or V, not BOTH");
-    case v1::SURFACE_DIRECTION_UNSPECIFIED:
-    case v1::SurfaceDirection_INT_MIN_SENTINEL_DO_NOT_USE_:
-    case v1::SurfaceDirection_INT_MAX_SENTINEL_DO_NOT_USE_:
-      break;
-  }
-  return InvalidFieldError(
-      "direction", request.has_knot() ? "choose U or V"
-                                      : "choose U, V or BOTH (simplify both)");
-}
-
 absl::StatusOr<SurfaceKnotRemoval> Remove(
     const BSplineSurfaceView& view, KnotDirections directions, int times,
     const v1::RemoveSurfaceKnotsRequest& request,
@@ -72,7 +49,8 @@ absl::StatusOr<SurfaceKnotRemoval> Remove(
 absl::StatusOr<UnaryWork> PlanBSplineRemove(
     const BSplineSurface& bspline, const v1::RemoveSurfaceKnotsRequest& request,
     const ServiceLimits& limits, v1::RemoveSurfaceKnotsResponse& response) {
-  absl::StatusOr<KnotDirections> directions = DirectionsOf(request);
+  absl::StatusOr<KnotDirections> directions =
+      RemovalDirections(request.direction(), request.has_knot());
   if (!directions.ok()) return directions.status();
   absl::StatusOr<int> times = RemovalTimes(request.has_knot(), request.times());
   if (!times.ok()) return times.status();

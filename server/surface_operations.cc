@@ -1,7 +1,6 @@
 // SurfaceService RPCs that build new surfaces: degree elevation and
 // interpolation of a grid of points.
 #include "absl/strings/str_cat.h"
-#include "convert.h"
 #include "freeform/core/elevation.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/patches.h"
@@ -10,6 +9,7 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "surface_service.h"
 #include "visit.h"
 

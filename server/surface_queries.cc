@@ -18,17 +18,13 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
+#include "prepare_samples.h"
 #include "queries.h"
-#include "surface_samples.h"
 #include "surface_service.h"
 
 namespace freeform::server {
 namespace {
-
-// The default chordal tolerance of section polylines, and the default cap
-// of their vertices.
-constexpr double kDefaultSectionTolerance = 1e-6;
-constexpr uint64_t kDefaultSectionPoints = uint64_t{1} << 16;
 
 // SectionError maps the core's work limit to the request's tolerance (a
 // surface touching the plane, or crossing itself on it, along a stretch the

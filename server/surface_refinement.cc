@@ -13,21 +13,13 @@
 #include "geometry_out.h"
 #include "plan.h"
 #include "prepare.h"
+#include "prepare_options.h"
 #include "queries.h"
 #include "surface_service.h"
 #include "visit.h"
 
 namespace freeform::server {
 namespace {
-
-absl::Status CheckDirection(v1::SurfaceDirection direction) {
-  if (direction != v1::SURFACE_DIRECTION_U &&
-      direction != v1::SURFACE_DIRECTION_V) {
-    return InvalidFieldError("direction",
-                             absl::StrCat("choose U or V, got ", direction));
-  }
-  return absl::OkStatus();
-}
 
 absl::StatusOr<UnaryWork> PlanTriangularSplit(
     const TriangularPatch& patch, const v1::SplitSurfaceRequest& request,
@@ -57,23 +49,23 @@ absl::StatusOr<UnaryWork> PlanBezierSplit(
     return InvalidFieldError(
         "surface", "Split takes a tensor Bezier or a triangular patch");
   }
-  RETURN_IF_ERROR(CheckDirection(request.direction()));
+  absl::StatusOr<bool> in_u = DirectionIsU(request.direction());
+  if (!in_u.ok()) return in_u.status();
   const BezierSurfaceView view = bezier.view();
   const uint64_t values =
       2 * (view.control_net.coordinates.size() + view.weights.size());
-  return UnaryWork{
-      .plan = AnswerPlan(values, 8 * values, limits),
-      .run = [bezier, &request,
-              &response](const ExecutionContext&) -> absl::Status {
-        absl::StatusOr<std::vector<SurfaceData>> pieces = SplitBezierSurface(
-            bezier.view(), request.direction() == v1::SURFACE_DIRECTION_U,
-            request.parameter());
-        if (!pieces.ok()) return pieces.status();
-        for (const SurfaceData& piece : *pieces) {
-          ToProto(piece, *response.add_pieces());
-        }
-        return absl::OkStatus();
-      }};
+  return UnaryWork{.plan = AnswerPlan(values, 8 * values, limits),
+                   .run = [bezier, in_u = *in_u, &request,
+                           &response](const ExecutionContext&) -> absl::Status {
+                     absl::StatusOr<std::vector<SurfaceData>> pieces =
+                         SplitBezierSurface(bezier.view(), in_u,
+                                            request.parameter());
+                     if (!pieces.ok()) return pieces.status();
+                     for (const SurfaceData& piece : *pieces) {
+                       ToProto(piece, *response.add_pieces());
+                     }
+                     return absl::OkStatus();
+                   }};
 }
 
 absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitSurfaceRequest& request,
@@ -97,9 +89,10 @@ absl::StatusOr<UnaryWork> PlanSplit(const v1::SplitSurfaceRequest& request,
 absl::StatusOr<UnaryWork> PlanBSplineInsert(
     const BSplineSurface& bspline, const v1::InsertSurfaceKnotsRequest& request,
     const ServiceLimits& limits, v1::InsertSurfaceKnotsResponse& response) {
-  RETURN_IF_ERROR(CheckDirection(request.direction()));
+  absl::StatusOr<bool> direction = DirectionIsU(request.direction());
+  if (!direction.ok()) return direction.status();
   const BSplineSurfaceView view = bspline.view();
-  const bool in_u = request.direction() == v1::SURFACE_DIRECTION_U;
+  const bool in_u = *direction;
   const uint64_t knots = static_cast<uint64_t>(request.knots_size());
   const uint64_t points =
       SaturatingProduct(view.control_net.count_u + (in_u ? knots : 0),
@@ -168,18 +161,6 @@ struct MeshInput {
            std::max(memory.tessellation, memory.mesh + chunk_bytes);
   }
 };
-
-// GivenLimit returns an optional limit of a request, 0 (no limit) when it
-// is absent. Zero is the proto's default, which the core reads as no limit,
-// so a limit that is there must not be zero; the core checks the rest of
-// `rule`, naming the same field.
-absl::StatusOr<double> GivenLimit(bool present, double value,
-                                  absl::string_view field,
-                                  absl::string_view rule) {
-  if (!present) return 0.0;
-  if (value == 0.0) return InvalidFieldError(field, rule);
-  return value;
-}
 
 // The Bezier pieces of all surfaces (SurfacePieceValues), saturating.
 uint64_t PieceValues(const std::vector<Surface>& surfaces) {

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "absl/strings/str_cat.h"
 #include "convert.h"
 #include "freeform/core/basis.h"
 #include "freeform/core/status.h"
@@ -18,38 +17,10 @@
 #include "freeform/core/triangular.h"
 #include "plan.h"
 #include "prepare.h"
-#include "surface_samples.h"
+#include "prepare_samples.h"
 
 namespace freeform::server {
 namespace {
-
-absl::StatusOr<SurfacePlan> PlanSurfaceEvaluation(
-    const v1::EvaluateSurfaceRequest& request, const ServiceLimits& limits) {
-  if (request.derivative_order() >
-      static_cast<uint32_t>(limits.max_derivative_order)) {
-    return InvalidFieldError(
-        "derivative_order",
-        absl::StrCat("must be at most ", limits.max_derivative_order, ", got ",
-                     request.derivative_order()));
-  }
-  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
-  if (!surface.ok()) return surface.status();
-  SurfacePlan plan;
-  plan.dimension = DimensionOf(*surface);
-  plan.domain = DomainOf(*surface);
-  plan.triangular = IsTriangular(*surface);
-  plan.surface = *std::move(surface);
-  if (request.normals() && plan.dimension != 3) {
-    return InvalidFieldError(
-        "normals", absl::StrCat("normals need a 3D surface, this one is ",
-                                plan.dimension, "D"));
-  }
-  plan.order = static_cast<int>(request.derivative_order());
-  plan.normals = request.normals();
-  RETURN_IF_ERROR(ResolveSamples(request.parameters(), limits,
-                                 plan.ValuesPerPoint(), plan));
-  return plan;
-}
 
 // Memory of evaluating `points` points of the plan: the answer, and the
 // partials the normals need besides.
@@ -186,7 +157,7 @@ grpc::ServerUnaryReactor* SurfaceServiceImpl::Evaluate(
       [this, request, response]() -> absl::StatusOr<UnaryWork> {
         const ServiceLimits& limits = frame_->limits();
         absl::StatusOr<SurfacePlan> plan =
-            PlanSurfaceEvaluation(*request, limits);
+            PrepareSurfaceEvaluation(*request, limits);
         if (!plan.ok()) return plan.status();
         if (absl::Status status =
                 CheckMessageLimit(plan->size() * plan->ValuesPerPoint(), limits,
@@ -213,7 +184,7 @@ SurfaceServiceImpl::EvaluateStream(grpc::CallbackServerContext* context,
       [this, request]() -> absl::StatusOr<Work> {
         const ServiceLimits& limits = frame_->limits();
         absl::StatusOr<SurfacePlan> plan =
-            PlanSurfaceEvaluation(*request, limits);
+            PrepareSurfaceEvaluation(*request, limits);
         if (!plan.ok()) return plan.status();
         const size_t max_points =
             std::max<size_t>(1, static_cast<size_t>(limits.max_message_bytes) /

@@ -20,7 +20,7 @@
 #include "freeform/v1/query.pb.h"
 #include "freeform/v1/surface_service.pb.h"
 #include "oracle_geometry.h"
-#include "queries.h"
+#include "prepare_options.h"
 
 namespace freeform::fuzz {
 namespace {
