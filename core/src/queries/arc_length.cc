@@ -370,15 +370,22 @@ Bernstein SpeedSlope(const Net& net, double& noise) {
   double magnitude = 0.0;
   for (int x = 0; x < net.dimension; ++x) {
     const Bernstein a = coordinate(static_cast<size_t>(x));
-    Bernstein n = Product(Derivative(a), w);
+    const Bernstein da = Derivative(a);
+    Bernstein n = Product(da, w);
     if (net.rational) Add(n, -1.0, Product(a, dw));
     const Bernstein dn = Derivative(n);
     Bernstein term = Product(Product(n, dn), w);
     if (net.rational) Add(term, -2.0, Product(Product(n, n), dw));
     if (slope.empty()) slope.assign(term.size(), 0.0);
     Add(slope, 1.0, term);
-    magnitude +=
-        Largest(n) * (Largest(dn) * Largest(w) + 2 * Largest(n) * Largest(dw));
+    // N's rounding is that of its products, |A'| |w| + |A| |w'|, whatever
+    // N itself is (a curve that stands still has N = 0 but for rounding),
+    // and N' is off by its degree times as much.
+    const double n_size = std::max(
+        Largest(n), Largest(da) * Largest(w) + Largest(a) * Largest(dw));
+    const double dn_size =
+        std::max(Largest(dn), static_cast<double>(n.size()) * n_size);
+    magnitude += n_size * (dn_size * Largest(w) + 2 * n_size * Largest(dw));
   }
   noise = kRoundingAgreement * static_cast<double>(slope.size()) * magnitude;
   return slope;
@@ -389,12 +396,19 @@ Bernstein SpeedSlope(const Net& net, double& noise) {
 // slope times (2^-32)^2.
 constexpr int kMinimumDepth = 32;
 
+// Halvings of one net's slope at most: a polynomial of degree k has at most
+// k roots, each located in kMinimumDepth halvings, so this is reached only
+// when rounding beyond `noise` flips signs everywhere; the cuts found by
+// then are kept (a cut refines the integration, it is never needed for
+// correctness: the error estimate still decides).
+constexpr int kMaxMinimumHalvings = 1 << 12;
+
 // AppendMinima appends, in increasing order, the parameters in (lo, hi)
 // where `slope` (over [lo, hi]; coefficients within `noise` of 0 count as
 // 0) rises through 0: halving it by de Casteljau until a part has no sign
-// change or is 2^-kMinimumDepth wide.
+// change or is 2^-kMinimumDepth wide, while `halvings` lasts.
 void AppendMinima(Bernstein slope, double noise, double lo, double hi,
-                  int depth, std::vector<double>& minima) {
+                  int depth, int& halvings, std::vector<double>& minima) {
   auto sign = [noise](double c) { return c < -noise ? -1 : (c > noise); };
   int changes = 0;
   int last = 0;
@@ -404,7 +418,7 @@ void AppendMinima(Bernstein slope, double noise, double lo, double hi,
     changes += last != 0 && s != last ? 1 : 0;
     last = s;
   }
-  if (changes == 0) return;
+  if (changes == 0 || halvings <= 0) return;
   if (depth >= kMinimumDepth) {
     if (sign(slope.front()) < 0 && sign(slope.back()) > 0) {
       minima.push_back(0.5 * (lo + hi));
@@ -416,9 +430,12 @@ void AppendMinima(Bernstein slope, double noise, double lo, double hi,
            .values = std::move(slope)};
   Net low, high;
   internal::Halve(line, true, low, high);
+  --halvings;
   const double mid = 0.5 * (lo + hi);
-  AppendMinima(std::move(low.values), noise, lo, mid, depth + 1, minima);
-  AppendMinima(std::move(high.values), noise, mid, hi, depth + 1, minima);
+  AppendMinima(std::move(low.values), noise, lo, mid, depth + 1, halvings,
+               minima);
+  AppendMinima(std::move(high.values), noise, mid, hi, depth + 1, halvings,
+               minima);
 }
 
 // SpeedMinima returns 0, the parameters in (0, 1) where the speed of a
@@ -434,7 +451,8 @@ std::vector<double> SpeedMinima(const Net& net) {
   if (net.count_u >= 3) {
     double noise = 0.0;
     Bernstein slope = SpeedSlope(net, noise);
-    AppendMinima(std::move(slope), noise, 0.0, 1.0, 0, cuts);
+    int halvings = kMaxMinimumHalvings;
+    AppendMinima(std::move(slope), noise, 0.0, 1.0, 0, halvings, cuts);
   }
   cuts.push_back(1.0);
   return cuts;
