@@ -403,6 +403,30 @@ constexpr int kMinimumDepth = 32;
 // correctness: the error estimate still decides).
 constexpr int kMaxMinimumHalvings = 1 << 12;
 
+// BernsteinValue returns the polynomial at t in [0, 1] (de Casteljau).
+double BernsteinValue(const Bernstein& c, double t, Bernstein& scratch) {
+  scratch.assign(c.begin(), c.end());
+  for (size_t level = scratch.size() - 1; level > 0; --level) {
+    for (size_t i = 0; i < level; ++i) {
+      scratch[i] = (1.0 - t) * scratch[i] + t * scratch[i + 1];
+    }
+  }
+  return scratch[0];
+}
+
+// BisectRoot returns the root in (0, 1) of a polynomial negative at 0 and
+// positive at 1, to 2^-steps.
+double BisectRoot(const Bernstein& c, int steps) {
+  Bernstein scratch;
+  double a = 0.0;
+  double b = 1.0;
+  for (int k = 0; k < steps; ++k) {
+    const double mid = 0.5 * (a + b);
+    (BernsteinValue(c, mid, scratch) < 0.0 ? a : b) = mid;
+  }
+  return 0.5 * (a + b);
+}
+
 // AppendMinima appends, in increasing order, the parameters in (lo, hi)
 // where `slope` (over [lo, hi]; coefficients within `noise` of 0 count as
 // 0) rises through 0: halving it by de Casteljau until a part has no sign
@@ -411,14 +435,25 @@ void AppendMinima(Bernstein slope, double noise, double lo, double hi,
                   int depth, int& halvings, std::vector<double>& minima) {
   auto sign = [noise](double c) { return c < -noise ? -1 : (c > noise); };
   int changes = 0;
+  int first = 0;
   int last = 0;
   for (const double c : slope) {
     const int s = sign(c);
     if (s == 0) continue;
     changes += last != 0 && s != last ? 1 : 0;
+    if (first == 0) first = s;
     last = s;
   }
-  if (changes == 0 || halvings <= 0) return;
+  // One change from + to -: a maximum of the speed, no minimum.
+  if (changes == 0 || (changes == 1 && first > 0) || halvings <= 0) return;
+  if (changes == 1 && slope.front() < 0.0 && slope.back() > 0.0) {
+    // One sign change, from - at lo to + at hi: exactly one root, rising
+    // (the Bernstein form changes sign at least as often as the
+    // polynomial), found by bisection instead of halving the net.
+    const double root = BisectRoot(slope, kMinimumDepth - depth);
+    minima.push_back(lo + root * (hi - lo));
+    return;
+  }
   if (depth >= kMinimumDepth) {
     if (sign(slope.front()) < 0 && sign(slope.back()) > 0) {
       minima.push_back(0.5 * (lo + hi));
@@ -438,6 +473,62 @@ void AppendMinima(Bernstein slope, double noise, double lo, double hi,
                minima);
 }
 
+// A minimum of the speed is cut at only where the speed falls below this
+// ratio of the bound of its largest over the piece.
+constexpr double kSmoothSpeedRatio = 0.25;
+
+// PolynomialSpeed returns, for a polynomial curve net, the largest |d_i|
+// of its hodograph d_i = P_{i+1} - P_i (an upper bound of |C'| / n) and,
+// in `at`, |C'(s)| / n at each s of `at` (de Casteljau on the hodograph).
+double PolynomialSpeed(const Net& net, std::vector<double>& at) {
+  const size_t stride = static_cast<size_t>(net.stride());
+  const size_t d = static_cast<size_t>(net.dimension);
+  const size_t count = static_cast<size_t>(net.count_u) - 1;
+  std::vector<double> hodograph(count * d);
+  double largest = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    double length = 0.0;
+    for (size_t x = 0; x < d; ++x) {
+      const double h =
+          net.values[(i + 1) * stride + x] - net.values[i * stride + x];
+      hodograph[i * d + x] = h;
+      length += h * h;
+    }
+    largest = std::max(largest, std::sqrt(length));
+  }
+  std::vector<double> work(hodograph.size());
+  for (double& s : at) {
+    work = hodograph;
+    for (size_t level = count - 1; level > 0; --level) {
+      for (size_t i = 0; i < level * d; ++i) {
+        work[i] = (1.0 - s) * work[i] + s * work[i + d];
+      }
+    }
+    double length = 0.0;
+    for (size_t x = 0; x < d; ++x) length += work[x] * work[x];
+    s = std::sqrt(length);
+  }
+  return largest;
+}
+
+// KeepSharpMinima keeps the cuts (strictly inside `cuts`, between its 0
+// and 1) where the speed of a polynomial net falls below kSmoothSpeedRatio
+// of the bound of its largest: elsewhere |C'|^2 stays within 1/16 of its
+// largest near the minimum, its square root is smooth there (its nearest
+// complex singularity is far), and the rule's error estimate sees its error
+// fall as it halves. A rational net keeps every cut.
+void KeepSharpMinima(const Net& net, std::vector<double>& cuts) {
+  if (net.rational || cuts.size() <= 2) return;
+  std::vector<double> speeds(cuts.begin() + 1, cuts.end() - 1);
+  const double largest = PolynomialSpeed(net, speeds);
+  size_t kept = 1;
+  for (size_t k = 0; k < speeds.size(); ++k) {
+    if (speeds[k] < kSmoothSpeedRatio * largest) cuts[kept++] = cuts[k + 1];
+  }
+  cuts[kept++] = 1.0;
+  cuts.resize(kept);
+}
+
 // SpeedMinima returns 0, the parameters in (0, 1) where the speed of a
 // curve net has a local minimum, and 1. Near a minimum where the speed
 // almost vanishes (a component of C' crossing 0 while the others are tiny)
@@ -455,6 +546,7 @@ std::vector<double> SpeedMinima(const Net& net) {
     AppendMinima(std::move(slope), noise, 0.0, 1.0, 0, halvings, cuts);
   }
   cuts.push_back(1.0);
+  KeepSharpMinima(net, cuts);
   return cuts;
 }
 
