@@ -109,18 +109,12 @@ absl::StatusOr<UnaryWork> PlanIntersect(
 absl::StatusOr<UnaryWork> PlanBoundingBox(
     const v1::CurveBoundingBoxRequest& request, const ServiceLimits& limits,
     v1::BoundingBoxResponse& response) {
-  absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
-  if (!curve.ok()) return curve.status();
-  absl::StatusOr<double> tolerance = RequestTolerance(request);
-  if (!tolerance.ok()) return tolerance.status();
-  absl::StatusOr<uint64_t> work =
-      CheckWorkBytes(CurveBoundingBoxBytes(*curve), limits, "curve");
-  if (!work.ok()) return work.status();
-  return PlanBoundingBox(
-      DimensionOf(*curve), *work, *tolerance,
-      [curve = *std::move(curve)](double box_tolerance,
-                                  const CancellationToken* cancel) {
-        return CurveBoundingBox(curve, box_tolerance, cancel);
+  return PlanBoundingBoxOf(
+      PrepareCurve(request.curve(), limits), request, "curve",
+      [](const Curve& curve) { return CurveBoundingBoxBytes(curve); },
+      [](const Curve& curve, double tolerance,
+         const CancellationToken* cancel) {
+        return CurveBoundingBox(curve, tolerance, cancel);
       },
       limits, response);
 }

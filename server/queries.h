@@ -15,7 +15,9 @@
 #include "freeform/core/bounding_box.h"
 #include "freeform/core/closest_point.h"
 #include "freeform/core/intersection.h"
+#include "freeform/core/status_macros.h"
 #include "freeform/v1/query.pb.h"
+#include "prepare_options.h"
 #include "rpc.h"
 #include "service_limits.h"
 
@@ -107,6 +109,30 @@ using BoxComputation = absl::AnyInvocable<absl::StatusOr<BoundingBox>(
 UnaryWork PlanBoundingBox(int dimension, uint64_t work_bytes, double tolerance,
                           BoxComputation compute, const ServiceLimits& limits,
                           v1::BoundingBoxResponse& response);
+
+// PlanBoundingBoxOf plans the box of a curve's or a surface's BoundingBox
+// request: `geometry` is its prepared geometry (or the error preparing it),
+// at the request path `field`, whose work `work_bytes(geometry)` takes and
+// `compute(geometry, tolerance, cancel)` finds, to the request's tolerance.
+template <typename Geometry, typename Request, typename WorkBytes,
+          typename Compute>
+absl::StatusOr<UnaryWork> PlanBoundingBoxOf(
+    absl::StatusOr<Geometry> geometry, const Request& request,
+    absl::string_view field, WorkBytes work_bytes, Compute compute,
+    const ServiceLimits& limits, v1::BoundingBoxResponse& response) {
+  ASSIGN_OR_RETURN(Geometry prepared, std::move(geometry));
+  ASSIGN_OR_RETURN(const double tolerance, RequestTolerance(request));
+  ASSIGN_OR_RETURN(const uint64_t work,
+                   CheckWorkBytes(work_bytes(prepared), limits, field));
+  const int dimension = DimensionOf(prepared);
+  return PlanBoundingBox(
+      dimension, work, tolerance,
+      [prepared = std::move(prepared), compute](
+          double box_tolerance, const CancellationToken* cancel) {
+        return compute(prepared, box_tolerance, cancel);
+      },
+      limits, response);
+}
 
 }  // namespace freeform::server
 

@@ -253,18 +253,12 @@ absl::StatusOr<UnaryWork> PlanCurvature(
 absl::StatusOr<UnaryWork> PlanBoundingBox(
     const v1::SurfaceBoundingBoxRequest& request, const ServiceLimits& limits,
     v1::BoundingBoxResponse& response) {
-  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
-  if (!surface.ok()) return surface.status();
-  absl::StatusOr<double> tolerance = RequestTolerance(request);
-  if (!tolerance.ok()) return tolerance.status();
-  absl::StatusOr<uint64_t> work =
-      CheckWorkBytes(SurfaceBoundingBoxBytes(*surface), limits, "surface");
-  if (!work.ok()) return work.status();
-  return PlanBoundingBox(
-      DimensionOf(*surface), *work, *tolerance,
-      [surface = *std::move(surface)](double box_tolerance,
-                                      const CancellationToken* cancel) {
-        return SurfaceBoundingBox(surface, box_tolerance, cancel);
+  return PlanBoundingBoxOf(
+      PrepareSurface(request.surface(), limits), request, "surface",
+      [](const Surface& surface) { return SurfaceBoundingBoxBytes(surface); },
+      [](const Surface& surface, double tolerance,
+         const CancellationToken* cancel) {
+        return SurfaceBoundingBox(surface, tolerance, cancel);
       },
       limits, response);
 }
