@@ -20,8 +20,8 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
-#include "freeform/io/file.h"
 #include "freeform/core/status_macros.h"
+#include "freeform/io/file.h"
 #include "grpc_handoff.h"
 #include "spdlog/spdlog.h"
 

@@ -177,6 +177,21 @@ bool WeightsAreModerate(const Net& net) {
   return lo > 0.0 && hi <= kModerateWeights * lo;
 }
 
+// Reduce runs de Casteljau at s over `count` points of `stride` values in
+// `points` (overwritten) and returns the point it ends with.
+const double* Reduce(std::vector<double>& points, int count, size_t stride,
+                     double s) {
+  for (int level = count - 1; level > 0; --level) {
+    for (int i = 0; i < level; ++i) {
+      double* p = points.data() + static_cast<size_t>(i) * stride;
+      for (size_t x = 0; x < stride; ++x) {
+        p[x] = (1.0 - s) * p[x] + s * p[x + stride];
+      }
+    }
+  }
+  return points.data();
+}
+
 // Integrates the speed |C'(s)| of a curve net over intervals of its
 // parameter with the 16-point rule. Keeps its buffers between calls: one
 // per thread.
@@ -228,21 +243,6 @@ class SpeedIntegrator {
   }
 
  private:
-  // Reduce runs de Casteljau at s over `count` points of `stride` values in
-  // `points` (overwritten) and returns the point it ends with.
-  static const double* Reduce(std::vector<double>& points, int count,
-                              size_t stride, double s) {
-    for (int level = count - 1; level > 0; --level) {
-      for (int i = 0; i < level; ++i) {
-        double* p = points.data() + static_cast<size_t>(i) * stride;
-        for (size_t x = 0; x < stride; ++x) {
-          p[x] = (1.0 - s) * p[x] + s * p[x + stride];
-        }
-      }
-    }
-    return points.data();
-  }
-
   std::vector<double> differences_, derivative_, values_, numerator_;
 };
 
@@ -406,12 +406,7 @@ constexpr int kMaxMinimumHalvings = 1 << 12;
 // BernsteinValue returns the polynomial at t in [0, 1] (de Casteljau).
 double BernsteinValue(const Bernstein& c, double t, Bernstein& scratch) {
   scratch.assign(c.begin(), c.end());
-  for (size_t level = scratch.size() - 1; level > 0; --level) {
-    for (size_t i = 0; i < level; ++i) {
-      scratch[i] = (1.0 - t) * scratch[i] + t * scratch[i + 1];
-    }
-  }
-  return scratch[0];
+  return *Reduce(scratch, static_cast<int>(scratch.size()), 1, t);
 }
 
 // BisectRoot returns the root in (0, 1) of a polynomial negative at 0 and
@@ -477,38 +472,23 @@ void AppendMinima(Bernstein slope, double noise, double lo, double hi,
 // ratio of the bound of its largest over the piece.
 constexpr double kSmoothSpeedRatio = 0.25;
 
-// PolynomialSpeed returns, for a polynomial curve net, the largest |d_i|
-// of its hodograph d_i = P_{i+1} - P_i (an upper bound of |C'| / n) and,
-// in `at`, |C'(s)| / n at each s of `at` (de Casteljau on the hodograph).
-double PolynomialSpeed(const Net& net, std::vector<double>& at) {
+// HodographBound returns n max_i |P_{i+1} - P_i| of a polynomial curve net
+// of degree n, a bound of its speed: C' is n times a convex combination of
+// those differences.
+double HodographBound(const Net& net) {
   const size_t stride = static_cast<size_t>(net.stride());
   const size_t d = static_cast<size_t>(net.dimension);
-  const size_t count = static_cast<size_t>(net.count_u) - 1;
-  std::vector<double> hodograph(count * d);
+  std::vector<double> difference(d);
   double largest = 0.0;
-  for (size_t i = 0; i < count; ++i) {
-    double length = 0.0;
+  for (size_t i = 0; i + 1 < static_cast<size_t>(net.count_u); ++i) {
     for (size_t x = 0; x < d; ++x) {
-      const double h =
+      difference[x] =
           net.values[(i + 1) * stride + x] - net.values[i * stride + x];
-      hodograph[i * d + x] = h;
-      length += h * h;
     }
-    largest = std::max(largest, std::sqrt(length));
+    largest = std::max(largest,
+                       internal::ScaledNorm(difference.data(), net.dimension));
   }
-  std::vector<double> work(hodograph.size());
-  for (double& s : at) {
-    work = hodograph;
-    for (size_t level = count - 1; level > 0; --level) {
-      for (size_t i = 0; i < level * d; ++i) {
-        work[i] = (1.0 - s) * work[i] + s * work[i + d];
-      }
-    }
-    double length = 0.0;
-    for (size_t x = 0; x < d; ++x) length += work[x] * work[x];
-    s = std::sqrt(length);
-  }
-  return largest;
+  return (net.count_u - 1) * largest;
 }
 
 // KeepSharpMinima keeps the cuts (strictly inside `cuts`, between its 0
@@ -517,13 +497,13 @@ double PolynomialSpeed(const Net& net, std::vector<double>& at) {
 // largest near the minimum, its square root is smooth there (its nearest
 // complex singularity is far), and the rule's error estimate sees its error
 // fall as it halves. A rational net keeps every cut.
-void KeepSharpMinima(const Net& net, std::vector<double>& cuts) {
+void KeepSharpMinima(const Net& net, SpeedIntegrator& integrator,
+                     std::vector<double>& cuts) {
   if (net.rational || cuts.size() <= 2) return;
-  std::vector<double> speeds(cuts.begin() + 1, cuts.end() - 1);
-  const double largest = PolynomialSpeed(net, speeds);
+  const double sharp = kSmoothSpeedRatio * HodographBound(net);
   size_t kept = 1;
-  for (size_t k = 0; k < speeds.size(); ++k) {
-    if (speeds[k] < kSmoothSpeedRatio * largest) cuts[kept++] = cuts[k + 1];
+  for (size_t k = 1; k + 1 < cuts.size(); ++k) {
+    if (integrator.Speed(net, cuts[k]) < sharp) cuts[kept++] = cuts[k];
   }
   cuts[kept++] = 1.0;
   cuts.resize(kept);
@@ -537,7 +517,7 @@ void KeepSharpMinima(const Net& net, std::vector<double>& cuts) {
 // nothing of the error (a quartic 5.5e19 long, whose x' crosses 0 three
 // times while y' is about 1, agreed to 3.3e14 and was 2.2e16 short). Cut
 // there, each part's speed is smooth.
-std::vector<double> SpeedMinima(const Net& net) {
+std::vector<double> SpeedMinima(const Net& net, SpeedIntegrator& integrator) {
   std::vector<double> cuts = {0.0};
   if (net.count_u >= 3) {
     double noise = 0.0;
@@ -546,7 +526,7 @@ std::vector<double> SpeedMinima(const Net& net) {
     AppendMinima(std::move(slope), noise, 0.0, 1.0, 0, halvings, cuts);
   }
   cuts.push_back(1.0);
-  KeepSharpMinima(net, cuts);
+  KeepSharpMinima(net, integrator, cuts);
   return cuts;
 }
 
@@ -560,7 +540,7 @@ absl::Status AddSegment(const Net& net, double budget,
   table.segments.back().first = table.lo.size();
   const double speed_rounding = SpeedRounding(net);
   // The parts between the speed's minima, the first on top.
-  const std::vector<double> cuts = SpeedMinima(net);
+  const std::vector<double> cuts = SpeedMinima(net, integrator);
   std::vector<Pending> stack;
   for (size_t k = cuts.size() - 1; k > 0; --k) {
     stack.push_back({cuts[k - 1], cuts[k],
