@@ -23,14 +23,16 @@
 #include "geometry/scaled_geometry.h"
 #include "geometry/variant_dispatch.h"
 #include "queries/bezier_net.h"
+#include "queries/speed.h"
+#include "queries/speed_minima.h"
 
 namespace freeform {
 namespace {
 
 using internal::Net;
+using internal::SpeedIntegrator;
+using internal::SpeedMinimaSearch;
 
-// Points of the Gauss-Legendre rule of every quadrature step.
-constexpr int kRulePoints = 16;
 // Newton steps of the inverse before it settles for the bracket.
 constexpr int kMaxNewtonSteps = 100;
 // Parameters solved per chunk of ParametersAtArcLengths.
@@ -42,21 +44,6 @@ constexpr size_t kPieceNet = std::numeric_limits<size_t>::max();
 // their value agree to rounding.
 constexpr double kRoundingAgreement =
     64 * std::numeric_limits<double>::epsilon();
-
-struct Rule {
-  std::array<double, kRulePoints> nodes;
-  std::array<double, kRulePoints> weights;
-};
-
-const Rule& SixteenPointRule() {
-  static const Rule rule = [] {
-    Rule r;
-    GaussLegendreRule(kRulePoints, absl::MakeSpan(r.nodes),
-                      absl::MakeSpan(r.weights));
-    return r;
-  }();
-  return rule;
-}
 
 // The curve as the Bezier pieces of its scaled copy (scaled_geometry.h),
 // lifted, each rational one with its weights at most 1: every length is
@@ -177,75 +164,6 @@ bool WeightsAreModerate(const Net& net) {
   return lo > 0.0 && hi <= kModerateWeights * lo;
 }
 
-// Reduce runs de Casteljau at s over `count` points of `stride` values in
-// `points` (overwritten) and returns the point it ends with.
-const double* Reduce(std::vector<double>& points, int count, size_t stride,
-                     double s) {
-  for (int level = count - 1; level > 0; --level) {
-    for (int i = 0; i < level; ++i) {
-      double* p = points.data() + static_cast<size_t>(i) * stride;
-      for (size_t x = 0; x < stride; ++x) {
-        p[x] = (1.0 - s) * p[x] + s * p[x + stride];
-      }
-    }
-  }
-  return points.data();
-}
-
-// Integrates the speed |C'(s)| of a curve net over intervals of its
-// parameter with the 16-point rule. Keeps its buffers between calls: one
-// per thread.
-class SpeedIntegrator {
- public:
-  // Integrate returns the rule's value over [a, b] of `net`.
-  double Integrate(const Net& net, double a, double b) {
-    const Rule& rule = SixteenPointRule();
-    const double mid = 0.5 * (a + b);
-    const double half = 0.5 * (b - a);
-    double sum = 0.0;
-    for (int i = 0; i < kRulePoints; ++i) {
-      sum += rule.weights[i] *
-             Speed(net, std::clamp(mid + half * rule.nodes[i], a, b));
-    }
-    return half * sum;
-  }
-
-  // Speed returns |C'(s)| of `net`: de Casteljau over the differences of
-  // its (homogeneous) control points, so that a constant stretch has speed
-  // 0 exactly, and for a rational net the quotient rule C' = (A' w - A w')
-  // / w^2; the norm is scaled (scaled.h).
-  double Speed(const Net& net, double s) {
-    const int n = net.count_u - 1;
-    if (n <= 0) return 0.0;
-    const size_t stride = static_cast<size_t>(net.stride());
-    const size_t dim = static_cast<size_t>(net.dimension);
-    differences_.resize(static_cast<size_t>(n) * stride);
-    for (size_t k = 0; k < differences_.size(); ++k) {
-      differences_[k] = net.values[k + stride] - net.values[k];
-    }
-    const double* d = Reduce(differences_, n, stride, s);
-    if (!net.rational) return n * internal::ScaledNorm(d, net.dimension);
-    derivative_.assign(d, d + stride);
-    values_.assign(net.values.begin(), net.values.end());
-    const double* a = Reduce(values_, n + 1, stride, s);
-    const double w = a[dim];
-    numerator_.resize(dim);
-    for (size_t x = 0; x < dim; ++x) {
-      numerator_[x] = derivative_[x] * w - a[x] * derivative_[dim];
-    }
-    return n * internal::ScaledNorm(numerator_.data(), net.dimension) / (w * w);
-  }
-
-  // Work returns the arithmetic of one step over two halves, for
-  // cancellation polls.
-  static size_t Work(const Net& net) {
-    return 3 * kRulePoints * net.values.size() * 8;
-  }
-
- private:
-  std::vector<double> differences_, derivative_, values_, numerator_;
-};
-
 // A stretch of piece `piece` over [u_a, u_b] of the piece's parameter,
 // integrated in its own parameter s in [0, 1], and its kept intervals
 // [first, end) of the table. `net` indexes the table's nets (a clipped or
@@ -305,242 +223,24 @@ double SpeedRounding(const Net& net) {
   return (net.count_u - 1) * internal::LargestNetCoordinate(net);
 }
 
-// Bernstein coefficients of a polynomial on [0, 1] (degree size() - 1).
-using Bernstein = std::vector<double>;
-
-// BinomialRow returns n choose k for k = 0..n.
-std::vector<double> BinomialRow(size_t n) {
-  std::vector<double> row(n + 1);
-  for (size_t k = 0; k <= n; ++k) {
-    row[k] = internal::Binomial(static_cast<int>(n), static_cast<int>(k));
-  }
-  return row;
-}
-
-// Product returns the Bernstein coefficients of a b.
-Bernstein Product(const Bernstein& a, const Bernstein& b) {
-  const std::vector<double> p = BinomialRow(a.size() - 1);
-  const std::vector<double> q = BinomialRow(b.size() - 1);
-  const std::vector<double> pq = BinomialRow(a.size() + b.size() - 2);
-  Bernstein c(pq.size(), 0.0);
-  for (size_t i = 0; i < a.size(); ++i) {
-    for (size_t j = 0; j < b.size(); ++j) c[i + j] += p[i] * q[j] * a[i] * b[j];
-  }
-  for (size_t k = 0; k < c.size(); ++k) c[k] /= pq[k];
-  return c;
-}
-
-// Derivative returns the Bernstein coefficients of a' (of degree one less;
-// 0 for a constant).
-Bernstein Derivative(const Bernstein& a) {
-  const int n = static_cast<int>(a.size()) - 1;
-  if (n <= 0) return {0.0};
-  Bernstein d(a.size() - 1);
-  for (int i = 0; i < n; ++i) d[i] = n * (a[i + 1] - a[i]);
-  return d;
-}
-
-// Add adds `scale` b to a (of the same degree).
-void Add(Bernstein& a, double scale, const Bernstein& b) {
-  for (size_t i = 0; i < a.size(); ++i) a[i] += scale * b[i];
-}
-
-double Largest(const Bernstein& a) {
-  double largest = 0.0;
-  for (const double x : a) largest = std::max(largest, std::abs(x));
-  return largest;
-}
-
-// SpeedSlope returns a polynomial of the sign of the derivative of |C'|^2
-// of a curve net, and in `noise` what its coefficients may be off by
-// rounding: C' . C'' for a polynomial net; for a rational one C = A / w,
-// C' = N / w^2 with N = A' w - A w', and d|C'|^2 / ds = 2 (N . N' w -
-// 2 |N|^2 w') / w^5, of the sign of N . N' w - 2 |N|^2 w' where w > 0.
-Bernstein SpeedSlope(const Net& net, double& noise) {
-  const size_t stride = static_cast<size_t>(net.stride());
-  const size_t points = static_cast<size_t>(net.count_u);
-  auto coordinate = [&](size_t x) {
-    Bernstein c(points);
-    for (size_t i = 0; i < points; ++i) c[i] = net.values[i * stride + x];
-    return c;
-  };
-  const Bernstein w = net.rational ? coordinate(stride - 1) : Bernstein{1.0};
-  const Bernstein dw = Derivative(w);
-  Bernstein slope;
-  double magnitude = 0.0;
-  for (int x = 0; x < net.dimension; ++x) {
-    const Bernstein a = coordinate(static_cast<size_t>(x));
-    const Bernstein da = Derivative(a);
-    Bernstein n = Product(da, w);
-    if (net.rational) Add(n, -1.0, Product(a, dw));
-    const Bernstein dn = Derivative(n);
-    Bernstein term = Product(Product(n, dn), w);
-    if (net.rational) Add(term, -2.0, Product(Product(n, n), dw));
-    if (slope.empty()) slope.assign(term.size(), 0.0);
-    Add(slope, 1.0, term);
-    // N's rounding is that of its products, |A'| |w| + |A| |w'|, whatever
-    // N itself is (a curve that stands still has N = 0 but for rounding),
-    // and N' is off by its degree times as much.
-    const double n_size = std::max(
-        Largest(n), Largest(da) * Largest(w) + Largest(a) * Largest(dw));
-    const double dn_size =
-        std::max(Largest(dn), static_cast<double>(n.size()) * n_size);
-    magnitude += n_size * (dn_size * Largest(w) + 2 * n_size * Largest(dw));
-  }
-  noise = kRoundingAgreement * static_cast<double>(slope.size()) * magnitude;
-  return slope;
-}
-
-// Halvings that locate a minimum of the speed: to 2^-32 of its net's
-// parameter, where the kink it leaves costs the rule about the speed's
-// slope times (2^-32)^2.
-constexpr int kMinimumDepth = 32;
-
-// Halvings of one net's slope at most: a polynomial of degree k has at most
-// k roots, each located in kMinimumDepth halvings, so this is reached only
-// when rounding beyond `noise` flips signs everywhere; the cuts found by
-// then are kept (a cut refines the integration, it is never needed for
-// correctness: the error estimate still decides).
-constexpr int kMaxMinimumHalvings = 1 << 12;
-
-// BernsteinValue returns the polynomial at t in [0, 1] (de Casteljau).
-double BernsteinValue(const Bernstein& c, double t, Bernstein& scratch) {
-  scratch.assign(c.begin(), c.end());
-  return *Reduce(scratch, static_cast<int>(scratch.size()), 1, t);
-}
-
-// BisectRoot returns the root in (0, 1) of a polynomial negative at 0 and
-// positive at 1, to 2^-steps.
-double BisectRoot(const Bernstein& c, int steps) {
-  Bernstein scratch;
-  double a = 0.0;
-  double b = 1.0;
-  for (int k = 0; k < steps; ++k) {
-    const double mid = 0.5 * (a + b);
-    (BernsteinValue(c, mid, scratch) < 0.0 ? a : b) = mid;
-  }
-  return 0.5 * (a + b);
-}
-
-// AppendMinima appends, in increasing order, the parameters in (lo, hi)
-// where `slope` (over [lo, hi]; coefficients within `noise` of 0 count as
-// 0) rises through 0: halving it by de Casteljau until a part has no sign
-// change or is 2^-kMinimumDepth wide, while `halvings` lasts.
-void AppendMinima(Bernstein slope, double noise, double lo, double hi,
-                  int depth, int& halvings, std::vector<double>& minima) {
-  auto sign = [noise](double c) { return c < -noise ? -1 : (c > noise); };
-  int changes = 0;
-  int first = 0;
-  int last = 0;
-  for (const double c : slope) {
-    const int s = sign(c);
-    if (s == 0) continue;
-    changes += last != 0 && s != last ? 1 : 0;
-    if (first == 0) first = s;
-    last = s;
-  }
-  // One change from + to -: a maximum of the speed, no minimum.
-  if (changes == 0 || (changes == 1 && first > 0) || halvings <= 0) return;
-  if (changes == 1 && slope.front() < 0.0 && slope.back() > 0.0) {
-    // One sign change, from - at lo to + at hi: exactly one root, rising
-    // (the Bernstein form changes sign at least as often as the
-    // polynomial), found by bisection instead of halving the net.
-    const double root = BisectRoot(slope, kMinimumDepth - depth);
-    minima.push_back(lo + root * (hi - lo));
-    return;
-  }
-  if (depth >= kMinimumDepth) {
-    if (sign(slope.front()) < 0 && sign(slope.back()) > 0) {
-      minima.push_back(0.5 * (lo + hi));
-    }
-    return;
-  }
-  Net line{.dimension = 1,
-           .count_u = static_cast<int>(slope.size()),
-           .values = std::move(slope)};
-  Net low, high;
-  internal::Halve(line, true, low, high);
-  --halvings;
-  const double mid = 0.5 * (lo + hi);
-  AppendMinima(std::move(low.values), noise, lo, mid, depth + 1, halvings,
-               minima);
-  AppendMinima(std::move(high.values), noise, mid, hi, depth + 1, halvings,
-               minima);
-}
-
-// A minimum of the speed is cut at only where the speed falls below this
-// ratio of the bound of its largest over the piece.
-constexpr double kSmoothSpeedRatio = 0.25;
-
-// HodographBound returns n max_i |P_{i+1} - P_i| of a polynomial curve net
-// of degree n, a bound of its speed: C' is n times a convex combination of
-// those differences.
-double HodographBound(const Net& net) {
-  const size_t stride = static_cast<size_t>(net.stride());
-  const size_t d = static_cast<size_t>(net.dimension);
-  std::vector<double> difference(d);
-  double largest = 0.0;
-  for (size_t i = 0; i + 1 < static_cast<size_t>(net.count_u); ++i) {
-    for (size_t x = 0; x < d; ++x) {
-      difference[x] =
-          net.values[(i + 1) * stride + x] - net.values[i * stride + x];
-    }
-    largest = std::max(largest,
-                       internal::ScaledNorm(difference.data(), net.dimension));
-  }
-  return (net.count_u - 1) * largest;
-}
-
-// KeepSharpMinima keeps the cuts (strictly inside `cuts`, between its 0
-// and 1) where the speed of a polynomial net falls below kSmoothSpeedRatio
-// of the bound of its largest: elsewhere |C'|^2 stays within 1/16 of its
-// largest near the minimum, its square root is smooth there (its nearest
-// complex singularity is far), and the rule's error estimate sees its error
-// fall as it halves. A rational net keeps every cut.
-void KeepSharpMinima(const Net& net, SpeedIntegrator& integrator,
-                     std::vector<double>& cuts) {
-  if (net.rational || cuts.size() <= 2) return;
-  const double sharp = kSmoothSpeedRatio * HodographBound(net);
-  size_t kept = 1;
-  for (size_t k = 1; k + 1 < cuts.size(); ++k) {
-    if (integrator.Speed(net, cuts[k]) < sharp) cuts[kept++] = cuts[k];
-  }
-  cuts[kept++] = 1.0;
-  cuts.resize(kept);
-}
-
-// SpeedMinima returns 0, the parameters in (0, 1) where the speed of a
-// curve net has a local minimum, and 1. Near a minimum where the speed
-// almost vanishes (a component of C' crossing 0 while the others are tiny)
-// the speed has a kink that the 16-point rule integrates badly, and badly
-// alike on an interval and on its halves: their agreement then says
-// nothing of the error (a quartic 5.5e19 long, whose x' crosses 0 three
-// times while y' is about 1, agreed to 3.3e14 and was 2.2e16 short). Cut
-// there, each part's speed is smooth.
-std::vector<double> SpeedMinima(const Net& net, SpeedIntegrator& integrator) {
-  std::vector<double> cuts = {0.0};
-  if (net.count_u >= 3) {
-    double noise = 0.0;
-    Bernstein slope = SpeedSlope(net, noise);
-    int halvings = kMaxMinimumHalvings;
-    AppendMinima(std::move(slope), noise, 0.0, 1.0, 0, halvings, cuts);
-  }
-  cuts.push_back(1.0);
-  KeepSharpMinima(net, integrator, cuts);
-  return cuts;
-}
+// The integrator and the search for the speed's minima of one table.
+struct TableWorkspace {
+  SpeedIntegrator integrator;
+  SpeedMinimaSearch minima;
+};
 
 // AddSegment integrates the last segment of `table` (whose net is `net`)
-// adaptively, from its parts between the speed's minima (SpeedMinima), with
+// adaptively, from its parts between the speed's minima (speed_minima.h), with
 // the share budget * (b - a) of every kept interval [a, b] of its
 // parameter.
 absl::Status AddSegment(const Net& net, double budget,
-                        SpeedIntegrator& integrator, CancellationPoll& poll,
+                        TableWorkspace& workspace, CancellationPoll& poll,
                         LengthTable& table) {
+  SpeedIntegrator& integrator = workspace.integrator;
   table.segments.back().first = table.lo.size();
   const double speed_rounding = SpeedRounding(net);
   // The parts between the speed's minima, the first on top.
-  const std::vector<double> cuts = SpeedMinima(net, integrator);
+  const absl::Span<const double> cuts = workspace.minima.Cuts(net, integrator);
   std::vector<Pending> stack;
   for (size_t k = cuts.size() - 1; k > 0; --k) {
     stack.push_back({cuts[k - 1], cuts[k],
@@ -634,14 +334,13 @@ double LengthShare(const Net& low, const Net& high) {
 // speed concentrates, so a spread of 2^m takes about m halvings there, and
 // then the speed is as smooth as a polynomial's.
 absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0, double u1,
-                      double budget, bool keep_nets,
-                      SpeedIntegrator& integrator, CancellationPoll& poll,
-                      LengthTable& table) {
+                      double budget, bool keep_nets, TableWorkspace& workspace,
+                      CancellationPoll& poll, LengthTable& table) {
   const Net& whole = pieces.nets[k];
   const bool clipped = u0 > 0.0 || u1 < 1.0;
   if (!clipped && WeightsAreModerate(whole)) {
     table.segments.push_back({.piece = k});
-    return AddSegment(whole, budget, integrator, poll, table);
+    return AddSegment(whole, budget, workspace, poll, table);
   }
   size_t held = 0;  // values of the stack and the kept nets
   std::vector<Stretch> stack;
@@ -652,7 +351,7 @@ absl::Status AddPiece(const CurvePieces& pieces, size_t k, double u0, double u1,
     held -= std::min(held, top.net.values.size());
     if (WeightsAreModerate(top.net)) {
       table.segments.push_back({.piece = k, .u_a = top.u_a, .u_b = top.u_b});
-      RETURN_IF_ERROR(AddSegment(top.net, top.budget, integrator, poll, table));
+      RETURN_IF_ERROR(AddSegment(top.net, top.budget, workspace, poll, table));
       if (keep_nets) {
         held += top.net.values.size();
         table.segments.back().net = table.nets.size();
@@ -707,7 +406,7 @@ absl::StatusOr<LengthTable> BuildTable(const CurvePieces& pieces, double start,
   size_t k = static_cast<size_t>(
       std::upper_bound(breaks.begin(), breaks.end(), start) - breaks.begin());
   k = k == 0 ? 0 : k - 1;
-  SpeedIntegrator integrator;
+  TableWorkspace workspace;
   CancellationPoll poll(cancel);
   for (; k < pieces.nets.size() && breaks[k] < end; ++k) {
     const double width = pieces.Width(k);
@@ -720,7 +419,7 @@ absl::StatusOr<LengthTable> BuildTable(const CurvePieces& pieces, double start,
         (end - start);
     RETURN_IF_ERROR(AddPiece(pieces, k, std::clamp(u0, 0.0, 1.0),
                              std::clamp(u1, 0.0, 1.0), tolerance * share,
-                             keep_nets, integrator, poll, table));
+                             keep_nets, workspace, poll, table));
   }
   return table;
 }
