@@ -52,23 +52,11 @@ absl::StatusOr<uint64_t> ArcLengthWork(const Curve& curve, size_t tables,
 
 // LengthError names the request's fields for the core's errors of an
 // arc-length call: "weights" is the curve's (a length no double parameter
-// reaches within the tolerance), and with `interval` the ends "start" and
-// "end" are the request's interval's.
+// reaches within the tolerance). The intervals' ends are checked before,
+// where they are prepared (PrepareInterval, PrepareArcLengthStart).
 absl::Status LengthError(const absl::Status& status,
-                         const google::protobuf::Message& request,
-                         bool interval = false) {
-  const std::optional<std::string> field = FieldPathOf(status);
-  if (interval && (field == "start" || field == "end")) {
-    return PrefixFieldPath(status, "interval");
-  }
+                         const google::protobuf::Message& request) {
   return QueryError(status, GeometryFieldOf(request), "tolerance");
-}
-
-// The ends of an interval, omitted ends taken from the domain.
-std::pair<double, double> EndsOf(const v1::ParameterInterval& interval,
-                                 const ParameterDomain& domain) {
-  return {interval.has_start() ? interval.start() : domain.start,
-          interval.has_end() ? interval.end() : domain.end};
 }
 
 // ParameterError renames the core's "parameters[i]" (a parameter where the
@@ -126,15 +114,20 @@ absl::StatusOr<UnaryWork> PlanArcLength(const v1::ArcLengthRequest& request,
   const uint64_t count =
       std::max<uint64_t>(1, static_cast<uint64_t>(request.intervals_size()));
   RETURN_IF_ERROR(CheckCount(count, limits, "intervals"));
-  const ParameterDomain domain = DomainOf(*curve);
   std::vector<double> intervals;
   intervals.reserve(2 * count);
-  for (const v1::ParameterInterval& interval : request.intervals()) {
-    const auto [start, end] = EndsOf(interval, domain);
-    intervals.push_back(start);
-    intervals.push_back(end);
+  for (int i = 0; i < request.intervals_size(); ++i) {
+    ASSIGN_OR_RETURN(
+        const ParameterDomain interval,
+        PrepareInterval(request.intervals(i), *curve,
+                        IndexedField("intervals", static_cast<size_t>(i))));
+    intervals.push_back(interval.start);
+    intervals.push_back(interval.end);
   }
-  if (intervals.empty()) intervals = {domain.start, domain.end};
+  if (intervals.empty()) {
+    const ParameterDomain domain = DomainOf(*curve);
+    intervals = {domain.start, domain.end};
+  }
   // One table per thread of the pool.
   absl::StatusOr<uint64_t> work =
       ArcLengthWork(*curve, 1 + DefaultMaxHelpers(), limits);
@@ -167,8 +160,7 @@ absl::StatusOr<UnaryWork> PlanParametersAtArcLength(
   RETURN_IF_ERROR(CheckCount(count, limits, "lengths"));
   const uint64_t values = count * ParameterAndPointValues(*curve);
   RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "lengths"));
-  const double start =
-      request.has_start() ? request.start() : DomainOf(*curve).start;
+  ASSIGN_OR_RETURN(const double start, PrepareArcLengthStart(request, *curve));
   absl::StatusOr<uint64_t> work = ArcLengthWork(*curve, 1, limits);
   if (!work.ok()) return work.status();
   return UnaryWork{
@@ -204,9 +196,9 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
   RETURN_IF_ERROR(CheckCount(count, limits, "count"));
   const uint64_t values = count * ParameterAndPointValues(*curve);
   RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "count"));
-  const std::pair<double, double> ends =
-      EndsOf(request.interval(), DomainOf(*curve));
-  const double start = ends.first, end = ends.second;
+  ASSIGN_OR_RETURN(const ParameterDomain interval,
+                   PrepareInterval(request.interval(), *curve, "interval"));
+  const double start = interval.start, end = interval.end;
   absl::StatusOr<uint64_t> work = ArcLengthWork(*curve, 1, limits);
   if (!work.ok()) return work.status();
   return UnaryWork{
@@ -220,7 +212,7 @@ absl::StatusOr<UnaryWork> PlanSampleByArcLength(
             EqualArcLengthParameters(curve, start, end,
                                      static_cast<size_t>(count), tolerance,
                                      parameters, execution),
-            request, true));
+            request));
         return PointsAt(curve, parameters, *response.mutable_points(),
                         execution);
       }};

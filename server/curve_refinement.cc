@@ -2,7 +2,6 @@
 // Decompose, Subdivide (polygons) and Tessellate. Each visits the prepared
 // curve, so every curve kind is handled (or refused by name) explicitly.
 #include <algorithm>
-#include <cmath>
 
 #include "absl/strings/str_cat.h"
 #include "convert.h"
@@ -208,6 +207,8 @@ absl::StatusOr<UnaryWork> PlanTessellate(
     v1::TessellateCurveResponse& response) {
   absl::StatusOr<Curve> curve = PrepareCurve(request.curve(), limits);
   if (!curve.ok()) return curve.status();
+  ASSIGN_OR_RETURN(const double tolerance,
+                   GivenTolerance(request.tolerance(), "tolerance"));
   const int dimension = DimensionOf(*curve);
   // A point costs its coordinates and its parameter.
   const uint64_t per_point = static_cast<uint64_t>(dimension) + 1;
@@ -217,12 +218,6 @@ absl::StatusOr<UnaryWork> PlanTessellate(
       request.max_points() > 0 ? request.max_points() : limits.max_parameters;
   const uint64_t cap = std::min({requested, uint64_t{limits.max_parameters},
                                  fit, limits.max_output_values / per_point});
-  const double tolerance = request.tolerance();
-  if (!std::isfinite(tolerance) || !(tolerance > 0.0)) {
-    return InvalidFieldError(
-        "tolerance",
-        absl::StrCat("must be positive and finite, got ", tolerance));
-  }
   // The polyline's points are known to be at most `bound` before the work
   // (SIZE_MAX when unknown: a rational curve with a weight of 0).
   const size_t bound = CurvePointBound(*curve, tolerance);

@@ -153,12 +153,16 @@ absl::StatusOr<double> GivenLimit(bool present, double value,
   return value;
 }
 
-absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
-                                 absl::string_view field) {
-  if (!has_value) return fallback;
+absl::StatusOr<double> GivenTolerance(double value, absl::string_view field) {
   if (std::isfinite(value) && value > 0.0) return value;
   return InvalidFieldError(
       field, absl::StrCat("must be positive and finite, got ", value));
+}
+
+absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
+                                 absl::string_view field) {
+  if (!has_value) return fallback;
+  return GivenTolerance(value, field);
 }
 
 absl::StatusOr<ClosestPointOptions> ToCore(

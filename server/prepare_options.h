@@ -81,8 +81,14 @@ inline constexpr uint64_t kDefaultMaxResults = 1 << 16;
 inline constexpr double kDefaultSectionTolerance = 1e-6;
 inline constexpr uint64_t kDefaultSectionPoints = uint64_t{1} << 16;
 
-// Tolerance returns `value` when `has_value` (it must be positive and
-// finite, else INVALID_ARGUMENT naming `field`), otherwise `fallback`.
+// GivenTolerance returns a tolerance the request must give (a plain
+// double field): `value` when it is positive and finite, else
+// INVALID_ARGUMENT naming `field`. It is the rule of every tolerance
+// checked here.
+absl::StatusOr<double> GivenTolerance(double value, absl::string_view field);
+
+// Tolerance returns `value` when `has_value` (GivenTolerance), otherwise
+// `fallback`.
 absl::StatusOr<double> Tolerance(bool has_value, double value, double fallback,
                                  absl::string_view field);
 

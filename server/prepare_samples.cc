@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "freeform/core/arc_length.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "freeform/core/triangular.h"
@@ -103,6 +104,105 @@ absl::Status CheckSampleCount(uint64_t count, uint64_t values_per_point,
                           field);
 }
 
+// ResolvePairs returns the (u, v) pairs of `points` once they are pairs
+// (an even, non-zero number of values) within the limits, with
+// `values_per_point` numbers of answer each.
+absl::StatusOr<absl::Span<const double>> ResolvePairs(
+    const v1::SurfacePoints& points, uint64_t values_per_point,
+    const ServiceLimits& limits) {
+  const absl::Span<const double> uv =
+      absl::MakeConstSpan(points.uv().data(), points.uv().size());
+  if (uv.empty()) {
+    return InvalidFieldError("parameters.points.uv",
+                             "needs at least one (u, v) pair");
+  }
+  if (uv.size() % 2 != 0) {
+    return InvalidFieldError(
+        "parameters.points.uv",
+        absl::StrCat("holds ", uv.size(), " values, not (u, v) pairs"));
+  }
+  RETURN_IF_ERROR(CheckSampleCount(uv.size() / 2, values_per_point, limits,
+                                   "parameters.points.uv"));
+  return uv;
+}
+
+// ResolveSamples resolves the (u, v) points or the grid into `plan`, after
+// checking their number, with `values_per_point` numbers each, against the
+// limits: nothing as large as the answer is made before that. `plan` holds
+// the surface (or, for a basis, its domain) already.
+absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
+                            const ServiceLimits& limits,
+                            uint64_t values_per_point, SurfacePlan& plan) {
+  switch (parameters.kind_case()) {
+    case v1::SurfaceParameters::kPoints: {
+      absl::StatusOr<absl::Span<const double>> uv =
+          ResolvePairs(parameters.points(), values_per_point, limits);
+      if (!uv.ok()) return uv.status();
+      plan.uv = *uv;
+      if (plan.triangular) {
+        return PrefixFieldPath(
+            ValidateSamples(*plan.surface, SurfaceSamples::Pairs(plan.uv)),
+            "parameters.points");
+      }
+      return PrefixFieldPath(
+          ValidateSurfaceSamples(SurfaceSamples::Pairs(plan.uv),
+                                 plan.domain.u_start, plan.domain.u_end,
+                                 plan.domain.v_start, plan.domain.v_end),
+          "parameters.points");
+    }
+    case v1::SurfaceParameters::kGrid: {
+      if (plan.triangular) {
+        return InvalidFieldError(
+            "parameters.grid",
+            "a triangular patch takes (u, v) points, not a grid");
+      }
+      absl::StatusOr<ParameterSet> u =
+          ResolveAxis(parameters.grid().u(), plan.domain.u_start,
+                      plan.domain.u_end, limits, "parameters.grid.u");
+      if (!u.ok()) return u.status();
+      absl::StatusOr<ParameterSet> v =
+          ResolveAxis(parameters.grid().v(), plan.domain.v_start,
+                      plan.domain.v_end, limits, "parameters.grid.v");
+      if (!v.ok()) return v.status();
+      RETURN_IF_ERROR(CheckSampleCount(SaturatingProduct(u->size(), v->size()),
+                                       values_per_point, limits,
+                                       "parameters.grid"));
+      plan.grid = true;
+      plan.u = AllValues(*u);
+      plan.v = AllValues(*v);
+      return absl::OkStatus();
+    }
+    case v1::SurfaceParameters::KIND_NOT_SET:
+      break;
+  }
+  return InvalidFieldError("parameters", "set either points or a grid");
+}
+
+// PlanOf returns the plan of `surface`'s samples: its dimension, domain
+// and kind, samples still to resolve.
+SurfacePlan PlanOf(Surface surface) {
+  SurfacePlan plan;
+  plan.dimension = DimensionOf(surface);
+  plan.domain = DomainOf(surface);
+  plan.triangular = IsTriangular(surface);
+  plan.surface = std::move(surface);
+  return plan;
+}
+
+// ResolveInterval returns [start, end], an absent end taken from `curve`'s
+// domain, checked by ValidateArcLengthInterval; errors are under `field`.
+absl::StatusOr<ParameterDomain> ResolveInterval(bool has_start, double start,
+                                                bool has_end, double end,
+                                                const Curve& curve,
+                                                absl::string_view field) {
+  const ParameterDomain domain = DomainOf(curve);
+  const ParameterDomain interval = {.start = has_start ? start : domain.start,
+                                    .end = has_end ? end : domain.end};
+  RETURN_IF_ERROR(PrefixFieldPath(
+      ValidateArcLengthInterval(curve, interval.start, interval.end), field));
+  return interval;
+}
+
 }  // namespace
 
 absl::StatusOr<ParameterSet> ParameterSet::Resolve(
@@ -197,27 +297,6 @@ absl::StatusOr<Evaluation<CurveBasis>> PrepareBasisEvaluation(
                  request.derivative_order(), limits);
 }
 
-// ResolvePairs returns the (u, v) pairs of `points` once they are pairs
-// (an even, non-zero number of values) within the limits.
-absl::StatusOr<absl::Span<const double>> ResolvePairs(
-    const v1::SurfacePoints& points, uint64_t values_per_point,
-    const ServiceLimits& limits) {
-  const absl::Span<const double> uv =
-      absl::MakeConstSpan(points.uv().data(), points.uv().size());
-  if (uv.empty()) {
-    return InvalidFieldError("parameters.points.uv",
-                             "needs at least one (u, v) pair");
-  }
-  if (uv.size() % 2 != 0) {
-    return InvalidFieldError(
-        "parameters.points.uv",
-        absl::StrCat("holds ", uv.size(), " values, not (u, v) pairs"));
-  }
-  RETURN_IF_ERROR(CheckSampleCount(uv.size() / 2, values_per_point, limits,
-                                   "parameters.points.uv"));
-  return uv;
-}
-
 std::vector<SurfacePlan::Piece> SurfacePlan::Pieces(size_t first,
                                                     size_t last) const {
   if (!grid) {
@@ -245,64 +324,11 @@ std::vector<SurfacePlan::Piece> SurfacePlan::Pieces(size_t first,
   return pieces;
 }
 
-absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
-                            const ServiceLimits& limits,
-                            uint64_t values_per_point, SurfacePlan& plan) {
-  switch (parameters.kind_case()) {
-    case v1::SurfaceParameters::kPoints: {
-      absl::StatusOr<absl::Span<const double>> uv =
-          ResolvePairs(parameters.points(), values_per_point, limits);
-      if (!uv.ok()) return uv.status();
-      plan.uv = *uv;
-      if (plan.triangular) {
-        return PrefixFieldPath(
-            ValidateSamples(*plan.surface, SurfaceSamples::Pairs(plan.uv)),
-            "parameters.points");
-      }
-      return PrefixFieldPath(
-          ValidateSurfaceSamples(SurfaceSamples::Pairs(plan.uv),
-                                 plan.domain.u_start, plan.domain.u_end,
-                                 plan.domain.v_start, plan.domain.v_end),
-          "parameters.points");
-    }
-    case v1::SurfaceParameters::kGrid: {
-      if (plan.triangular) {
-        return InvalidFieldError(
-            "parameters.grid",
-            "a triangular patch takes (u, v) points, not a grid");
-      }
-      absl::StatusOr<ParameterSet> u =
-          ResolveAxis(parameters.grid().u(), plan.domain.u_start,
-                      plan.domain.u_end, limits, "parameters.grid.u");
-      if (!u.ok()) return u.status();
-      absl::StatusOr<ParameterSet> v =
-          ResolveAxis(parameters.grid().v(), plan.domain.v_start,
-                      plan.domain.v_end, limits, "parameters.grid.v");
-      if (!v.ok()) return v.status();
-      RETURN_IF_ERROR(CheckSampleCount(SaturatingProduct(u->size(), v->size()),
-                                       values_per_point, limits,
-                                       "parameters.grid"));
-      plan.grid = true;
-      plan.u = AllValues(*u);
-      plan.v = AllValues(*v);
-      return absl::OkStatus();
-    }
-    case v1::SurfaceParameters::KIND_NOT_SET:
-      break;
-  }
-  return InvalidFieldError("parameters", "set either points or a grid");
-}
-
 absl::StatusOr<SurfacePlan> PrepareSurfaceEvaluation(
     const v1::EvaluateSurfaceRequest& request, const ServiceLimits& limits) {
   RETURN_IF_ERROR(CheckDerivativeOrder(request.derivative_order(), limits));
-  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
-  if (!surface.ok()) return surface.status();
-  SurfacePlan plan;
-  plan.dimension = DimensionOf(*surface);
-  plan.domain = DomainOf(*surface);
-  plan.triangular = IsTriangular(*surface);
-  plan.surface = *std::move(surface);
+  ASSIGN_OR_RETURN(Surface surface, PrepareSurface(request.surface(), limits));
+  SurfacePlan plan = PlanOf(std::move(surface));
   if (request.normals() && plan.dimension != 3) {
     return InvalidFieldError(
         "normals", absl::StrCat("normals need a 3D surface, this one is ",
@@ -313,6 +339,79 @@ absl::StatusOr<SurfacePlan> PrepareSurfaceEvaluation(
   RETURN_IF_ERROR(ResolveSamples(request.parameters(), limits,
                                  plan.ValuesPerPoint(), plan));
   return plan;
+}
+
+absl::StatusOr<SurfacePlan> PrepareSurfaceCurvature(
+    const v1::SurfaceCurvatureRequest& request, uint64_t values_per_point,
+    const ServiceLimits& limits) {
+  ASSIGN_OR_RETURN(Surface surface, PrepareSurface(request.surface(), limits));
+  SurfacePlan plan = PlanOf(std::move(surface));
+  if (plan.dimension != 3) {
+    return InvalidFieldError(
+        "surface", absl::StrCat("curvatures need a 3D surface, this one is ",
+                                plan.dimension, "D"));
+  }
+  RETURN_IF_ERROR(
+      ResolveSamples(request.parameters(), limits, values_per_point, plan));
+  return plan;
+}
+
+absl::StatusOr<TensorBasisEvaluation> PrepareTensorBasisEvaluation(
+    const v1::EvaluateSurfaceBasisRequest& request,
+    const ServiceLimits& limits) {
+  ASSIGN_OR_RETURN(CurveBasis u,
+                   PrepareBasis(request.tensor().u(), limits, "tensor.u"));
+  ASSIGN_OR_RETURN(CurveBasis v,
+                   PrepareBasis(request.tensor().v(), limits, "tensor.v"));
+  TensorBasisEvaluation evaluation{
+      .u = std::move(u), .v = std::move(v), .samples = {}};
+  SurfacePlan& samples = evaluation.samples;
+  samples.dimension = 1;
+  const ParameterDomain du = DomainOf(evaluation.u);
+  const ParameterDomain dv = DomainOf(evaluation.v);
+  samples.domain = {.u_start = du.start,
+                    .u_end = du.end,
+                    .v_start = dv.start,
+                    .v_end = dv.end};
+  RETURN_IF_ERROR(ResolveSamples(request.parameters(), limits,
+                                 evaluation.FunctionCount(), samples));
+  return evaluation;
+}
+
+uint64_t TriangularBasisEvaluation::FunctionCount() const {
+  return TriangularPointCount(degree);
+}
+
+absl::StatusOr<TriangularBasisEvaluation> PrepareTriangularBasisEvaluation(
+    const v1::EvaluateSurfaceBasisRequest& request,
+    const ServiceLimits& limits) {
+  const uint32_t degree = request.triangular_degree();
+  RETURN_IF_ERROR(CheckDegreeLimit(degree, limits, "triangular_degree"));
+  if (!request.parameters().has_points()) {
+    return InvalidFieldError(
+        "parameters.points",
+        "triangular Bernstein polynomials take (u, v) points");
+  }
+  TriangularBasisEvaluation evaluation{.degree = static_cast<int>(degree)};
+  ASSIGN_OR_RETURN(evaluation.uv,
+                   ResolvePairs(request.parameters().points(),
+                                evaluation.FunctionCount(), limits));
+  return evaluation;
+}
+
+absl::StatusOr<ParameterDomain> PrepareInterval(
+    const v1::ParameterInterval& interval, const Curve& curve,
+    absl::string_view field) {
+  return ResolveInterval(interval.has_start(), interval.start(),
+                         interval.has_end(), interval.end(), curve, field);
+}
+
+absl::StatusOr<double> PrepareArcLengthStart(
+    const v1::ParametersAtArcLengthRequest& request, const Curve& curve) {
+  ASSIGN_OR_RETURN(const ParameterDomain interval,
+                   ResolveInterval(request.has_start(), request.start(),
+                                   /*has_end=*/false, 0.0, curve, ""));
+  return interval.start;
 }
 
 }  // namespace freeform::server

@@ -1,13 +1,14 @@
 // The prepare step's samples: where a request evaluates its geometry, and
 // the preparation of the evaluation requests themselves.
 //
-// A curve's parameters (ParameterSet: a list or a uniform range) and a
-// surface's (u, v) samples (points or a grid) are resolved against the
-// geometry's domain and the server's limits before any work. Each
-// evaluation request prepares into one validated object: the geometry (see
-// prepare.h), its resolved parameters or samples, and the orders wanted
-// (PrepareCurveEvaluation, PrepareBasisEvaluation,
-// PrepareSurfaceEvaluation); the handler then plans, runs the core and
+// A curve's parameters (ParameterSet: a list or a uniform range; an
+// interval, PrepareInterval) and a surface's (u, v) samples (points or a
+// grid) are resolved against the geometry's domain and the server's limits
+// before any work. Each evaluation request prepares into one validated
+// object: the geometry (see prepare.h), its resolved parameters or samples,
+// and the orders wanted (PrepareCurveEvaluation, PrepareBasisEvaluation,
+// PrepareSurfaceEvaluation, PrepareTensorBasisEvaluation,
+// PrepareSurfaceCurvature); the handler then plans, runs the core and
 // writes the response. Field paths are the request's
 // ("parameters.range.count", "derivative_order"). The prepared objects view
 // the request's arrays, so they must not outlive it. Thread-compatible.
@@ -22,6 +23,7 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "absl/strings/string_view.h"
 #include "absl/types/span.h"
 #include "freeform/core/basis.h"
 #include "freeform/core/curve.h"
@@ -65,6 +67,20 @@ class ParameterSet {
   size_t count_ = 0;
 };
 
+// PrepareInterval resolves an interval of `curve`'s parameters, an omitted
+// end being that end of the domain, and checks it as the arc-length
+// queries do (ValidateArcLengthInterval: finite, within the domain, start
+// <= end): errors name "<field>.start" or "<field>.end".
+absl::StatusOr<ParameterDomain> PrepareInterval(
+    const v1::ParameterInterval& interval, const Curve& curve,
+    absl::string_view field);
+
+// PrepareArcLengthStart resolves ParametersAtArcLength's `start` (default:
+// the domain's start), checked as PrepareInterval checks an interval's
+// start (errors name "start").
+absl::StatusOr<double> PrepareArcLengthStart(
+    const v1::ParametersAtArcLengthRequest& request, const Curve& curve);
+
 // ResolveParameters resolves the `parameters` field of an evaluation-like
 // request against `curve`'s domain and the parameter limit, and copies them
 // once; errors are under "parameters".
@@ -101,8 +117,9 @@ absl::StatusOr<Evaluation<CurveBasis>> PrepareBasisEvaluation(
     const v1::EvaluateBasisRequest& request, const ServiceLimits& limits);
 
 // Everything a surface evaluation request resolves to before any math runs
-// (PrepareSurfaceEvaluation). The surface's Curvature and the tensor
-// basis's evaluation resolve their samples into one too (ResolveSamples).
+// (PrepareSurfaceEvaluation). The surface's Curvature
+// (PrepareSurfaceCurvature) and the tensor basis's evaluation
+// (PrepareTensorBasisEvaluation) resolve their samples into one too.
 struct SurfacePlan {
   // The surface (absent for a basis) and where its samples must lie.
   std::optional<Surface> surface;
@@ -146,26 +163,67 @@ struct SurfacePlan {
   }
 };
 
-// ResolvePairs returns the (u, v) pairs of `points` once they are pairs
-// (an even, non-zero number of values) within the limits, with
-// `values_per_point` numbers of answer each.
-absl::StatusOr<absl::Span<const double>> ResolvePairs(
-    const v1::SurfacePoints& points, uint64_t values_per_point,
-    const ServiceLimits& limits);
-
-// ResolveSamples resolves the (u, v) points or the grid into `plan`, after
-// checking their number, with `values_per_point` numbers each, against the
-// limits: nothing as large as the answer is made before that. `plan` holds
-// the surface (or, for a basis, its domain) already.
-absl::Status ResolveSamples(const v1::SurfaceParameters& parameters,
-                            const ServiceLimits& limits,
-                            uint64_t values_per_point, SurfacePlan& plan);
+// The surface requests resolve their `parameters` the same way: (u, v)
+// points (an even, non-zero number of values, within the domain or the
+// triangle) or a grid (two parameter sets over the domain; a triangular
+// patch takes points), their number checked with the answer's numbers per
+// point against the parameter and output limits before anything as large
+// as the answer is made. Errors name "parameters.points.uv",
+// "parameters.grid.u.range.count" and so on.
 
 // PrepareSurfaceEvaluation checks the derivative order and the normals
 // (a 3D surface), prepares the surface (PrepareSurface, "surface") and
-// resolves its samples (ResolveSamples) for the answer's size.
+// resolves its samples for the answer's size.
 absl::StatusOr<SurfacePlan> PrepareSurfaceEvaluation(
     const v1::EvaluateSurfaceRequest& request, const ServiceLimits& limits);
+
+// PrepareSurfaceCurvature prepares the surface of a Curvature request
+// (PrepareSurface, "surface"; curvatures need it 3D) and resolves its
+// samples for answers of `values_per_point` numbers each (the planner's,
+// from CurvatureSizes).
+absl::StatusOr<SurfacePlan> PrepareSurfaceCurvature(
+    const v1::SurfaceCurvatureRequest& request, uint64_t values_per_point,
+    const ServiceLimits& limits);
+
+// What a tensor basis evaluation request resolves to: the bases in u and
+// in v, and the samples over their domains (a plan without a surface).
+struct TensorBasisEvaluation {
+  CurveBasis u;
+  CurveBasis v;
+  SurfacePlan samples;
+
+  // Values per sample: the products of the two bases' functions.
+  uint64_t FunctionCount() const {
+    return static_cast<uint64_t>(FunctionCountOf(u)) *
+           static_cast<uint64_t>(FunctionCountOf(v));
+  }
+};
+
+// PrepareTensorBasisEvaluation prepares the two bases of the request's
+// `tensor` (PrepareBasis, "tensor.u" and "tensor.v") and resolves the
+// samples over their domains, with FunctionCount() numbers each.
+absl::StatusOr<TensorBasisEvaluation> PrepareTensorBasisEvaluation(
+    const v1::EvaluateSurfaceBasisRequest& request,
+    const ServiceLimits& limits);
+
+// What a triangular basis evaluation request resolves to: the degree of
+// its Bernstein polynomials and the (u, v) pairs (a view into the request).
+struct TriangularBasisEvaluation {
+  int degree = 0;
+  absl::Span<const double> uv;
+
+  size_t size() const { return uv.size() / 2; }
+  // Values per sample: the (degree + 1)(degree + 2) / 2 polynomials.
+  uint64_t FunctionCount() const;
+};
+
+// PrepareTriangularBasisEvaluation checks `triangular_degree` against the
+// degree limit and resolves the request's (u, v) points (a grid is refused
+// naming "parameters.points"), with FunctionCount() numbers each; whether
+// they lie in the triangle is the core's check.
+absl::StatusOr<TriangularBasisEvaluation> PrepareTriangularBasisEvaluation(
+    const v1::EvaluateSurfaceBasisRequest& request,
+    const ServiceLimits& limits);
 
 }  // namespace freeform::server
 

@@ -194,25 +194,13 @@ absl::StatusOr<UnaryWork> PlanSection(const v1::SectionSurfaceRequest& request,
 absl::StatusOr<UnaryWork> PlanCurvature(
     const v1::SurfaceCurvatureRequest& request, const ServiceLimits& limits,
     v1::SurfaceCurvatureResponse& response) {
-  absl::StatusOr<Surface> surface = PrepareSurface(request.surface(), limits);
-  if (!surface.ok()) return surface.status();
-  SurfacePlan plan;
-  plan.dimension = DimensionOf(*surface);
-  if (plan.dimension != 3) {
-    return InvalidFieldError(
-        "surface", absl::StrCat("curvatures need a 3D surface, this one is ",
-                                plan.dimension, "D"));
-  }
-  plan.domain = DomainOf(*surface);
-  plan.triangular = IsTriangular(*surface);
-  plan.surface = *std::move(surface);
   const SurfaceCurvatureSizes per_point = CurvatureSizes(1);
   const uint64_t values_per_point =
       uint64_t{per_point.normals} + per_point.gaussian + per_point.mean +
       per_point.principal_curvatures + per_point.principal_directions +
       per_point.statuses;
-  RETURN_IF_ERROR(
-      ResolveSamples(request.parameters(), limits, values_per_point, plan));
+  ASSIGN_OR_RETURN(SurfacePlan plan,
+                   PrepareSurfaceCurvature(request, values_per_point, limits));
   const uint64_t values = plan.size() * values_per_point;
   RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   // The core evaluates a copy of the surface rescaled by powers of two (at

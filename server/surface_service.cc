@@ -16,7 +16,6 @@
 #include "freeform/core/surface.h"
 #include "freeform/core/triangular.h"
 #include "plan.h"
-#include "prepare.h"
 #include "prepare_samples.h"
 
 namespace freeform::server {
@@ -79,36 +78,23 @@ absl::Status EvaluateChunk(const SurfacePlan& plan, size_t first, size_t last,
 absl::StatusOr<UnaryWork> PlanTensorBasis(
     const v1::EvaluateSurfaceBasisRequest& request, const ServiceLimits& limits,
     v1::EvaluateSurfaceBasisResponse& response) {
-  absl::StatusOr<CurveBasis> u =
-      PrepareBasis(request.tensor().u(), limits, "tensor.u");
-  if (!u.ok()) return u.status();
-  absl::StatusOr<CurveBasis> v =
-      PrepareBasis(request.tensor().v(), limits, "tensor.v");
-  if (!v.ok()) return v.status();
-  SurfacePlan plan;
-  plan.dimension = 1;
-  const ParameterDomain du = DomainOf(*u);
-  const ParameterDomain dv = DomainOf(*v);
-  plan.domain = {.u_start = du.start,
-                 .u_end = du.end,
-                 .v_start = dv.start,
-                 .v_end = dv.end};
-  const uint64_t functions = static_cast<uint64_t>(FunctionCountOf(*u)) *
-                             static_cast<uint64_t>(FunctionCountOf(*v));
-  RETURN_IF_ERROR(
-      ResolveSamples(request.parameters(), limits, functions, plan));
-  const uint64_t values = SaturatingProduct(plan.size(), functions);
+  ASSIGN_OR_RETURN(TensorBasisEvaluation evaluation,
+                   PrepareTensorBasisEvaluation(request, limits));
+  const uint64_t functions = evaluation.FunctionCount();
+  const uint64_t count = evaluation.samples.size();
+  const uint64_t values = SaturatingProduct(count, functions);
   RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   const uint64_t work =
-      8 * plan.size() * (FunctionCountOf(*u) + FunctionCountOf(*v));
+      8 * count *
+      (FunctionCountOf(evaluation.u) + FunctionCountOf(evaluation.v));
   return UnaryWork{
       .plan = AnswerPlan(values, work, limits),
-      .run = [u = *std::move(u), v = *std::move(v), plan = std::move(plan),
-              functions, values, &response](const ExecutionContext& execution) {
+      .run = [evaluation = std::move(evaluation), functions, values,
+              &response](const ExecutionContext& execution) {
         response.set_function_count(static_cast<uint32_t>(functions));
-        response.set_count(static_cast<uint32_t>(plan.size()));
+        response.set_count(static_cast<uint32_t>(evaluation.samples.size()));
         return EvaluateTensorBasis(
-            u, v, plan.All(),
+            evaluation.u, evaluation.v, evaluation.samples.All(),
             UninitializedArray(*response.mutable_values(), values), execution);
       }};
 }
@@ -116,30 +102,20 @@ absl::StatusOr<UnaryWork> PlanTensorBasis(
 absl::StatusOr<UnaryWork> PlanTriangularBasis(
     const v1::EvaluateSurfaceBasisRequest& request, const ServiceLimits& limits,
     v1::EvaluateSurfaceBasisResponse& response) {
-  const uint32_t degree = request.triangular_degree();
-  RETURN_IF_ERROR(CheckDegreeLimit(degree, limits, "triangular_degree"));
-  if (!request.parameters().has_points()) {
-    return InvalidFieldError(
-        "parameters.points",
-        "triangular Bernstein polynomials take (u, v) points");
-  }
-  const uint64_t functions = TriangularPointCount(static_cast<int>(degree));
-  absl::StatusOr<absl::Span<const double>> pairs =
-      ResolvePairs(request.parameters().points(), functions, limits);
-  if (!pairs.ok()) return pairs.status();
-  const absl::Span<const double> uv = *pairs;
-  const uint64_t count = uv.size() / 2;
-  const uint64_t values = SaturatingProduct(count, functions);
+  ASSIGN_OR_RETURN(const TriangularBasisEvaluation evaluation,
+                   PrepareTriangularBasisEvaluation(request, limits));
+  const uint64_t functions = evaluation.FunctionCount();
+  const uint64_t values = SaturatingProduct(evaluation.size(), functions);
   RETURN_IF_ERROR(UnaryAnswerCheck(values, limits, "parameters"));
   return UnaryWork{
       .plan = AnswerPlan(values, 0, limits),
-      .run = [uv, degree, count, functions, values,
+      .run = [evaluation, functions, values,
               &response](const ExecutionContext& execution) {
         response.set_function_count(static_cast<uint32_t>(functions));
-        response.set_count(static_cast<uint32_t>(count));
+        response.set_count(static_cast<uint32_t>(evaluation.size()));
         return PrefixFieldPath(
             EvaluateTriangularBasis(
-                static_cast<int>(degree), uv,
+                evaluation.degree, evaluation.uv,
                 UninitializedArray(*response.mutable_values(), values),
                 execution),
             "parameters.points");

@@ -350,6 +350,12 @@ TEST(ArcLength, ErrorsNameTheirField) {
   EXPECT_EQ(FieldPathOf(ArcLength(circle, -0.1, 1.0, 1e-9).status()), "start");
   EXPECT_EQ(FieldPathOf(ArcLength(circle, 0.0, 1.5, 1e-9).status()), "end");
   EXPECT_EQ(FieldPathOf(ArcLength(circle, 0.6, 0.5, 1e-9).status()), "end");
+  EXPECT_TRUE(ValidateArcLengthInterval(circle, 0.0, 1.0).ok());
+  EXPECT_TRUE(ValidateArcLengthInterval(circle, 0.5, 0.5).ok());
+  EXPECT_EQ(FieldPathOf(ValidateArcLengthInterval(circle, NAN, 1.0)), "start");
+  EXPECT_EQ(FieldPathOf(ValidateArcLengthInterval(circle, 0.0, INFINITY)),
+            "end");
+  EXPECT_EQ(FieldPathOf(ValidateArcLengthInterval(circle, 0.6, 0.5)), "end");
   std::vector<double> parameters(2);
   const std::vector<double> too_long = {1.0, 7.0};
   EXPECT_EQ(FieldPathOf(ParametersAtArcLengths(circle, 0.0, too_long, 1e-9,

@@ -602,6 +602,66 @@ TEST_F(QueryServiceTest, EqualArcLengthSamplesOfAnUnevenLine) {
                 "lengths[3]");
 }
 
+// The ends of the arc-length queries' intervals, and ParametersAtArcLength's
+// start, are checked with the request's paths: finite, within the domain
+// [0, 1] and in order; an omitted end is the domain's.
+TEST_F(QueryServiceTest, ArcLengthEndsNameTheRequestsFields) {
+  const v1::Curve line = BezierMessage(2, {0, 0, 1, 0, 3, 0});
+  v1::SampleByArcLengthRequest sample;
+  *sample.mutable_curve() = line;
+  sample.set_count(3);
+  auto sample_call = [&] {
+    return client_
+        ->Unary(client_->curves(), &v1::CurveService::Stub::SampleByArcLength,
+                sample)
+        .status();
+  };
+  sample.mutable_interval()->set_end(0.5);
+  EXPECT_TRUE(sample_call().ok());
+  sample.mutable_interval()->set_start(-0.5);
+  ExpectInvalid(sample_call(), "interval.start");
+  EXPECT_EQ(sample_call().message(),
+            "interval.start: -0.5 is not in the domain [0, 1]");
+  sample.mutable_interval()->set_start(0.75);
+  ExpectInvalid(sample_call(), "interval.end");
+  EXPECT_EQ(sample_call().message(), "interval.end: must not be below start");
+  sample.mutable_interval()->clear_start();
+  sample.mutable_interval()->set_end(NAN);
+  ExpectInvalid(sample_call(), "interval.end");
+  EXPECT_EQ(sample_call().message(),
+            "interval.end: nan is not in the domain [0, 1]");
+
+  v1::ArcLengthRequest lengths;
+  *lengths.mutable_curve() = line;
+  lengths.add_intervals()->set_start(0.5);
+  lengths.add_intervals()->set_start(INFINITY);
+  const absl::Status status =
+      client_
+          ->Unary(client_->curves(), &v1::CurveService::Stub::ArcLength,
+                  lengths)
+          .status();
+  ExpectInvalid(status, "intervals[1].start");
+  EXPECT_EQ(status.message(),
+            "intervals[1].start: inf is not in the domain [0, 1]");
+
+  v1::ParametersAtArcLengthRequest at;
+  *at.mutable_curve() = line;
+  Append(at.mutable_lengths(), {0.5});
+  at.set_start(2.0);
+  const absl::Status start =
+      client_
+          ->Unary(client_->curves(),
+                  &v1::CurveService::Stub::ParametersAtArcLength, at)
+          .status();
+  ExpectInvalid(start, "start");
+  EXPECT_EQ(start.message(), "start: 2 is not in the domain [0, 1]");
+  at.set_start(0.5);
+  EXPECT_TRUE(client_
+                  ->Unary(client_->curves(),
+                          &v1::CurveService::Stub::ParametersAtArcLength, at)
+                  .ok());
+}
+
 // The circle of radius 2 has curvature 1/2 everywhere; the twisted cubic
 // (t, t^2, t^3) has torsion 3 / (9 t^4 + 9 t^2 + 1).
 TEST_F(QueryServiceTest, CurvatureOfTheCircleAndTorsionOfTheTwistedCubic) {
@@ -694,6 +754,12 @@ TEST_F(QueryServiceTest, SpherePatchCurvatures) {
                             &v1::SurfaceService::Stub::Curvature, request)
                     .status(),
                 "surface");
+  EXPECT_EQ(client_
+                ->Unary(client_->surfaces(),
+                        &v1::SurfaceService::Stub::Curvature, request)
+                .status()
+                .message(),
+            "surface: curvatures need a 3D surface, this one is 2D");
 }
 
 // The cubic (0, 0), (1, 3), (2, 3), (3, 0) peaks at y = 9/4 (t = 1/2) while

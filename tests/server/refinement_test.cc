@@ -157,6 +157,11 @@ TEST_F(RefinementTest, TessellatesCurvesWithinTolerance) {
             absl::StatusCode::kResourceExhausted);
   request.set_tolerance(0);
   ExpectInvalid(client_->TessellateCurve(request).status(), "tolerance", true);
+  EXPECT_EQ(client_->TessellateCurve(request).status().message(),
+            "tolerance: must be positive and finite, got 0");
+  request.set_tolerance(-INFINITY);
+  EXPECT_EQ(client_->TessellateCurve(request).status().message(),
+            "tolerance: must be positive and finite, got -inf");
 }
 
 TEST_F(RefinementTest, SplitsPatches) {

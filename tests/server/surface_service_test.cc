@@ -295,6 +295,44 @@ TEST_F(SurfaceServiceTest, InvalidSurfacesNameTheField) {
   ExpectInvalid(AtPoints(v1::Surface(), {0.5, 0.5}).status(), "surface");
 }
 
+// A basis request's errors name its fields: each basis of a tensor, its
+// samples against the two bases' domains, and the points a triangular
+// basis takes.
+TEST_F(SurfaceServiceTest, BasisErrorsNameTheirFields) {
+  auto call = [&](const v1::EvaluateSurfaceBasisRequest& request) {
+    grpc::ClientContext context;
+    v1::EvaluateSurfaceBasisResponse response;
+    return FromGrpcStatus(
+        client_->surfaces().EvaluateBasis(&context, request, &response));
+  };
+  v1::EvaluateSurfaceBasisRequest tensor;
+  tensor.mutable_tensor()->mutable_u()->mutable_bernstein()->set_degree(2);
+  Append(tensor.mutable_parameters()->mutable_points()->mutable_uv(),
+         {0.5, 0.25});
+  ExpectInvalid(call(tensor), "tensor.v");
+  tensor.mutable_tensor()->mutable_v()->mutable_bernstein()->set_degree(1);
+  EXPECT_TRUE(call(tensor).ok());
+  tensor.mutable_parameters()->mutable_points()->set_uv(1, 1.5);
+  ExpectInvalid(call(tensor), "parameters.points.uv[1]");
+  v1::SurfaceGrid& grid = *tensor.mutable_parameters()->mutable_grid();
+  grid.mutable_u()->mutable_range()->set_count(3);
+  grid.mutable_v()->mutable_range()->set_count(0);
+  ExpectInvalid(call(tensor), "parameters.grid.v.range.count");
+  grid.mutable_v()->mutable_range()->set_count(2);
+  EXPECT_TRUE(call(tensor).ok());
+
+  v1::EvaluateSurfaceBasisRequest triangular;
+  triangular.set_triangular_degree(2);
+  *triangular.mutable_parameters()->mutable_grid() = grid;
+  ExpectInvalid(call(triangular), "parameters.points");
+  EXPECT_EQ(call(triangular).message(),
+            "parameters.points: triangular Bernstein polynomials take (u, v) "
+            "points");
+  Append(triangular.mutable_parameters()->mutable_points()->mutable_uv(),
+         {0.75, 0.5});
+  ExpectInvalid(call(triangular), "parameters.points", true);
+}
+
 // (u, v) points come in pairs: an odd count is refused, never truncated,
 // for every surface kind and for the triangular basis, which also needs at
 // least one pair.

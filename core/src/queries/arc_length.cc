@@ -580,10 +580,7 @@ absl::Status CheckParameter(double value, const ParameterDomain& domain,
 
 absl::Status CheckInterval(const Curve& curve, double start, double end,
                            double tolerance) {
-  const ParameterDomain domain = DomainOf(curve);
-  RETURN_IF_ERROR(CheckParameter(start, domain, "start"));
-  RETURN_IF_ERROR(CheckParameter(end, domain, "end"));
-  if (end < start) return InvalidFieldError("end", "must not be below start");
+  RETURN_IF_ERROR(ValidateArcLengthInterval(curve, start, end));
   return ValidatePositive(tolerance, "tolerance");
 }
 
@@ -719,6 +716,15 @@ void GaussLegendreRule(int points, absl::Span<double> nodes,
     weights[static_cast<size_t>(n - 1 - i)] =
         2.0 / ((1.0 - x * x) * derivative * derivative);
   }
+}
+
+absl::Status ValidateArcLengthInterval(const Curve& curve, double start,
+                                       double end) {
+  const ParameterDomain domain = DomainOf(curve);
+  RETURN_IF_ERROR(CheckParameter(start, domain, "start"));
+  RETURN_IF_ERROR(CheckParameter(end, domain, "end"));
+  if (end < start) return InvalidFieldError("end", "must not be below start");
+  return absl::OkStatus();
 }
 
 absl::StatusOr<double> ArcLength(const Curve& curve, double start, double end,

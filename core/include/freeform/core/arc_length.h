@@ -95,6 +95,14 @@ inline constexpr size_t kMaxArcLengthIntervals = 1024;
 inline constexpr int kMaxArcLengthWeightHalvings = 1100;
 inline constexpr size_t kMaxArcLengthWeightValues = size_t{1} << 18;
 
+// ValidateArcLengthInterval checks an interval [start, end] of `curve`'s
+// parameters as every function here checks it: INVALID_ARGUMENT naming
+// "start" or "end" when one is not finite or outside the domain, and "end"
+// when end < start. A caller that names the ends in a larger request (the
+// server's prepare step) checks them with it before any work.
+absl::Status ValidateArcLengthInterval(const Curve& curve, double start,
+                                       double end);
+
 // ArcLength returns the length of `curve` over [start, end] within
 // `tolerance` (absolute, in the curve's units; see the file comment).
 // start <= end, both in the domain. Fails with INVALID_ARGUMENT "start" or
