@@ -81,13 +81,13 @@ std::unique_ptr<ServerMetrics> MakeMetrics(const FreeformServer& server,
 
 absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
     const ServerOptions& options) {
-  absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> credentials =
-      ListenerCredentials(options.tls);
-  if (!credentials.ok()) return credentials.status();
   if (absl::Status status = CheckHttpListener(options.http, options.tls);
       !status.ok()) {
     return status;
   }
+  absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> credentials =
+      ListenerCredentials(options.tls);
+  if (!credentials.ok()) return credentials.status();
   const bool http = !options.http.listen_address.empty();
 
   std::unique_ptr<FreeformServer> server(new FreeformServer());
