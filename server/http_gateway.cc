@@ -77,23 +77,17 @@ using gateway_codec::ContentTypeOf;
 // gateway sends CORS headers only as --http_cors_origins says.
 // Answers go out at once (no Nagle delay: headers and body are two writes,
 // which with delayed ACKs would wait 40 ms).
+// clang-format off
 constexpr std::array<const char*, 16> kCivetwebOptions = {
-    "tcp_nodelay",
-    "1",
-    "num_threads",
-    "32",
-    "request_timeout_ms",
-    "30000",
-    "enable_keep_alive",
-    "yes",
-    "keep_alive_timeout_ms",
-    "1000",
-    "access_control_allow_origin",
-    "",
-    "access_control_allow_methods",
-    "",
-    "access_control_allow_headers",
-    ""};
+    "tcp_nodelay", "1",
+    "num_threads", "32",
+    "request_timeout_ms", "30000",
+    "enable_keep_alive", "yes",
+    "keep_alive_timeout_ms", "1000",
+    "access_control_allow_origin", "",
+    "access_control_allow_methods", "",
+    "access_control_allow_headers", ""};
+// clang-format on
 
 // The memory a request holds while it is converted and called, per byte of
 // its body: the body, the parsed message, its serialized copy.
