@@ -43,6 +43,9 @@ test_packages=(
   mypy
   # Certificates for the TLS tests.
   openssl
+  # The HTTP gateway's test and benchmark talk HTTP with libcurl; the
+  # README's HTTP example runs curl.
+  libcurl4-openssl-dev curl
   # The fuzz preset: clang with libFuzzer, ASan and UBSan, linked by lld
   # (docs/fuzzing.md).
   clang-14 libfuzzer-14-dev lld-14

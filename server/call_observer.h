@@ -4,7 +4,8 @@
 // The frame holds a nullable CallObserver*: a server without one (tests,
 // fuzzers, freeformd without --metrics_listen) reports nothing and pays a
 // null check per call. With one, the frame asks for the call's
-// MethodObserver once when the call starts and reports to it once when the
+// MethodObserver (by method and transport, transport.h) once when the call
+// starts and reports to it once when the
 // call is done, so an implementation keeps each method's state ready
 // instead of looking it up by name per report. Implementations are
 // thread-safe: calls report from any gRPC or pool thread.
@@ -16,6 +17,7 @@
 
 #include "absl/status/status.h"
 #include "absl/strings/string_view.h"
+#include "transport.h"
 
 namespace freeform::server {
 
@@ -43,9 +45,11 @@ class CallObserver {
  public:
   virtual ~CallObserver() = default;
 
-  // ForMethod returns the observer of `method`, the access log's name of
-  // the RPC ("CurveService.Evaluate"); it lives as long as this observer.
-  virtual MethodObserver& ForMethod(absl::string_view method) = 0;
+  // ForMethod returns the observer of the calls of `method`, the access
+  // log's name of the RPC ("CurveService.Evaluate"), that came in by
+  // `transport`; it lives as long as this observer.
+  virtual MethodObserver& ForMethod(absl::string_view method,
+                                    Transport transport) = 0;
 
   // Refused reports a call that admission refused (once per call).
   virtual void Refused(Refusal reason) = 0;

@@ -3,10 +3,11 @@
 //   freeformd --listen=0.0.0.0:50051 --threads=0 --log_level=info
 //
 // Prints "freeformd listening on HOST:PORT" on stdout once it serves (with
-// --listen=127.0.0.1:0 the kernel picks the port), and with --metrics_listen
-// a second line "freeformd metrics on HOST:PORT" after it. SIGTERM or
-// SIGINT: health turns NOT_SERVING, in-flight RPCs get --grace_period to
-// finish, exit 0.
+// --listen=127.0.0.1:0 the kernel picks the port), with --metrics_listen
+// a line "freeformd metrics on HOST:PORT" after it, and with --http_listen
+// (the HTTP/JSON gateway, docs/http.md) a line "freeformd http listening on
+// HOST:PORT" after those. SIGTERM or SIGINT: health turns NOT_SERVING,
+// in-flight RPCs and HTTP requests get --grace_period to finish, exit 0.
 #include <unistd.h>
 
 #include <algorithm>
@@ -43,6 +44,18 @@ ABSL_FLAG(std::string, metrics_listen, "",
           "Address of the Prometheus metrics, http://HOST:PORT/metrics (HOST "
           "numeric, e.g. 127.0.0.1:9464; port 0 picks a free port, printed "
           "on stdout); empty serves none");
+ABSL_FLAG(std::string, http_listen, "",
+          "Address of the HTTP/JSON gateway (the Connect protocol, "
+          "docs/http.md), HOST:PORT with a numeric host; port 0 picks a free "
+          "port, printed on stdout; empty serves none. Plaintext: with "
+          "--tls_cert only a loopback address, with --tls_client_ca none");
+ABSL_FLAG(std::vector<std::string>, http_cors_origins, {},
+          "Comma-separated origins whose browser pages may call the HTTP "
+          "gateway (https://app.example:8443), or * for any; empty sends no "
+          "CORS headers");
+ABSL_FLAG(uint64_t, http_max_request_bytes, 0,
+          "Largest HTTP request body; a larger Content-Length is refused "
+          "before the body is read (0 = --max_message_bytes)");
 ABSL_FLAG(int, threads, 0, "Math threads; 0 = one per hardware thread");
 ABSL_FLAG(std::string, log_level, "info",
           "trace, debug, info, warn, error, critical or off");
@@ -124,6 +137,16 @@ freeform::server::ServerOptions OptionsFromFlags() {
                  .client_ca_file = absl::GetFlag(FLAGS_tls_client_ca),
                  .allowed_clients = absl::GetFlag(FLAGS_tls_allowed_clients)};
   options.reflection = absl::GetFlag(FLAGS_reflection);
+  const uint64_t http_max_request_bytes =
+      absl::GetFlag(FLAGS_http_max_request_bytes);
+  options.http = {
+      .listen_address = absl::GetFlag(FLAGS_http_listen),
+      .cors_origins = absl::GetFlag(FLAGS_http_cors_origins),
+      .max_request_bytes =
+          http_max_request_bytes != 0
+              ? http_max_request_bytes
+              : static_cast<uint64_t>(
+                    std::max<int64_t>(0, absl::GetFlag(FLAGS_max_message_bytes)))};
   freeform::server::ServiceLimits& limits = options.limits;
   limits.max_message_bytes = absl::GetFlag(FLAGS_max_message_bytes);
   limits.max_control_points = absl::GetFlag(FLAGS_max_control_points);
@@ -313,6 +336,11 @@ int main(int argc, char** argv) {
     announcer->info("freeformd metrics on {}:{}",
                     HostOf(absl::GetFlag(FLAGS_metrics_listen)),
                     (*server)->metrics_port());
+  }
+  if ((*server)->http_port() != 0) {
+    announcer->info("freeformd http listening on {}:{}",
+                    HostOf(absl::GetFlag(FLAGS_http_listen)),
+                    (*server)->http_port());
   }
   spdlog::info("serving on {}:{} with {} math threads", host, (*server)->port(),
                (*server)->pool_size());

@@ -9,6 +9,7 @@
 #include <prometheus/exposer.h>
 #include <prometheus/family.h>
 #include <prometheus/histogram.h>
+#include <prometheus/labels.h>
 #include <prometheus/metric_family.h>
 #include <prometheus/registry.h>
 #include <prometheus/text_serializer.h>
@@ -31,6 +32,7 @@ using prometheus::Family;
 using prometheus::Histogram;
 
 constexpr char kMethodLabel[] = "method";
+constexpr char kTransportLabel[] = "transport";
 constexpr char kUnknownMethod[] = "unknown";
 
 // The gRPC codes: OK (0) to UNAUTHENTICATED (16).
@@ -130,7 +132,8 @@ struct ServerMetrics::Families {
   explicit Families(prometheus::Registry& registry)
       : calls(prometheus::BuildCounter()
                   .Name("freeform_calls_total")
-                  .Help("freeform.v1 calls by method and final gRPC code")
+                  .Help("freeform.v1 calls by method, transport (grpc or "
+                        "http) and final gRPC code")
                   .Register(registry)),
         duration(prometheus::BuildHistogram()
                      .Name("freeform_call_duration_seconds")
@@ -169,13 +172,13 @@ struct ServerMetrics::Families {
 // then kept.
 class ServerMetrics::MethodMetrics final : public MethodObserver {
  public:
-  MethodMetrics(std::string name, Families& families)
+  MethodMetrics(std::string name, Transport transport, Families& families)
       : name_(std::move(name)),
+        transport_(TransportName(transport)),
         calls_family_(families.calls),
-        duration_(families.duration.Add({{kMethodLabel, name_}},
-                                        CallDurationBuckets())),
-        request_bytes_(families.request_bytes.Add({{kMethodLabel, name_}})),
-        response_bytes_(families.response_bytes.Add({{kMethodLabel, name_}})) {
+        duration_(families.duration.Add(Labels(), CallDurationBuckets())),
+        request_bytes_(families.request_bytes.Add(Labels())),
+        response_bytes_(families.response_bytes.Add(Labels())) {
     Calls(absl::StatusCode::kOk);  // rate() needs the series before a call
   }
 
@@ -191,6 +194,10 @@ class ServerMetrics::MethodMetrics final : public MethodObserver {
   }
 
  private:
+  prometheus::Labels Labels() const {
+    return {{kMethodLabel, name_}, {kTransportLabel, transport_}};
+  }
+
   Counter& Calls(absl::StatusCode code) {
     code = KnownCode(code);
     std::atomic<Counter*>& slot = calls_[static_cast<size_t>(code)];
@@ -198,14 +205,16 @@ class ServerMetrics::MethodMetrics final : public MethodObserver {
     if (counter == nullptr) {
       // Family::Add returns the series already made for the same labels,
       // so calls racing here all get one counter.
-      counter = &calls_family_.Add(
-          {{kMethodLabel, name_}, {"code", absl::StatusCodeToString(code)}});
+      prometheus::Labels labels = Labels();
+      labels.emplace("code", absl::StatusCodeToString(code));
+      counter = &calls_family_.Add(labels);
       slot.store(counter, std::memory_order_release);
     }
     return *counter;
   }
 
   const std::string name_;
+  const std::string transport_;
   Family<Counter>& calls_family_;
   std::array<std::atomic<Counter*>, kCodes> calls_{};
   Histogram& duration_;
@@ -243,25 +252,45 @@ class ServerMetrics::ReadingsCollector final : public prometheus::Collectable {
 };
 
 ServerMetrics::ServerMetrics(const std::vector<std::string>& methods,
-                             Readings readings)
+                             Readings readings,
+                             const std::vector<Transport>& transports)
     : registry_(std::make_shared<prometheus::Registry>()),
       families_(std::make_unique<Families>(*registry_)),
       readings_(std::make_shared<ReadingsCollector>(std::move(readings))) {
   for (const std::string& method : methods) {
     if (by_name_.contains(method)) continue;
-    methods_.push_back(std::make_unique<MethodMetrics>(method, *families_));
-    by_name_.emplace(methods_.back()->name(), methods_.back().get());
+    const ByTransport series = AddMethod(method, transports);
+    by_name_.emplace(methods_.back()->name(), series);
   }
-  methods_.push_back(
-      std::make_unique<MethodMetrics>(kUnknownMethod, *families_));
-  unknown_ = methods_.back().get();
+  unknown_ = AddMethod(kUnknownMethod, transports);
 }
 
 ServerMetrics::~ServerMetrics() = default;
 
-MethodObserver& ServerMetrics::ForMethod(absl::string_view method) {
+ServerMetrics::ByTransport ServerMetrics::AddMethod(
+    const std::string& method, const std::vector<Transport>& transports) {
+  const std::vector<Transport> made =
+      transports.empty() ? std::vector<Transport>{Transport::kGrpc}
+                         : transports;
+  ByTransport series{};
+  for (Transport transport : made) {
+    methods_.push_back(
+        std::make_unique<MethodMetrics>(method, transport, *families_));
+    series[static_cast<size_t>(transport)] = methods_.back().get();
+  }
+  MethodMetrics* const first = series[static_cast<size_t>(made.front())];
+  for (MethodMetrics*& slot : series) {
+    if (slot == nullptr) slot = first;
+  }
+  return series;
+}
+
+MethodObserver& ServerMetrics::ForMethod(absl::string_view method,
+                                         Transport transport) {
   const auto found = by_name_.find(method);
-  return found == by_name_.end() ? *unknown_ : *found->second;
+  const ByTransport& series =
+      found == by_name_.end() ? unknown_ : found->second;
+  return *series[static_cast<size_t>(transport)];
 }
 
 void ServerMetrics::Refused(Refusal reason) {

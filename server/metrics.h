@@ -2,8 +2,8 @@
 // (--metrics_listen), with prometheus-cpp.
 //
 // ServerMetrics is the frame's CallObserver (call_observer.h). It counts
-// every freeform.v1 call by method and final code, its latency and its
-// request and answer bytes, and admission's refusals by reason; the calls
+// every freeform.v1 call by method, transport (grpc or http, transport.h)
+// and final code, its latency and its request and answer bytes, and admission's refusals by reason; the calls
 // in flight, the pool tasks waiting and the reserved memory are read from
 // the server when scraped. docs/operations.md lists each metric with its
 // labels. The per-method series are made once at construction (the calls'
@@ -17,6 +17,7 @@
 #ifndef FREEFORM_SERVER_METRICS_H_
 #define FREEFORM_SERVER_METRICS_H_
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -27,6 +28,7 @@
 #include "absl/status/statusor.h"
 #include "absl/strings/string_view.h"
 #include "call_observer.h"
+#include "transport.h"
 
 namespace prometheus {
 class Collectable;
@@ -54,14 +56,17 @@ class ServerMetrics final : public CallObserver {
     uint64_t memory_capacity_bytes = 0;
   };
 
-  // Makes the series of `methods`; a method not among them is counted as
-  // "unknown".
-  ServerMetrics(const std::vector<std::string>& methods, Readings readings);
+  // Makes the series of `methods` for each of `transports`; a method not
+  // among them is counted as "unknown", a transport not among them as the
+  // first of them.
+  ServerMetrics(const std::vector<std::string>& methods, Readings readings,
+                const std::vector<Transport>& transports = {Transport::kGrpc});
   ~ServerMetrics() override;
   ServerMetrics(const ServerMetrics&) = delete;
   ServerMetrics& operator=(const ServerMetrics&) = delete;
 
-  MethodObserver& ForMethod(absl::string_view method) override;
+  MethodObserver& ForMethod(absl::string_view method,
+                            Transport transport) override;
   void Refused(Refusal reason) override;
 
   // collectables returns what an endpoint exposes.
@@ -77,10 +82,18 @@ class ServerMetrics final : public CallObserver {
   std::shared_ptr<prometheus::Registry> registry_;
   std::unique_ptr<Families> families_;
   std::shared_ptr<ReadingsCollector> readings_;
+  // One method's series for each transport, indexed by Transport; those of
+  // a transport without series point to the first transport's.
+  using ByTransport = std::array<MethodMetrics*, kTransports.size()>;
+
+  // AddMethod makes the series of `method` for each of `transports`.
+  ByTransport AddMethod(const std::string& method,
+                        const std::vector<Transport>& transports);
+
   std::vector<std::unique_ptr<MethodMetrics>> methods_;
   // Keys view the names held by methods_.
-  absl::flat_hash_map<absl::string_view, MethodMetrics*> by_name_;
-  MethodMetrics* unknown_ = nullptr;
+  absl::flat_hash_map<absl::string_view, ByTransport> by_name_;
+  ByTransport unknown_{};
 };
 
 class MetricsEndpoint {

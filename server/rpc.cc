@@ -209,9 +209,10 @@ CallRecord::CallRecord(RpcFrame* frame, absl::string_view method,
       request_bytes_(request->ByteSizeLong()),
       planning_(planning),
       started_(std::chrono::steady_clock::now()),
+      origin_(OriginOf(*context)),
       observer_(frame->observer_ == nullptr
                     ? nullptr
-                    : &frame->observer_->ForMethod(method)) {
+                    : &frame->observer_->ForMethod(method, origin_.transport)) {
   WatchCall(*context, frame->limits().max_call_time, token_);
   frame_->calls_in_flight_.fetch_add(1, std::memory_order_acq_rel);
   frame_->calls_started_.fetch_add(1, std::memory_order_acq_rel);
@@ -297,9 +298,10 @@ void CallRecord::Log(const absl::Status& status, size_t response_bytes,
       std::chrono::duration_cast<std::chrono::microseconds>(elapsed).count();
   const int attempt = RetryAttempt(*context_);
   spdlog::log(LogLevel(status),
-              "rpc method={} peer={} request_bytes={} response_bytes={} "
-              "status={} micros={}{}{}{}{}",
-              std::string(method_), context_->peer(), request_bytes_,
+              "rpc method={} transport={} peer={} request_bytes={} "
+              "response_bytes={} status={} micros={}{}{}{}{}",
+              std::string(method_), std::string(TransportName(origin_.transport)),
+              origin_.peer, request_bytes_,
               response_bytes, absl::StatusCodeToString(status.code()), micros,
               attempt > 0 ? absl::StrCat(" attempt=", attempt) : "",
               failed ? " error=\"" : "",

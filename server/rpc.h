@@ -12,8 +12,10 @@
 //      chunk per pool thread is computed while an earlier one is written
 //      (chunks_in_flight);
 //   5. answers with the status (field paths as google.rpc.BadRequest), and
-//      writes one access-log line: method, peer, sizes, status, microseconds,
-//      and `attempt=N` for a call gRPC's retry policy sent again;
+//      writes one access-log line: method, transport (grpc, or http for a
+//      call of the HTTP gateway, transport.h), peer, sizes, status,
+//      microseconds, and `attempt=N` for a call gRPC's retry policy sent
+//      again;
 //   6. reports the call and admission's refusals to the server's
 //      CallObserver, when it has one (call_observer.h: the metrics).
 // Every OK answer (each streamed message too) is checked to be finite: a
@@ -50,6 +52,7 @@
 #include "freeform/core/thread_pool.h"
 #include "grpc_handoff.h"
 #include "service_limits.h"
+#include "transport.h"
 
 namespace freeform::server {
 
@@ -178,6 +181,8 @@ class CallRecord {
   const Planning planning_;
   uint64_t planned_bytes_ = 0;
   const std::chrono::steady_clock::time_point started_;
+  // The call's transport and the peer the access log names (transport.h).
+  const CallOrigin origin_;
   // The method's observer, or null when the frame has none.
   MethodObserver* const observer_;
   std::atomic<bool> refused_{false};

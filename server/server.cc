@@ -63,23 +63,32 @@ std::vector<std::string> ServedServices(const ServerOptions& options) {
 // MakeMetrics returns the metrics of `server`, which read its frame and
 // budget when scraped.
 std::unique_ptr<ServerMetrics> MakeMetrics(const FreeformServer& server,
-                                           const MemoryBudget& budget) {
+                                           const MemoryBudget& budget,
+                                           bool http) {
+  std::vector<Transport> transports = {Transport::kGrpc};
+  if (http) transports.push_back(Transport::kHttp);
   return std::make_unique<ServerMetrics>(
       FreeformMethodNames(),
       ServerMetrics::Readings{
           .calls_in_flight = [&server] { return server.calls_in_flight(); },
           .tasks_queued = [&server] { return server.tasks_queued(); },
           .memory_reserved_bytes = [&budget] { return budget.in_use(); },
-          .memory_capacity_bytes = budget.capacity()});
+          .memory_capacity_bytes = budget.capacity()},
+      transports);
 }
 
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
     const ServerOptions& options) {
+  if (absl::Status status = CheckHttpListener(options.http, options.tls);
+      !status.ok()) {
+    return status;
+  }
   absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> credentials =
       ListenerCredentials(options.tls);
   if (!credentials.ok()) return credentials.status();
+  const bool http = !options.http.listen_address.empty();
 
   std::unique_ptr<FreeformServer> server(new FreeformServer());
   const int threads =
@@ -92,7 +101,7 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   server->trimmer_ = std::make_unique<MemoryTrimmer>(
       server->budget_.get(), kTrimAfterReleasedBytes, std::chrono::seconds(1));
   if (!options.metrics_listen_address.empty()) {
-    server->metrics_ = MakeMetrics(*server, *server->budget_);
+    server->metrics_ = MakeMetrics(*server, *server->budget_, http);
   }
   server->frame_ =
       std::make_unique<RpcFrame>(server->pool_.get(), server->budget_.get(),
@@ -133,6 +142,12 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
                                *server->metrics_);
     if (!endpoint.ok()) return endpoint.status();
     server->metrics_endpoint_ = *std::move(endpoint);
+  }
+  if (http) {
+    absl::StatusOr<std::unique_ptr<HttpGateway>> gateway = HttpGateway::Start(
+        options.http, server->InProcessChannel(), server->budget_.get());
+    if (!gateway.ok()) return gateway.status();
+    server->http_gateway_ = *std::move(gateway);
   }
   if (grpc::HealthCheckServiceInterface* health =
           server->server_->GetHealthCheckService();
@@ -182,6 +197,9 @@ void FreeformServer::Shutdown(std::chrono::milliseconds grace) {
     health->Shutdown();  // every service reports NOT_SERVING from now on
   }
   server_->Shutdown(std::chrono::system_clock::now() + grace);
+  // Requests that arrive from now on get UNAVAILABLE from the stopped
+  // server; those being answered finish writing before Stop returns.
+  if (http_gateway_ != nullptr) http_gateway_->Stop();
 }
 
 void FreeformServer::Wait() {

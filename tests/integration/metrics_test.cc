@@ -29,12 +29,12 @@ using ::testing::Not;
 using ::testing::Optional;
 
 constexpr char kEvaluateOk[] =
-    R"(freeform_calls_total{code="OK",method="CurveService.Evaluate"})";
+    R"(freeform_calls_total{code="OK",method="CurveService.Evaluate",transport="grpc"})";
 constexpr char kEvaluateInvalid[] =
     R"(freeform_calls_total{code="INVALID_ARGUMENT",)"
-    R"(method="CurveService.Evaluate"})";
+    R"(method="CurveService.Evaluate",transport="grpc"})";
 constexpr char kEvaluateCount[] =
-    R"(freeform_call_duration_seconds_count{method="CurveService.Evaluate"})";
+    R"(freeform_call_duration_seconds_count{method="CurveService.Evaluate",transport="grpc"})";
 
 // ScrapeWhenCounted scrapes the metrics until the latency histogram of
 // CurveService.Evaluate and its OK and INVALID_ARGUMENT counters together
@@ -97,24 +97,24 @@ TEST(FreeformdMetrics, CountsCallsByMethodAndCode) {
   EXPECT_THAT(MetricValue(text, kEvaluateInvalid), Optional(1.0));
   EXPECT_THAT(MetricValue(text, kEvaluateCount), Optional(4.0));
   EXPECT_THAT(MetricValue(text, R"(freeform_call_duration_seconds_bucket{)"
-                                R"(method="CurveService.Evaluate",le="+Inf"})"),
+                                R"(method="CurveService.Evaluate",transport="grpc",le="+Inf"})"),
               Optional(4.0));
   EXPECT_GT(MetricValue(text, R"(freeform_call_duration_seconds_sum{)"
-                              R"(method="CurveService.Evaluate"})")
+                              R"(method="CurveService.Evaluate",transport="grpc"})")
                 .value_or(0),
             0);
   EXPECT_GT(MetricValue(text, R"(freeform_request_bytes_total{)"
-                              R"(method="CurveService.Evaluate"})")
+                              R"(method="CurveService.Evaluate",transport="grpc"})")
                 .value_or(0),
             0);
   EXPECT_GT(MetricValue(text, R"(freeform_response_bytes_total{)"
-                              R"(method="CurveService.Evaluate"})")
+                              R"(method="CurveService.Evaluate",transport="grpc"})")
                 .value_or(0),
             0);
   EXPECT_THAT(MetricValue(text, "freeform_calls_in_flight"), Optional(0.0));
   // No other method was called; the health check is not a freeform call.
   EXPECT_THAT(MetricValue(text, R"(freeform_calls_total{code="OK",)"
-                                R"(method="SurfaceService.Evaluate"})"),
+                                R"(method="SurfaceService.Evaluate",transport="grpc"})"),
               Optional(0.0));
   EXPECT_THAT(text, HasSubstr("# TYPE freeform_call_duration_seconds "
                               "histogram"));

@@ -4,7 +4,8 @@
 // in a scratch directory whose examples/ is the repository's, so the files
 // it writes (patch.obj, circle.svg, ...) land there. So do the commands of
 // the README's "Other languages" block (the Python and Node examples; npm
-// fetches the Node packages).
+// fetches the Node packages), and the `curl` lines of its "HTTP/JSON
+// (Connect)" block against a freeformd with --http_listen.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -17,6 +18,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_replace.h"
 #include "cli_test_util.h"
+#include "server_process.h"
 
 namespace freeform {
 namespace {
@@ -103,6 +105,31 @@ TEST_F(ReadmeTest, OtherLanguageCommandsRunAsWritten) {
                   ::testing::ContainsRegex(R"(1,2(\.0)?,1\.5,4\.5,0(\.0)?)"))
           << command;
     }
+  }
+  RunCommand("rm -rf " + scratch);
+}
+
+TEST(ReadmeHttpTest, CurlCommandsRunAsWritten) {
+  std::vector<std::string> commands;
+  for (const std::string& line : ReadmeBlock("### HTTP/JSON (Connect)")) {
+    if (absl::StartsWith(line, "curl ")) commands.push_back(line);
+  }
+  ASSERT_GE(commands.size(), 1u);
+  ServerProcess server({"--http_listen=127.0.0.1:0"});
+  ASSERT_GT(server.http_port(), 0);
+  const std::string scratch = MakeScratch();
+  for (const std::string& command : commands) {
+    const std::string runnable = absl::StrReplaceAll(
+        command,
+        {{"127.0.0.1:8080", absl::StrCat("127.0.0.1:", server.http_port())}});
+    const CommandResult result =
+        RunCommand(absl::StrCat("cd ", scratch, " && ", runnable));
+    EXPECT_EQ(result.exit_code, 0) << command << "\n" << result.output;
+    // The worked cubic's points and first derivatives.
+    EXPECT_THAT(result.output, ::testing::HasSubstr("[0,0,2,1.5,4,0]"))
+        << command;
+    EXPECT_THAT(result.output, ::testing::HasSubstr("[3,6,4.5,0,3,-6]"))
+        << command;
   }
   RunCommand("rm -rf " + scratch);
 }

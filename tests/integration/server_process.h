@@ -1,7 +1,8 @@
 // ServerProcess: a freeformd child process listening on 127.0.0.1 with a
 // kernel-chosen port, for the integration and reliability tests. The
 // constructor starts it and reads the port it prints (and, with a
-// --metrics_listen flag, the metrics port it prints next); the destructor
+// --metrics_listen flag, the metrics port it prints next, with an
+// --http_listen flag the HTTP gateway's port after those); the destructor
 // kills it if it still runs. Its log (stderr) can go to a file, and its
 // resident memory is read from /proc.
 #ifndef FREEFORM_TESTS_INTEGRATION_SERVER_PROCESS_H_
@@ -68,6 +69,11 @@ class ServerProcess {
         metrics_port_ = ReadPort("freeformd metrics on ");
       }
     }
+    for (const std::string& flag : extra_flags) {
+      if (flag.rfind("--http_listen=", 0) == 0 && flag != "--http_listen=") {
+        http_port_ = ReadPort("freeformd http listening on ");
+      }
+    }
   }
   ~ServerProcess() {
     if (pid_ > 0 && !exited_) {
@@ -82,6 +88,8 @@ class ServerProcess {
   int port() const { return port_; }
   // metrics_port returns the port of the metrics, 0 without them.
   int metrics_port() const { return metrics_port_; }
+  // http_port returns the port of the HTTP gateway, 0 without it.
+  int http_port() const { return http_port_; }
   pid_t pid() const { return pid_; }
   std::string address() const { return absl::StrCat("127.0.0.1:", port_); }
 
@@ -147,6 +155,7 @@ class ServerProcess {
   std::vector<std::string> announced_;
   int port_ = 0;
   int metrics_port_ = 0;
+  int http_port_ = 0;
   bool exited_ = false;
 };
 

@@ -44,7 +44,7 @@ TEST(MetricsModule, NamesEveryRpcOfBothServices) {
 TEST(MetricsModule, CountsCallsByMethodAndCode) {
   ServerMetrics metrics({"CurveService.Evaluate", "CurveService.Split"},
                         FixedReadings());
-  MethodObserver& evaluate = metrics.ForMethod("CurveService.Evaluate");
+  MethodObserver& evaluate = metrics.ForMethod("CurveService.Evaluate", Transport::kGrpc);
   using std::chrono::microseconds;
   evaluate.CallDone(absl::StatusCode::kOk, microseconds(2000), 10, 20);
   evaluate.CallDone(absl::StatusCode::kOk, microseconds(2000), 10, 20);
@@ -55,33 +55,33 @@ TEST(MetricsModule, CountsCallsByMethodAndCode) {
     return MetricValue(text, series);
   };
   EXPECT_THAT(value(R"(freeform_calls_total{code="OK",)"
-                    R"(method="CurveService.Evaluate"})"),
+                    R"(method="CurveService.Evaluate",transport="grpc"})"),
               Optional(2.0))
       << text;
   EXPECT_THAT(value(R"(freeform_calls_total{code="INVALID_ARGUMENT",)"
-                    R"(method="CurveService.Evaluate"})"),
+                    R"(method="CurveService.Evaluate",transport="grpc"})"),
               Optional(1.0));
   // Codes no call ended with have no series; OK has one from the start.
   EXPECT_EQ(value(R"(freeform_calls_total{code="INTERNAL",)"
-                  R"(method="CurveService.Evaluate"})"),
+                  R"(method="CurveService.Evaluate",transport="grpc"})"),
             std::nullopt);
   EXPECT_THAT(value(R"(freeform_calls_total{code="OK",)"
-                    R"(method="CurveService.Split"})"),
+                    R"(method="CurveService.Split",transport="grpc"})"),
               Optional(0.0));
   EXPECT_THAT(value(R"(freeform_call_duration_seconds_count{)"
-                    R"(method="CurveService.Evaluate"})"),
+                    R"(method="CurveService.Evaluate",transport="grpc"})"),
               Optional(3.0));
   EXPECT_THAT(value(R"(freeform_call_duration_seconds_bucket{)"
-                    R"(method="CurveService.Evaluate",le="0.00025"})"),
+                    R"(method="CurveService.Evaluate",transport="grpc",le="0.00025"})"),
               Optional(1.0));
   EXPECT_THAT(value(R"(freeform_call_duration_seconds_bucket{)"
-                    R"(method="CurveService.Evaluate",le="0.0025"})"),
+                    R"(method="CurveService.Evaluate",transport="grpc",le="0.0025"})"),
               Optional(3.0));
   EXPECT_THAT(value(R"(freeform_request_bytes_total{)"
-                    R"(method="CurveService.Evaluate"})"),
+                    R"(method="CurveService.Evaluate",transport="grpc"})"),
               Optional(25.0));
   EXPECT_THAT(value(R"(freeform_response_bytes_total{)"
-                    R"(method="CurveService.Evaluate"})"),
+                    R"(method="CurveService.Evaluate",transport="grpc"})"),
               Optional(40.0));
   EXPECT_THAT(value("freeform_calls_in_flight"), Optional(2.0));
   EXPECT_THAT(value("freeform_pool_queued_tasks"), Optional(5.0));
@@ -91,12 +91,12 @@ TEST(MetricsModule, CountsCallsByMethodAndCode) {
 
 TEST(MetricsModule, UnknownMethodsAndCodesHaveTheirOwnLabel) {
   ServerMetrics metrics({"CurveService.Evaluate"}, FixedReadings());
-  metrics.ForMethod("CurveService.Missing")
+  metrics.ForMethod("CurveService.Missing", Transport::kGrpc)
       .CallDone(static_cast<absl::StatusCode>(99), std::chrono::seconds(1), 1,
                 1);
   EXPECT_THAT(MetricValue(metrics.Exposition(),
                           R"(freeform_calls_total{code="UNKNOWN",)"
-                          R"(method="unknown"})"),
+                          R"(method="unknown",transport="grpc"})"),
               Optional(1.0));
 }
 
