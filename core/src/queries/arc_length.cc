@@ -29,6 +29,7 @@
 namespace freeform {
 namespace {
 
+using internal::kRoundingAgreement;
 using internal::Net;
 using internal::SpeedIntegrator;
 using internal::SpeedMinimaSearch;
@@ -39,11 +40,6 @@ constexpr int kMaxNewtonSteps = 100;
 constexpr size_t kSolveGrain = 64;
 // No segment: a stretch that is a whole piece uses the piece's own net.
 constexpr size_t kPieceNet = std::numeric_limits<size_t>::max();
-
-// Two quadrature rules whose values differ by at most this fraction of
-// their value agree to rounding.
-constexpr double kRoundingAgreement =
-    64 * std::numeric_limits<double>::epsilon();
 
 // The curve as the Bezier pieces of its scaled copy (scaled_geometry.h),
 // lifted, each rational one with its weights at most 1: every length is

@@ -6,11 +6,18 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 #include "queries/bezier_net.h"
 
 namespace freeform::internal {
+
+// Two quadrature rules whose values differ by at most this fraction of
+// their value agree to rounding; the speed's polynomials are trusted to the
+// same fraction of the products they sum (speed_minima.h).
+inline constexpr double kRoundingAgreement =
+    64 * std::numeric_limits<double>::epsilon();
 
 // Points of the Gauss-Legendre rule of every quadrature step.
 inline constexpr int kSpeedRulePoints = 16;

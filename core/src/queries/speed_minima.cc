@@ -8,15 +8,10 @@
 
 #include "base/binomial.h"
 #include "base/scaled.h"
+#include "refine/bezier_halving.h"
 
 namespace freeform::internal {
 namespace {
-
-// Two quadrature rules whose values differ by at most this fraction of
-// their value agree to rounding; the slope's coefficients are trusted to
-// the same fraction of the products they sum.
-constexpr double kRoundingAgreement =
-    64 * std::numeric_limits<double>::epsilon();
 
 // Halvings that locate a minimum of the speed: to 2^-32 of its net's
 // parameter, where the kink it leaves costs the rule about the speed's
@@ -98,16 +93,15 @@ double HodographBound(const Net& net) {
 // degree m = n - 1, has the control points D_i = P_{i+1} - P_i (C' = n H):
 // (|C'|^2)' = n^2 2m times it. |H|^2 = sum_k c_k B_k^{2m} with c_k =
 // sum_{i+j=k} C(m,i) C(m,j) / C(2m,k) D_i . D_j, so min_k c_k bounds |H|^2
-// below: when even that is above (kSmoothSpeedRatio max_i |D_i|)^2, no
-// minimum is sharp, and it returns false without a slope.
-bool SpeedMinimaSearch::PolynomialSlope(const Net& net) {
+// below: when even that is above (sharp / n)^2, no speed falls below
+// `sharp`, no minimum is sharp, and it returns false without a slope.
+bool SpeedMinimaSearch::PolynomialSlope(const Net& net, double sharp) {
   const size_t stride = static_cast<size_t>(net.stride());
   const size_t d = static_cast<size_t>(net.dimension);
   const int m = net.count_u - 2;
   const size_t points = static_cast<size_t>(m) + 1;
   hodograph_.resize(points * d);
-  double largest_squared = 0.0;  // max_i |D_i|^2
-  double sizes = 0.0;            // sum over x of max_i D_i,x^2
+  double sizes = 0.0;  // sum over x of max_i D_i,x^2
   for (size_t x = 0; x < d; ++x) {
     double largest = 0.0;
     for (size_t i = 0; i < points; ++i) {
@@ -125,7 +119,6 @@ bool SpeedMinimaSearch::PolynomialSlope(const Net& net) {
     const double* a = hodograph_.data() + i * d;
     double dot = 0.0;
     for (size_t x = 0; x < d; ++x) dot += a[x] * a[x];
-    largest_squared = std::max(largest_squared, dot);
     squared_speed_[2 * i] += binomials_[i] * binomials_[i] * dot;
     for (size_t j = i + 1; j < points; ++j) {
       const double* b = hodograph_.data() + j * d;
@@ -143,8 +136,9 @@ bool SpeedMinimaSearch::PolynomialSlope(const Net& net) {
   // difference): (|C'|^2)' = 2 C' . C'', whose coefficients are off by
   // about their count times the products |C'| |C''| of each coordinate.
   noise_ = kRoundingAgreement * 2.0 * static_cast<double>(points) * sizes;
-  const double sharp = kSmoothSpeedRatio * kSmoothSpeedRatio * largest_squared;
-  if (std::isfinite(floor) && std::isfinite(sharp) && floor - noise_ > sharp) {
+  const double floor_needed = (sharp / (m + 1)) * (sharp / (m + 1));
+  if (std::isfinite(floor) && std::isfinite(floor_needed) &&
+      floor - noise_ > floor_needed) {
     return false;
   }
   slope_.resize(squared_speed_.size() - 1);
@@ -243,19 +237,12 @@ void SpeedMinimaSearch::AppendMinima(int depth, double lo, double hi) {
     }
     return;
   }
-  // De Casteljau at 1/2: the lower half into the next depth's part, the
-  // upper half waiting at the next depth until the lower one is searched.
+  // The lower half into the next depth's part, the upper half waiting at
+  // the next depth until the lower one is searched.
   --halvings_;
   double* low = part + count;
   double* high = waiting_.data() + static_cast<size_t>(depth + 1) * count;
-  scratch_.assign(part, part + count);
-  for (size_t r = 0; r < count; ++r) {
-    low[r] = scratch_[0];
-    high[count - 1 - r] = scratch_[count - 1 - r];
-    for (size_t i = 0; i + r + 1 < count; ++i) {
-      scratch_[i] = 0.5 * (scratch_[i] + scratch_[i + 1]);
-    }
-  }
+  HalveNet(part, static_cast<int>(count), 1, 1, true, low, high);
   // A root at the midpoint itself (within the noise), rising from the
   // lower half's last sign to the upper half's first, is neither half's
   // sign change.
@@ -286,10 +273,9 @@ void SpeedMinimaSearch::AppendMinima(int depth, double lo, double hi) {
 // near the minimum, its square root is smooth there (its nearest complex
 // singularity is far), and the rule's error estimate sees its error fall
 // as it halves. A rational net keeps every cut.
-void SpeedMinimaSearch::KeepSharpMinima(const Net& net,
+void SpeedMinimaSearch::KeepSharpMinima(const Net& net, double sharp,
                                         SpeedIntegrator& integrator) {
   if (net.rational || cuts_.size() <= 2) return;
-  const double sharp = kSmoothSpeedRatio * HodographBound(net);
   size_t kept = 1;
   for (size_t k = 1; k + 1 < cuts_.size(); ++k) {
     if (integrator.Speed(net, cuts_[k]) < sharp) cuts_[kept++] = cuts_[k];
@@ -301,12 +287,16 @@ void SpeedMinimaSearch::KeepSharpMinima(const Net& net,
 absl::Span<const double> SpeedMinimaSearch::Cuts(const Net& net,
                                                  SpeedIntegrator& integrator) {
   cuts_.assign(1, 0.0);
+  // Where a polynomial net's speed must fall for a minimum to be cut.
+  const double sharp = net.rational || net.count_u < 3
+                           ? 0.0
+                           : kSmoothSpeedRatio * HodographBound(net);
   if (net.count_u >= 3) {
     bool search = true;
     if (net.rational) {
       RationalSlope(net);
     } else {
-      search = PolynomialSlope(net);
+      search = PolynomialSlope(net, sharp);
     }
     if (search) {
       const size_t levels = static_cast<size_t>(kMinimumDepth) + 2;
@@ -318,7 +308,7 @@ absl::Span<const double> SpeedMinimaSearch::Cuts(const Net& net,
     }
   }
   cuts_.push_back(1.0);
-  KeepSharpMinima(net, integrator);
+  KeepSharpMinima(net, sharp, integrator);
   return cuts_;
 }
 

@@ -23,11 +23,12 @@ class SpeedMinimaSearch {
   absl::Span<const double> Cuts(const Net& net, SpeedIntegrator& integrator);
 
  private:
-  bool PolynomialSlope(const Net& net);
+  bool PolynomialSlope(const Net& net, double sharp);
   void RationalSlope(const Net& net);
   void AppendMinima(int depth, double lo, double hi);
   double BisectRoot(const double* slope, int steps);
-  void KeepSharpMinima(const Net& net, SpeedIntegrator& integrator);
+  void KeepSharpMinima(const Net& net, double sharp,
+                       SpeedIntegrator& integrator);
 
   // The slope polynomial's coefficients (a polynomial of the sign of the
   // derivative of |C'|^2), and what rounding may put in them.
