@@ -1,6 +1,7 @@
 // Scraping freeformd's Prometheus metrics in tests: an HTTP/1.0 GET over a
-// plain loopback socket (no HTTP library), its status line, and the value
-// of one series in the text format.
+// plain loopback socket (no HTTP library; SendOnLoopback sends any raw
+// request), its status line, and the value of one series in the text
+// format.
 #ifndef FREEFORM_TESTS_METRICS_SCRAPE_H_
 #define FREEFORM_TESTS_METRICS_SCRAPE_H_
 
@@ -30,34 +31,52 @@ struct HttpAnswer {
   std::string body;
 };
 
-// HttpExchange sends `GET PATH HTTP/1.0` to 127.0.0.1:PORT and returns the
-// answer; UNAVAILABLE when none came within 10 s.
-inline absl::StatusOr<HttpAnswer> HttpExchange(int port,
-                                               absl::string_view path) {
+// What came back on a raw loopback exchange, and whether the server closed
+// the connection (false: the receive timed out, or nothing connected).
+struct LoopbackAnswer {
+  std::string bytes;
+  bool closed = false;
+};
+
+// SendOnLoopback connects to 127.0.0.1:PORT, sends `request` as it is and
+// reads until the server closes the connection or nothing comes for
+// `timeout_seconds`.
+inline LoopbackAnswer SendOnLoopback(int port, absl::string_view request,
+                                     int timeout_seconds) {
+  LoopbackAnswer answer;
   const int socket_fd = socket(AF_INET, SOCK_STREAM, 0);
-  if (socket_fd < 0) return absl::InternalError("socket() failed");
-  const timeval timeout = {.tv_sec = 10, .tv_usec = 0};
+  if (socket_fd < 0) return answer;
+  const timeval timeout = {.tv_sec = timeout_seconds, .tv_usec = 0};
   setsockopt(socket_fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
   sockaddr_in address{};
   address.sin_family = AF_INET;
   address.sin_port = htons(static_cast<uint16_t>(port));
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  std::string answer;
   if (connect(socket_fd, reinterpret_cast<const sockaddr*>(&address),
-              sizeof(address)) == 0) {
-    const std::string request =
-        absl::StrCat("GET ", path, " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n");
-    if (send(socket_fd, request.data(), request.size(), MSG_NOSIGNAL) ==
-        static_cast<ssize_t>(request.size())) {
-      std::array<char, 4096> buffer;
-      ssize_t received = 0;
-      while ((received = recv(socket_fd, buffer.data(), buffer.size(), 0)) >
-             0) {
-        answer.append(buffer.data(), static_cast<size_t>(received));
-      }
+              sizeof(address)) == 0 &&
+      send(socket_fd, request.data(), request.size(), MSG_NOSIGNAL) ==
+          static_cast<ssize_t>(request.size())) {
+    std::array<char, 4096> buffer;
+    ssize_t received = 0;
+    while ((received = recv(socket_fd, buffer.data(), buffer.size(), 0)) > 0) {
+      answer.bytes.append(buffer.data(), static_cast<size_t>(received));
     }
+    answer.closed = received == 0;
   }
   close(socket_fd);
+  return answer;
+}
+
+// HttpExchange sends `GET PATH HTTP/1.0` to 127.0.0.1:PORT and returns the
+// answer; UNAVAILABLE when none came within 10 s.
+inline absl::StatusOr<HttpAnswer> HttpExchange(int port,
+                                               absl::string_view path) {
+  const std::string answer =
+      SendOnLoopback(
+          port,
+          absl::StrCat("GET ", path, " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n"),
+          10)
+          .bytes;
   const size_t body = answer.find("\r\n\r\n");
   if (body == std::string::npos) {
     return absl::UnavailableError(absl::StrCat(

@@ -2,17 +2,12 @@
 // freeformd: the Connect protocol's unary and streaming forms against the
 // gRPC answers, its errors, bounds, deadline, CORS, metrics, TLS rules and
 // shutdown.
-#include <arpa/inet.h>
 #include <gmock/gmock.h>
 #include <google/protobuf/util/json_util.h>
 #include <google/protobuf/util/message_differencer.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
 #include <signal.h>
-#include <sys/socket.h>
-#include <sys/time.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <fstream>
@@ -155,33 +150,15 @@ TEST_F(HttpGatewayTest, InvalidRequestIs400WithTheFieldPath) {
 // plain socket and returns what came back before the server closed the
 // connection, or "" after 5 s.
 std::string OversizedBodyAnswer(int port, std::chrono::milliseconds& took) {
-  const int socket_fd = socket(AF_INET, SOCK_STREAM, 0);
-  const timeval timeout = {.tv_sec = 5, .tv_usec = 0};
-  setsockopt(socket_fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_port = htons(static_cast<uint16_t>(port));
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  std::string answer;
+  const std::string request = absl::StrCat(
+      "POST ", kEvaluatePath,
+      " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+      "Content-Length: 100000000000\r\n\r\n{}");
   const auto start = Clock::now();
-  if (connect(socket_fd, reinterpret_cast<const sockaddr*>(&address),
-              sizeof(address)) == 0) {
-    const std::string request = absl::StrCat(
-        "POST ", kEvaluatePath,
-        " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
-        "Content-Length: 100000000000\r\n\r\n{}");
-    send(socket_fd, request.data(), request.size(), MSG_NOSIGNAL);
-    std::array<char, 4096> buffer;
-    ssize_t received = 0;
-    while ((received = recv(socket_fd, buffer.data(), buffer.size(), 0)) > 0) {
-      answer.append(buffer.data(), static_cast<size_t>(received));
-    }
-    if (received < 0) answer.clear();  // timed out: never closed
-  }
+  const LoopbackAnswer answer = SendOnLoopback(port, request, 5);
   took = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() -
                                                                start);
-  close(socket_fd);
-  return answer;
+  return answer.closed ? answer.bytes : "";
 }
 
 TEST_F(HttpGatewayTest, OversizedBodyIsRefusedWithoutBeingRead) {
@@ -407,26 +384,28 @@ TEST(HttpGateway, RefusesToStartBesideTlsItWouldBypass) {
   const std::string freeformd = FREEFORMD_PATH;
   // The gateway is plaintext: with TLS, loopback only; with mutual TLS,
   // not at all. The flags are checked before the certificates are read.
-  const CommandResult public_address =
-      RunCommand(freeformd +
-                 " --listen=127.0.0.1:0 --tls_cert=/nonexistent/cert.pem "
-                 "--tls_key=/nonexistent/key.pem --http_listen=0.0.0.0:0");
-  EXPECT_EQ(public_address.exit_code, 1) << public_address.output;
-  EXPECT_THAT(public_address.output, HasSubstr("loopback"));
-  const CommandResult mutual =
-      RunCommand(freeformd +
-                 " --listen=127.0.0.1:0 --tls_cert=/nonexistent/cert.pem "
-                 "--tls_key=/nonexistent/key.pem "
-                 "--tls_client_ca=/nonexistent/ca.pem "
-                 "--http_listen=127.0.0.1:0");
-  EXPECT_EQ(mutual.exit_code, 1) << mutual.output;
-  EXPECT_THAT(mutual.output, HasSubstr("--tls_client_ca"));
-  const CommandResult cors =
-      RunCommand(freeformd +
-                 " --listen=127.0.0.1:0 --http_listen=127.0.0.1:0 "
-                 "--http_cors_origins=app.example/path");
-  EXPECT_EQ(cors.exit_code, 1) << cors.output;
-  EXPECT_THAT(cors.output, HasSubstr("--http_cors_origins"));
+  struct Refusal {
+    std::string flags;
+    std::string names;
+  };
+  const Refusal refusals[] = {
+      {.flags = "--tls_cert=/nonexistent/cert.pem "
+                "--tls_key=/nonexistent/key.pem --http_listen=0.0.0.0:0",
+       .names = "loopback"},
+      {.flags = "--tls_cert=/nonexistent/cert.pem "
+                "--tls_key=/nonexistent/key.pem "
+                "--tls_client_ca=/nonexistent/ca.pem "
+                "--http_listen=127.0.0.1:0",
+       .names = "--tls_client_ca"},
+      {.flags = "--http_listen=127.0.0.1:0 "
+                "--http_cors_origins=app.example/path",
+       .names = "--http_cors_origins"}};
+  for (const Refusal& refusal : refusals) {
+    const CommandResult result =
+        RunCommand(freeformd + " --listen=127.0.0.1:0 " + refusal.flags);
+    EXPECT_EQ(result.exit_code, 1) << refusal.flags << "\n" << result.output;
+    EXPECT_THAT(result.output, HasSubstr(refusal.names)) << refusal.flags;
+  }
 }
 
 TEST(HttpGateway, StopsWithTheServerOnSigterm) {
