@@ -139,14 +139,13 @@ freeform::server::ServerOptions OptionsFromFlags() {
   options.reflection = absl::GetFlag(FLAGS_reflection);
   const uint64_t http_max_request_bytes =
       absl::GetFlag(FLAGS_http_max_request_bytes);
-  options.http = {
-      .listen_address = absl::GetFlag(FLAGS_http_listen),
-      .cors_origins = absl::GetFlag(FLAGS_http_cors_origins),
-      .max_request_bytes =
-          http_max_request_bytes != 0
-              ? http_max_request_bytes
-              : static_cast<uint64_t>(
-                    std::max<int64_t>(0, absl::GetFlag(FLAGS_max_message_bytes)))};
+  options.http = {.listen_address = absl::GetFlag(FLAGS_http_listen),
+                  .cors_origins = absl::GetFlag(FLAGS_http_cors_origins),
+                  .max_request_bytes =
+                      http_max_request_bytes != 0
+                          ? http_max_request_bytes
+                          : static_cast<uint64_t>(std::max<int64_t>(
+                                0, absl::GetFlag(FLAGS_max_message_bytes)))};
   freeform::server::ServiceLimits& limits = options.limits;
   limits.max_message_bytes = absl::GetFlag(FLAGS_max_message_bytes);
   limits.max_control_points = absl::GetFlag(FLAGS_max_control_points);

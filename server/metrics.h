@@ -3,12 +3,12 @@
 //
 // ServerMetrics is the frame's CallObserver (call_observer.h). It counts
 // every freeform.v1 call by method, transport (grpc or http, transport.h)
-// and final code, its latency and its request and answer bytes, and admission's refusals by reason; the calls
-// in flight, the pool tasks waiting and the reserved memory are read from
-// the server when scraped. docs/operations.md lists each metric with its
-// labels. The per-method series are made once at construction (the calls'
-// codes on first use), so recording a call takes no lookup by label: a
-// few atomic adds and the histogram's own lock.
+// and final code, its latency and its request and answer bytes, and admission's
+// refusals by reason; the calls in flight, the pool tasks waiting and the
+// reserved memory are read from the server when scraped. docs/operations.md
+// lists each metric with its labels. The per-method series are made once at
+// construction (the calls' codes on first use), so recording a call takes no
+// lookup by label: a few atomic adds and the histogram's own lock.
 //
 // MetricsEndpoint serves them as Prometheus text at http://ADDRESS/metrics
 // until it is destroyed: that path exactly (any other gets 404), with

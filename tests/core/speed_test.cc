@@ -60,7 +60,8 @@ TEST(SpeedTest, BatchedSpeedsAreTheSingleSpeeds) {
       }
       SpeedIntegrator integrator;
       SpeedIntegrator::Nodes s;
-      for (size_t k = 0; k < s.size(); ++k) s[k] = (static_cast<double>(k) + 0.5) / kSpeedRulePoints;
+      for (size_t k = 0; k < s.size(); ++k)
+        s[k] = (static_cast<double>(k) + 0.5) / kSpeedRulePoints;
       SpeedIntegrator::Nodes speeds;
       integrator.Speeds(net, s, speeds);
       for (size_t k = 0; k < s.size(); ++k) {

@@ -96,26 +96,34 @@ TEST(FreeformdMetrics, CountsCallsByMethodAndCode) {
   EXPECT_THAT(MetricValue(text, kEvaluateOk), Optional(3.0)) << text;
   EXPECT_THAT(MetricValue(text, kEvaluateInvalid), Optional(1.0));
   EXPECT_THAT(MetricValue(text, kEvaluateCount), Optional(4.0));
-  EXPECT_THAT(MetricValue(text, R"(freeform_call_duration_seconds_bucket{)"
-                                R"(method="CurveService.Evaluate",transport="grpc",le="+Inf"})"),
-              Optional(4.0));
-  EXPECT_GT(MetricValue(text, R"(freeform_call_duration_seconds_sum{)"
-                              R"(method="CurveService.Evaluate",transport="grpc"})")
-                .value_or(0),
-            0);
-  EXPECT_GT(MetricValue(text, R"(freeform_request_bytes_total{)"
-                              R"(method="CurveService.Evaluate",transport="grpc"})")
-                .value_or(0),
-            0);
-  EXPECT_GT(MetricValue(text, R"(freeform_response_bytes_total{)"
-                              R"(method="CurveService.Evaluate",transport="grpc"})")
-                .value_or(0),
-            0);
+  EXPECT_THAT(
+      MetricValue(
+          text,
+          R"(freeform_call_duration_seconds_bucket{)"
+          R"(method="CurveService.Evaluate",transport="grpc",le="+Inf"})"),
+      Optional(4.0));
+  EXPECT_GT(
+      MetricValue(text, R"(freeform_call_duration_seconds_sum{)"
+                        R"(method="CurveService.Evaluate",transport="grpc"})")
+          .value_or(0),
+      0);
+  EXPECT_GT(
+      MetricValue(text, R"(freeform_request_bytes_total{)"
+                        R"(method="CurveService.Evaluate",transport="grpc"})")
+          .value_or(0),
+      0);
+  EXPECT_GT(
+      MetricValue(text, R"(freeform_response_bytes_total{)"
+                        R"(method="CurveService.Evaluate",transport="grpc"})")
+          .value_or(0),
+      0);
   EXPECT_THAT(MetricValue(text, "freeform_calls_in_flight"), Optional(0.0));
   // No other method was called; the health check is not a freeform call.
-  EXPECT_THAT(MetricValue(text, R"(freeform_calls_total{code="OK",)"
-                                R"(method="SurfaceService.Evaluate",transport="grpc"})"),
-              Optional(0.0));
+  EXPECT_THAT(
+      MetricValue(text,
+                  R"(freeform_calls_total{code="OK",)"
+                  R"(method="SurfaceService.Evaluate",transport="grpc"})"),
+      Optional(0.0));
   EXPECT_THAT(text, HasSubstr("# TYPE freeform_call_duration_seconds "
                               "histogram"));
 }

@@ -44,7 +44,8 @@ TEST(MetricsModule, NamesEveryRpcOfBothServices) {
 TEST(MetricsModule, CountsCallsByMethodAndCode) {
   ServerMetrics metrics({"CurveService.Evaluate", "CurveService.Split"},
                         FixedReadings());
-  MethodObserver& evaluate = metrics.ForMethod("CurveService.Evaluate", Transport::kGrpc);
+  MethodObserver& evaluate =
+      metrics.ForMethod("CurveService.Evaluate", Transport::kGrpc);
   using std::chrono::microseconds;
   evaluate.CallDone(absl::StatusCode::kOk, microseconds(2000), 10, 20);
   evaluate.CallDone(absl::StatusCode::kOk, microseconds(2000), 10, 20);
@@ -71,12 +72,14 @@ TEST(MetricsModule, CountsCallsByMethodAndCode) {
   EXPECT_THAT(value(R"(freeform_call_duration_seconds_count{)"
                     R"(method="CurveService.Evaluate",transport="grpc"})"),
               Optional(3.0));
-  EXPECT_THAT(value(R"(freeform_call_duration_seconds_bucket{)"
-                    R"(method="CurveService.Evaluate",transport="grpc",le="0.00025"})"),
-              Optional(1.0));
-  EXPECT_THAT(value(R"(freeform_call_duration_seconds_bucket{)"
-                    R"(method="CurveService.Evaluate",transport="grpc",le="0.0025"})"),
-              Optional(3.0));
+  EXPECT_THAT(
+      value(R"(freeform_call_duration_seconds_bucket{)"
+            R"(method="CurveService.Evaluate",transport="grpc",le="0.00025"})"),
+      Optional(1.0));
+  EXPECT_THAT(
+      value(R"(freeform_call_duration_seconds_bucket{)"
+            R"(method="CurveService.Evaluate",transport="grpc",le="0.0025"})"),
+      Optional(3.0));
   EXPECT_THAT(value(R"(freeform_request_bytes_total{)"
                     R"(method="CurveService.Evaluate",transport="grpc"})"),
               Optional(25.0));
