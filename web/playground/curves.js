@@ -54,7 +54,7 @@ export class CurveView {
     // What the last redraw drew: the polyline's points and parameters, as
     // the server's Tessellate returned them.
     this.drawn = {points: [], parameters: [], curve: null};
-    this.refresher = new Refresher(() => this.redraw(), (error) => this.report(error));
+    this.refresher = new Refresher(() => this.redraw(), report);
     this.bindControls();
     this.bindPointer();
   }
@@ -253,16 +253,18 @@ export class CurveView {
     const parameters = tessellation.parameters ?? [];
     // The domain runs from the tessellation's first vertex to its last.
     this.state.domain = [parameters[0], parameters.at(-1)];
-    const {t, domain} = this.state;
-    if (t === null || !(t >= domain[0] && t <= domain[1])) {
+    const {domain} = this.state;
+    if (this.state.t === null || !(this.state.t >= domain[0] && this.state.t <= domain[1])) {
       this.state.t = parameters[parameters.length >> 1];
     }
+    const {t} = this.state;
     const [atT, construction, comb] = await Promise.all([
-      call('CurveService', 'Evaluate', {curve, parameters: {list: {values: [this.state.t]}}}),
-      this.controls.construction.checked ? this.construction(curve) : [],
+      call('CurveService', 'Evaluate', {curve, parameters: {list: {values: [t]}}}),
+      this.controls.construction.checked ? this.construction(curve, t) : [],
       this.controls.comb.checked ? this.comb(curve) : null,
     ]);
-    this.drawn = {points: pointsOf(tessellation.points), parameters, curve};
+    if (this.refresher.superseded) return;
+    this.drawn = {points: pointsOf(tessellation.points), parameters, curve, t};
     this.draw(pointsOf(atT.derivatives[0])[0], construction, comb);
   }
 
@@ -272,8 +274,8 @@ export class CurveView {
   // same point as the server's split gives); for a B-spline or NURBS curve
   // the control polygons after inserting t once, twice, ... up to the
   // degree (de Boor's construction).
-  async construction(curve) {
-    const {t, domain, points, degree, knots} = this.state;
+  async construction(curve, t) {
+    const {domain, points, degree, knots} = this.state;
     if (!(t > domain[0] && t < domain[1])) return [];
     if (curve.bezier) {
       const lefts = await Promise.all(points.slice(0, -1).map(async (_, first) => {
@@ -356,8 +358,8 @@ export class CurveView {
     const {state, controls} = this;
     controls.t.min = String(state.domain[0]);
     controls.t.max = String(state.domain[1]);
-    controls.t.value = String(state.t);
-    controls.tValue.textContent = formatNumber(state.t);
+    controls.t.value = String(this.drawn.t);
+    controls.tValue.textContent = formatNumber(this.drawn.t);
     controls.pointAtT.textContent = `(${pointAtT.map(formatNumber).join(', ')})`;
     controls.drawnCount.textContent = String(this.drawn.points.length);
     controls.controlPoints.textContent = state.points

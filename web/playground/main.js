@@ -4,37 +4,37 @@
 // for tests (tests/browser/playground_test.mjs) and the curious.
 
 import {CurveView} from './curves.js';
-import {whenNoCalls} from './rpc.js';
+import {callsPending, whenNoCalls} from './rpc.js';
 import {SurfaceView} from './surfaces.js';
 
 const status = document.querySelector('#status');
 
+// report shows a server's error in the status line, or clears it (null).
 function report(error) {
-  status.textContent = error.code ? `${error.code}: ${error.message}` : String(error.message ?? error);
-  status.classList.add('error');
-}
-
-function clearReport() {
-  status.textContent = 'Every number here is an answer of freeformd.';
-  status.classList.remove('error');
+  status.classList.toggle('error', Boolean(error));
+  if (!error) {
+    status.textContent = 'Every number here is an answer of freeformd.';
+  } else {
+    status.textContent = error.code ? `${error.code}: ${error.message}` : String(error.message ?? error);
+  }
 }
 
 const curves = new CurveView(document.querySelector('#curves'), report);
 const surfaces = new SurfaceView(document.querySelector('#surfaces'), report);
-for (const control of document.querySelectorAll('[data-control]')) {
-  control.addEventListener('input', clearReport);
-  control.addEventListener('click', clearReport);
-}
 
 window.playground = {
   curves,
   surfaces,
-  // idle resolves once both views have drawn their latest state.
+  // idle resolves once both views have drawn their latest state: no redraw
+  // and no call in flight, still so after the continuations of the last
+  // answers have run (a button's action redraws when its call returns).
   async idle() {
+    const busy = () => curves.refresher.running || surfaces.refresher.running || callsPending() > 0;
     do {
       await Promise.all([curves.settled(), surfaces.settled()]);
       await whenNoCalls();
-    } while (curves.refresher.running || surfaces.refresher.running);
+      await new Promise((resolve) => setTimeout(resolve, 0));
+    } while (busy());
   },
 };
 

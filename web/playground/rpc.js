@@ -33,6 +33,11 @@ export async function call(service, method, request) {
   }
 }
 
+// callsPending returns the number of calls in flight.
+export function callsPending() {
+  return callsInFlight;
+}
+
 // whenNoCalls resolves once no call is in flight.
 export function whenNoCalls() {
   if (callsInFlight === 0) return Promise.resolve();

@@ -18,7 +18,7 @@ import {Refresher} from './refresher.js';
 // for each model (z is up in all three).
 const VIEWS = {
   teapot: {eye: [4.2, -4.6, 3.4], target: [0, 0, 1.2], normalLength: 0.15},
-  torus: {eye: [9, -10, 8], target: [0, 0, 0], normalLength: 0.3},
+  torus: {eye: [9, -10, 8], target: [0, 0, 0], normalLength: 0.6},
   patch: {eye: [6, -4, 5], target: [1.5, 1.5, 0.5], normalLength: 0.2},
 };
 // The edited patch: a bicubic Bezier net on the grid {0, 1, 2, 3}^2 whose
@@ -48,7 +48,6 @@ async function torusSurfaces() {
 export class SurfaceView {
   constructor(root, report) {
     this.root = root;
-    this.report = report;
     this.controls = Object.fromEntries(
         [...root.querySelectorAll('[data-control]')].map((node) => [node.dataset.control, node]));
     this.heights = [...FIRST_HEIGHTS];
@@ -59,7 +58,7 @@ export class SurfaceView {
     this.drawn = {request: null, vertexCount: 0, triangleCount: 0};
     this.setUpScene(root.querySelector('canvas'));
     this.buildHeightSliders();
-    this.refresher = new Refresher(() => this.redraw(), (error) => this.report(error));
+    this.refresher = new Refresher(() => this.redraw(), report);
     for (const name of ['model', 'tolerance', 'normals', 'wireframe']) {
       this.controls[name].addEventListener('change', () => this.refresh());
     }
@@ -137,6 +136,7 @@ export class SurfaceView {
       normals: true,
     };
     const mesh = await call('SurfaceService', 'Tessellate', request);
+    if (this.refresher.superseded) return;
     this.show(model, mesh);
     this.drawn = {
       request,
