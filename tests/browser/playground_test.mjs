@@ -36,11 +36,17 @@ const {values: args} = parseArgs({options: {
   'screenshot': {type: 'string'},
 }});
 
+// The server's log, printed when the test fails.
+let serverLog = '';
+
 // startServer runs freeformd on free ports; resolves with the process and
 // the base URL of its HTTP listener.
 function startServer() {
   const server = spawn(args.freeformd, ['--listen=127.0.0.1:0', '--http_listen=127.0.0.1:0'],
-      {stdio: ['ignore', 'pipe', 'inherit']});
+      {stdio: ['ignore', 'pipe', 'pipe']});
+  server.stderr.on('data', (bytes) => {
+    serverLog += bytes;
+  });
   return new Promise((resolve, reject) => {
     server.on('exit', (code) => reject(new Error(`freeformd exited with ${code}`)));
     readline.createInterface({input: server.stdout}).on('line', (line) => {
@@ -190,7 +196,7 @@ async function main() {
     args: ['--no-sandbox', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
   });
   try {
-    const page = await browser.newPage({viewport: {width: 1400, height: 860}});
+    const page = await browser.newPage({viewport: {width: 1400, height: 760}});
     const errors = [];
     const foreign = [];
     page.on('console', (message) => {
@@ -221,6 +227,7 @@ async function main() {
 }
 
 main().then(() => process.exit(0), (error) => {
+  console.error(`freeformd's log:\n${serverLog}`);
   console.error(error);
   process.exit(1);
 });

@@ -17,7 +17,7 @@ import {Refresher} from './refresher.js';
 // Where the camera looks from and at, and the length of the drawn normals,
 // for each model (z is up in all three).
 const VIEWS = {
-  teapot: {eye: [4.2, -4.6, 3.4], target: [0, 0, 1.2], normalLength: 0.15},
+  teapot: {eye: [4.9, -5.4, 4.0], target: [0.2, 0, 1.2], normalLength: 0.15},
   torus: {eye: [9, -10, 8], target: [0, 0, 0], normalLength: 0.6},
   patch: {eye: [6, -4, 5], target: [1.5, 1.5, 0.5], normalLength: 0.2},
 };
