@@ -238,9 +238,8 @@ class HttpGateway::Call {
   // A request that carries a body (which a GET has no use for) gets its
   // answer and the connection ends, unread.
   void ServeFile(const StaticFile& file) {
-    const bool carries_body =
-        http_.declared_body_bytes().value_or(0) > 0 ||
-        !http_.header("Transfer-Encoding").empty();
+    const bool carries_body = http_.declared_body_bytes().value_or(0) > 0 ||
+                              !http_.header("Transfer-Encoding").empty();
     http_.AnswerFile(file.content_type, file.body,
                      /*with_body=*/http_.method() == "GET", carries_body);
   }

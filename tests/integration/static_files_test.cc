@@ -114,11 +114,11 @@ TEST_F(StaticFilesTest, NoPathOutsideTheTable) {
 }
 
 TEST_F(StaticFilesTest, GetWithABodyIsAnsweredWithoutReadingIt) {
-  const LoopbackAnswer answer = SendOnLoopback(
-      server_.http_port(),
-      "GET /playground.css HTTP/1.1\r\nHost: 127.0.0.1\r\n"
-      "Content-Length: 100000000000\r\n\r\nab",
-      5);
+  const LoopbackAnswer answer =
+      SendOnLoopback(server_.http_port(),
+                     "GET /playground.css HTTP/1.1\r\nHost: 127.0.0.1\r\n"
+                     "Content-Length: 100000000000\r\n\r\nab",
+                     5);
   // The server closed the connection after its answer (a server that
   // waited for the 10^11 bytes, or drained them, would not have within the
   // 5 s SendOnLoopback waits).
