@@ -180,8 +180,13 @@ else
     # build's install tree in docker/prebuilt.
     context="$WORK_DIR/context"
     mkdir -p "$context"
-    for entry in CMakeLists.txt CMakePresets.json scripts proto core io server client cmake docker; do
+    for entry in CMakeLists.txt CMakePresets.json scripts proto core io server client cmake docker examples; do
       cp -a "$REPO_ROOT/$entry" "$context/"
+    done
+    # The playground's sources, without web/node_modules.
+    mkdir -p "$context/web"
+    for entry in package.json package-lock.json CMakeLists.txt playground; do
+      cp -a "$REPO_ROOT/web/$entry" "$context/web/"
     done
     cmake --install "$PREBUILT_BUILD" --prefix "$context/docker/prebuilt" --strip >"$WORK_DIR/install.log" 2>&1 \
       || { cat "$WORK_DIR/install.log" >&2; die "cmake --install $PREBUILT_BUILD failed"; }

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages freeform needs to build and test, and only
-# those that are missing. Safe to run again; needs root (or sudo).
+# those that are missing, then the npm packages of web/package-lock.json
+# (scripts/web_packages.sh: the playground page's build tools and three.js,
+# and the browser test's playwright-core). Safe to run again; needs root (or
+# sudo).
 #   scripts/setup.sh [--peers | --build-only]
 # --peers       also the peer libraries that scripts/performance.sh measures
 #               freeform against (OpenCASCADE, scipy, Eigen).
@@ -31,6 +34,14 @@ packages=(
   # grpc/health/v1/health.proto for the client's health check.
   grpc-proto
 )
+# The playground page that freeformd embeds is bundled at build time by
+# esbuild from npm (web/CMakeLists.txt): node and npm. Any node >= 18
+# serves, so one that is already there (e.g. from NodeSource, whose nodejs
+# bundles npm) is kept. The Node client example and its test
+# (examples/node) use them too.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
 test_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # The Python client example and its test (examples/python, docs/clients.md):
@@ -49,13 +60,10 @@ test_packages=(
   # The fuzz preset: clang with libFuzzer, ASan and UBSan, linked by lld
   # (docs/fuzzing.md).
   clang-14 libfuzzer-14-dev lld-14
+  # The playground's browser test (tests/browser/): headless chromium,
+  # driven by playwright-core from npm.
+  chromium
 )
-# The Node client example and its test (examples/node) need node and npm;
-# any node >= 12 serves, so one that is already there (e.g. from
-# NodeSource, whose nodejs bundles npm) is kept.
-if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-  test_packages+=(nodejs npm)
-fi
 if [ "$build_only" = 0 ]; then
   packages+=("${test_packages[@]}")
 fi
@@ -75,12 +83,23 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#packages[@]} packages are installed"
-  exit 0
+else
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -q
+  $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-echo "setup: installing ${missing[*]}"
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -q
-$sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+# The npm packages, where web/ is there (the container's build stage runs
+# this script before it copies the sources, and scripts/web_packages.sh
+# after).
+web_dir="$(dirname "$0")/../web"
+if [ -f "$web_dir/package-lock.json" ]; then
+  if [ "$build_only" = 1 ]; then
+    bash "$(dirname "$0")/web_packages.sh" --omit-dev
+  else
+    bash "$(dirname "$0")/web_packages.sh"
+  fi
+fi

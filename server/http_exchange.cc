@@ -101,13 +101,32 @@ void HttpExchange::AddHeader(const char* name, absl::string_view value) {
                          static_cast<int>(value.size()));
 }
 
+void HttpExchange::AddContentHeaders(absl::string_view content_type,
+                                     size_t bytes) {
+  AddHeader("Content-Type", content_type);
+  AddHeader("Content-Length", absl::StrCat(bytes));
+}
+
 void HttpExchange::Answer(int http_status, absl::string_view content_type,
                           absl::string_view body) {
   StartAnswer(http_status);
-  AddHeader("Content-Type", content_type);
-  AddHeader("Content-Length", absl::StrCat(body.size()));
+  AddContentHeaders(content_type, body.size());
   mg_response_header_send(connection_);
   mg_write(connection_, body.data(), body.size());
+}
+
+void HttpExchange::AnswerFile(absl::string_view content_type,
+                              absl::string_view body, bool with_body,
+                              bool close) {
+  constexpr int kOk = 200;
+  StartAnswer(kOk);
+  AddContentHeaders(content_type, body.size());
+  AddHeader("Cache-Control", "no-cache");
+  AddHeader("X-Content-Type-Options", "nosniff");
+  if (close) AddHeader("Connection", "close");
+  mg_response_header_send(connection_);
+  if (with_body) mg_write(connection_, body.data(), body.size());
+  if (close) CloseAfterAnswer();
 }
 
 void HttpExchange::AnswerError(const grpc::Status& status, bool close,
@@ -115,8 +134,7 @@ void HttpExchange::AnswerError(const grpc::Status& status, bool close,
   const std::string body = connect::ErrorJson(status);
   StartAnswer(http_status != 0 ? http_status
                                : connect::HttpStatusOf(status.error_code()));
-  AddHeader("Content-Type", "application/json");
-  AddHeader("Content-Length", absl::StrCat(body.size()));
+  AddContentHeaders("application/json", body.size());
   if (close) AddHeader("Connection", "close");
   mg_response_header_send(connection_);
   mg_write(connection_, body.data(), body.size());

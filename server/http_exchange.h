@@ -54,6 +54,13 @@ class HttpExchange {
   // (its body was not read).
   void AnswerError(const grpc::Status& status, bool close = false,
                    int http_status = 0);
+  // AnswerFile sends an embedded file (static_files.h): 200 with its
+  // content type, revalidated by the browser on every load (the files
+  // change with the binary), with `with_body` false (HEAD) its headers only;
+  // `close` also ends the connection (a body the request carried is not
+  // read).
+  void AnswerFile(absl::string_view content_type, absl::string_view body,
+                  bool with_body, bool close);
   // AnswerPreflight answers a CORS preflight (OPTIONS): 204, with the CORS
   // headers when the origin is allowed.
   void AnswerPreflight();
@@ -69,6 +76,8 @@ class HttpExchange {
   // StartAnswer begins an answer: its status line and the CORS headers.
   void StartAnswer(int http_status);
   void AddHeader(const char* name, absl::string_view value);
+  // AddContentHeaders adds Content-Type and Content-Length.
+  void AddContentHeaders(absl::string_view content_type, size_t bytes);
   // CloseAfterAnswer makes civetweb close the connection once the answer
   // sent is done, without reading the rest of the request's body.
   void CloseAfterAnswer();

@@ -17,6 +17,7 @@
 #include "http_exchange.h"
 #include "proto_json.h"
 #include "spdlog/spdlog.h"
+#include "static_files.h"
 
 namespace freeform::server {
 // Outside the anonymous namespace: HttpGateway::Call holds a Codec.
@@ -164,6 +165,11 @@ class HttpGateway::Call {
 
   void Serve() {
     if (http_.method() == "OPTIONS") return http_.AnswerPreflight();
+    if (http_.method() == "GET" || http_.method() == "HEAD") {
+      if (const StaticFile* file = FindStaticFile(http_.path())) {
+        return ServeFile(*file);
+      }
+    }
     absl::StatusOr<GatewayMethod> method = ResolveMethod(http_.path());
     if (!method.ok()) {
       // Connect clients read 404 as unimplemented, as gRPC names a method
@@ -226,6 +232,16 @@ class HttpGateway::Call {
       return EndStream(status);
     }
     http_.AnswerError(status, close, http_status);
+  }
+
+  // ServeFile answers a GET or HEAD of an embedded file (the playground).
+  // A request that carries a body (which a GET has no use for) gets its
+  // answer and the connection ends, unread.
+  void ServeFile(const StaticFile& file) {
+    const bool carries_body = http_.declared_body_bytes().value_or(0) > 0 ||
+                              !http_.header("Transfer-Encoding").empty();
+    http_.AnswerFile(file.content_type, file.body,
+                     /*with_body=*/http_.method() == "GET", carries_body);
   }
 
   grpc::Status CheckHeaders() {

@@ -21,7 +21,9 @@
 // Content-Length above max_request_bytes is refused at once with
 // resource_exhausted, before the body is read; a chunked body is cut off at
 // the bound) and its memory, reserved from the server's MemoryBudget with
-// the answer's before they are converted. docs/http.md describes it all.
+// the answer's before they are converted. A GET or HEAD of one of the
+// playground page's files (static_files.h: "/", "/playground.js", ...) is
+// answered from the binary, without a call. docs/http.md describes it all.
 // Thread-safe.
 #ifndef FREEFORM_SERVER_HTTP_GATEWAY_H_
 #define FREEFORM_SERVER_HTTP_GATEWAY_H_
