@@ -31,8 +31,10 @@ struct SegmentStart {
   enum class Kind { kEdgeExists, kThroughVertex, kCrossesEdge };
   Kind kind;
   int32_t triangle = kNoTriangle;
-  int corner = 0;  // kEdgeExists: the edge; kCrossesEdge: the corner of `from`
-  int32_t vertex = kGhostVertex;  // kThroughVertex
+  // kEdgeExists and kThroughVertex: the corner opposite the edge from
+  // `from` along the segment; kCrossesEdge: the corner of `from`.
+  int corner = 0;
+  int32_t vertex = kGhostVertex;  // kThroughVertex: the edge's other end
 };
 
 // FindSegmentStart turns around `from` to the triangle the segment towards
@@ -57,10 +59,12 @@ absl::StatusOr<SegmentStart> FindSegmentStart(const TriangleMesh2d& mesh,
       const double x_side = Orient2d(start, end, mesh.points[x]);
       const double y_side = Orient2d(start, end, mesh.points[y]);
       if (x_side == 0.0 && OnRay(start, end, mesh.points[x])) {
-        return SegmentStart{Kind::kThroughVertex, triangle, 0, x};
+        return SegmentStart{Kind::kThroughVertex, triangle,
+                            PreviousCorner(corner), x};
       }
       if (y_side == 0.0 && OnRay(start, end, mesh.points[y])) {
-        return SegmentStart{Kind::kThroughVertex, triangle, 0, y};
+        return SegmentStart{Kind::kThroughVertex, triangle,
+                            NextCorner(corner), y};
       }
       if (x_side < 0.0 && y_side > 0.0) {
         return SegmentStart{Kind::kCrossesEdge, triangle, corner};
@@ -221,6 +225,7 @@ absl::StatusOr<int32_t> InsertPiece(TriangleMesh2d& mesh, int32_t from,
       RETURN_IF_ERROR(MarkEdge(mesh, start.triangle, start.corner, segment));
       return to;
     case SegmentStart::Kind::kThroughVertex:
+      RETURN_IF_ERROR(MarkEdge(mesh, start.triangle, start.corner, segment));
       return start.vertex;
     case SegmentStart::Kind::kCrossesEdge:
       break;
