@@ -4,6 +4,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "freeform/core/status_macros.h"
+#include "triangulation/delaunay_insertion.h"
 #include "triangulation/predicates.h"
 
 namespace freeform::internal {
@@ -162,32 +163,62 @@ void TriangulatePseudoPolygon(const TriangleMesh2d& mesh, int32_t from,
   }
 }
 
+// RemoveSpikes cuts every excursion (v, w..., v) out of `chain`, keeping v
+// once; the vertices cut out go to scratch.spike_vertices.
+void RemoveSpikes(std::vector<int32_t>& chain, SegmentScratch& scratch) {
+  std::vector<int32_t>& position = scratch.chain_position;
+  size_t kept = 0;
+  for (const int32_t vertex : chain) {
+    if (position[vertex] < 0) {
+      position[vertex] = static_cast<int32_t>(kept);
+      chain[kept++] = vertex;
+      continue;
+    }
+    while (kept > static_cast<size_t>(position[vertex]) + 1) {
+      const int32_t spike = chain[--kept];
+      position[spike] = -1;
+      scratch.spike_vertices.push_back(spike);
+    }
+  }
+  chain.resize(kept);
+  std::erase_if(scratch.spike_vertices,
+                [&position](int32_t v) { return position[v] >= 0; });
+  for (const int32_t vertex : chain) position[vertex] = -1;
+}
+
 // RecordCavityBoundary keys each edge of the cavity's outline by its
-// direction in the cavity, with the triangle outside across it.
+// direction in the cavity, with the triangle outside across it, and lists
+// the segments on edges inside the cavity (the spikes').
 void RecordCavityBoundary(const TriangleMesh2d& mesh,
                           SegmentScratch& scratch) {
   scratch.in_cavity.resize(mesh.triangles.size(), 0);
   for (const int32_t triangle : scratch.cavity) scratch.in_cavity[triangle] = 1;
   scratch.boundary.clear();
+  scratch.inner_segments.clear();
   for (const int32_t triangle : scratch.cavity) {
     const MeshTriangle& t = mesh.triangles[triangle];
     for (int corner = 0; corner < 3; ++corner) {
-      if (scratch.in_cavity[t.neighbors[corner]] != 0) continue;
       const std::array<int32_t, 2> edge = mesh.Edge(triangle, corner);
-      scratch.boundary[EdgeKey(edge[0], edge[1])] = {t.neighbors[corner],
-                                                     t.segments[corner]};
+      if (scratch.in_cavity[t.neighbors[corner]] == 0) {
+        scratch.boundary[EdgeKey(edge[0], edge[1])] = {t.neighbors[corner],
+                                                       t.segments[corner]};
+      } else if (t.segments[corner] != kNoSegment && edge[0] < edge[1]) {
+        scratch.inner_segments.push_back(
+            {edge[0], edge[1], t.segments[corner]});
+      }
     }
   }
   for (const int32_t triangle : scratch.cavity) scratch.in_cavity[triangle] = 0;
 }
 
-// ReplaceCavity writes scratch.new_triangles into the cavity's slots and
-// links them to each other and to the outline; the edge from `from` to
-// `to` carries `segment`.
-void ReplaceCavity(TriangleMesh2d& mesh, int32_t from, int32_t to,
-                   int32_t segment, SegmentScratch& scratch) {
+// ReplaceCavity writes scratch.new_triangles into the first of the
+// cavity's slots (freeing the others) and links them to each other and to
+// the outline; the edge from `from` to `to` carries `segment`.
+absl::Status ReplaceCavity(TriangleMesh2d& mesh, int32_t from, int32_t to,
+                           int32_t segment, SegmentScratch& scratch) {
   scratch.new_edges.clear();
-  for (size_t i = 0; i < scratch.cavity.size(); ++i) {
+  const size_t count = scratch.new_triangles.size();
+  for (size_t i = 0; i < count; ++i) {
     const int32_t triangle = scratch.cavity[i];
     mesh.SetTriangle(triangle, scratch.new_triangles[i]);
     for (int corner = 0; corner < 3; ++corner) {
@@ -195,7 +226,11 @@ void ReplaceCavity(TriangleMesh2d& mesh, int32_t from, int32_t to,
       scratch.new_edges[EdgeKey(edge[0], edge[1])] = triangle;
     }
   }
-  for (const int32_t triangle : scratch.cavity) {
+  mesh.free_triangles.insert(mesh.free_triangles.end(),
+                             scratch.cavity.begin() + count,
+                             scratch.cavity.end());
+  for (size_t i = 0; i < count; ++i) {
+    const int32_t triangle = scratch.cavity[i];
     for (int corner = 0; corner < 3; ++corner) {
       const std::array<int32_t, 2> edge = mesh.Edge(triangle, corner);
       const auto inside = scratch.new_edges.find(EdgeKey(edge[1], edge[0]));
@@ -206,11 +241,38 @@ void ReplaceCavity(TriangleMesh2d& mesh, int32_t from, int32_t to,
                         is_segment ? segment : kNoSegment);
         continue;
       }
-      const SegmentScratch::Link outside =
-          scratch.boundary.at(EdgeKey(edge[0], edge[1]));
-      mesh.LinkAcross(triangle, corner, outside.triangle, outside.segment);
+      const auto outside = scratch.boundary.find(EdgeKey(edge[0], edge[1]));
+      if (outside == scratch.boundary.end()) {
+        return absl::InternalError(
+            "segment insertion: the retriangulation does not fit the cavity");
+      }
+      mesh.LinkAcross(triangle, corner, outside->second.triangle,
+                      outside->second.segment);
     }
   }
+  return absl::OkStatus();
+}
+
+// PutSpikesBack inserts the vertices taken out of the last cavity again,
+// then the segments they carried.
+absl::Status PutSpikesBack(TriangleMesh2d& mesh, SegmentScratch& scratch,
+                           size_t& work) {
+  if (scratch.spike_vertices.empty()) return absl::OkStatus();
+  const std::vector<int32_t> spikes = scratch.spike_vertices;
+  const std::vector<std::array<int32_t, 3>> segments = scratch.inner_segments;
+  for (const int32_t vertex : spikes) {
+    mesh.vertex_triangle[vertex] = kNoTriangle;
+    if (InsertVertex(mesh, vertex) != vertex) {
+      return absl::InternalError("segment insertion: a vertex taken out of "
+                                 "a cavity came back as a duplicate");
+    }
+  }
+  for (const auto& [from, to, segment] : segments) {
+    ASSIGN_OR_RETURN(const size_t done,
+                     InsertSegment(mesh, from, to, segment, scratch));
+    work += done;
+  }
+  return absl::OkStatus();
 }
 
 // InsertPiece inserts the segment from `from` towards `to` up to the first
@@ -233,18 +295,24 @@ absl::StatusOr<int32_t> InsertPiece(TriangleMesh2d& mesh, int32_t from,
   ASSIGN_OR_RETURN(const int32_t reached,
                    WalkCrossedTriangles(mesh, start.triangle, start.corner, to,
                                         segment, scratch));
+  scratch.chain_position.resize(mesh.points.size(), -1);
+  scratch.spike_vertices.clear();
+  RemoveSpikes(scratch.left_chain, scratch);
+  RemoveSpikes(scratch.right_chain, scratch);
   RecordCavityBoundary(mesh, scratch);
   scratch.new_triangles.clear();
   TriangulatePseudoPolygon(mesh, from, reached, scratch.left_chain, scratch);
   std::reverse(scratch.right_chain.begin(), scratch.right_chain.end());
   TriangulatePseudoPolygon(mesh, reached, from, scratch.right_chain, scratch);
-  if (scratch.new_triangles.size() != scratch.cavity.size()) {
+  if (scratch.new_triangles.size() + 2 * scratch.spike_vertices.size() !=
+      scratch.cavity.size()) {
     return absl::InternalError("segment insertion: the cavity's "
                                "retriangulation has the wrong size");
   }
-  ReplaceCavity(mesh, from, reached, segment, scratch);
+  RETURN_IF_ERROR(ReplaceCavity(mesh, from, reached, segment, scratch));
   mesh.last_triangle = scratch.cavity.front();
   work += scratch.cavity.size();
+  RETURN_IF_ERROR(PutSpikesBack(mesh, scratch, work));
   return reached;
 }
 

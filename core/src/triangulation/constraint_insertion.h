@@ -3,8 +3,11 @@
 // pseudo-polygons left on either side are retriangulated by Anglada's
 // recursion (the vertex whose circle with the segment is empty first;
 // Anglada 1997, Shewchuk & Brown 2015, docs/references.md), so that the
-// result is constrained Delaunay. A segment through a vertex is split
-// there. Internal to the core.
+// result is constrained Delaunay. A vertex all of whose triangles the
+// segment crosses (without passing through it) is a spike of a chain
+// (v, w, v): it is taken out, the polygon retriangulated without it, and
+// then inserted again with the segments it carried. A segment through a
+// vertex is split there. Internal to the core.
 #ifndef FREEFORM_CORE_SRC_TRIANGULATION_CONSTRAINT_INSERTION_H_
 #define FREEFORM_CORE_SRC_TRIANGULATION_CONSTRAINT_INSERTION_H_
 
@@ -37,6 +40,12 @@ struct SegmentScratch {
   std::vector<std::array<int32_t, 3>> new_triangles;
   std::vector<Polygon> polygons;
   std::vector<uint8_t> in_cavity;
+  // Per point: its position in the chain being cleaned of spikes, or -1.
+  std::vector<int32_t> chain_position;
+  // The vertices taken out of the cavity, and the segments {from, to,
+  // index} on edges inside it, to put back.
+  std::vector<int32_t> spike_vertices;
+  std::vector<std::array<int32_t, 3>> inner_segments;
   // Directed edge -> the triangle outside the cavity across it.
   absl::flat_hash_map<uint64_t, Link> boundary;
   // Directed edge -> the new triangle that has it.

@@ -54,8 +54,15 @@ void TriangleMesh2d::SetTriangle(int32_t triangle,
 }
 
 int32_t TriangleMesh2d::AddTriangle(std::array<int32_t, 3> vertices) {
-  const auto index = static_cast<int32_t>(triangles.size());
-  triangles.push_back(MeshTriangle{vertices});
+  int32_t index;
+  if (free_triangles.empty()) {
+    index = static_cast<int32_t>(triangles.size());
+    triangles.push_back(MeshTriangle{vertices});
+  } else {
+    index = free_triangles.back();
+    free_triangles.pop_back();
+    triangles[index] = MeshTriangle{vertices};
+  }
   SetTriangle(index, vertices);
   return index;
 }

@@ -43,6 +43,9 @@ struct TriangleMesh2d {
   // Per point: a triangle incident to it, or kNoTriangle while it is not a
   // vertex (not inserted yet, or merged into another).
   std::vector<int32_t> vertex_triangle;
+  // Slots of triangles removed and not yet reused (segment insertion frees
+  // two per vertex it takes out and puts back).
+  std::vector<int32_t> free_triangles;
   // Where the next point location starts.
   int32_t last_triangle = 0;
   // The edges left to check after an insertion (kept between insertions).
@@ -62,7 +65,8 @@ struct TriangleMesh2d {
   // SetTriangle writes the vertices (and keeps vertex_triangle pointing at
   // a triangle of each); links and segments are set separately.
   void SetTriangle(int32_t triangle, std::array<int32_t, 3> vertices);
-  // AddTriangle appends a triangle and returns its index.
+  // AddTriangle adds a triangle (in a free slot if there is one) and
+  // returns its index.
   int32_t AddTriangle(std::array<int32_t, 3> vertices);
   // LinkAcross makes `triangle` and `other` neighbours across the edge
   // opposite `corner` of `triangle` (which `other` must share), carrying
