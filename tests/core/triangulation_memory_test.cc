@@ -113,7 +113,7 @@ TEST(TriangulationMemoryTest, BoundHoldsForALoop) {
 }
 
 // Two rows of points and a segment between them from end to end: the
-// segment crosses every triangle, the largest cavity there is.
+// segment crosses every triangle, the most crossed edges there are.
 TEST(TriangulationMemoryTest, BoundHoldsForASegmentAcrossEverything) {
   std::vector<Point2> points = {{-1, 0}, {2, 0}};
   constexpr int kCount = 50000;

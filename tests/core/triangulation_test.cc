@@ -237,7 +237,7 @@ TEST(ConstrainedTest, SegmentsTouchingTheHull) {
   const auto crossing = TriangulateConstrained(points, segments, {}, nullptr);
   EXPECT_EQ(crossing.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_THAT(crossing.status().message(),
-              HasSubstr("segments[2] crosses segments[1]"));
+              HasSubstr("segments[2]: crosses or overlaps segments[1]"));
 }
 
 // Points on a segment split it; collinear segments that meet at a point
@@ -260,7 +260,7 @@ TEST(ConstrainedTest, CollinearPointsAndSegments) {
     const auto result =
         TriangulateConstrained(points, overlapping, {}, nullptr);
     EXPECT_THAT(result.status().message(),
-                HasSubstr("segments[1] crosses segments[0]"));
+                HasSubstr("segments[1]: crosses or overlaps segments[0]"));
   }
 }
 
@@ -273,7 +273,7 @@ TEST(ConstrainedTest, RefusesBadInput) {
   EXPECT_THAT(status({{1, 2}, {-1, 2}}).message(), HasSubstr("segments[1]"));
   points.push_back(points[3]);
   EXPECT_THAT(status({{1, 2}, {3, 10}}).message(),
-              HasSubstr("segments[1] = (3, 10) joins a point to itself"));
+              HasSubstr("segments[1]: (3, 10) joins a point to itself"));
   points[4].y = std::nan("");
   EXPECT_THAT(status({}).message(), HasSubstr("points[4]"));
   points[4].y = 1e300;
@@ -284,6 +284,16 @@ TEST(ConstrainedTest, RefusesBadInput) {
   EXPECT_THAT(TriangulateConstrained(line, {}, {}, nullptr).status().message(),
               HasSubstr("collinear"));
   EXPECT_FALSE(TriangulateConstrained({}, {}, {}, nullptr).ok());
+}
+
+// The case the random sets found: a segment that crosses every triangle
+// around a vertex (without passing through it), next to a segment edge.
+TEST(ConstrainedTest, SegmentAroundAVertexWhoseStarItCrosses) {
+  const testing::SegmentSet set = testing::RandomSegmentSet(1496);
+  const PlanarTriangulation mesh = Triangulate(set.points, set.segments);
+  EXPECT_EQ(CheckTriangles(mesh), "");
+  EXPECT_EQ(CheckHullCover(mesh), "");
+  EXPECT_EQ(CheckSegmentsPresent(mesh, set.segments), "");
 }
 
 TEST(ConstrainedTest, StopsWhenCancelled) {
@@ -317,11 +327,11 @@ TEST(ConstrainedTest, CrossingsAreNamed) {
       TriangulateConstrained(points, {{0, 1}, {0, 2}, {1, 3}}, {}, nullptr)
           .status()
           .message(),
-      HasSubstr("segments[2] crosses segments[1]"));
+      HasSubstr("segments[2]: crosses or overlaps segments[1]"));
   EXPECT_THAT(TriangulateConstrained(points, {{1, 3}, {0, 2}}, {}, nullptr)
                   .status()
                   .message(),
-              HasSubstr("segments[1] crosses segments[0]"));
+              HasSubstr("segments[1]: crosses or overlaps segments[0]"));
 }
 
 TEST(IncrementalTest, InsertPointKeepsTheConstrainedDelaunayProperty) {

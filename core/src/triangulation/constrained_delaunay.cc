@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "freeform/core/saturating.h"
+#include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "triangulation/constraint_insertion.h"
 #include "triangulation/delaunay_insertion.h"
@@ -21,13 +22,12 @@ using internal::TriangleMesh2d;
 // The memory bound's terms (ConstrainedTriangulationMemoryBound): per point
 // the mesh (points 16, representatives 4, vertex triangles 4, about two
 // triangles of 36 bytes), the insertion order and its keys (16), the
-// region's depths and flood (16) and the result (triangles 24, points 20,
-// segment edges), and the scratch of the worst segment insertion (a cavity
-// of every triangle: its chains, new triangles and the two hash maps of
-// its edges). tests/core/triangulation_memory_test.cc measures peaks of
-// 116 bytes per point for random points, 136 for a loop of segments and
-// 288 for one segment that crosses every triangle.
-constexpr uint64_t kBytesPerPoint = 512;
+// region's depths and flood (16), the result (triangles 24, points 20,
+// segment edges) and segment insertion's lists of crossed and flipped
+// edges. tests/core/triangulation_memory_test.cc measures peaks of 116
+// bytes per point for random points, 136 for a loop of segments and 128
+// for one segment that crosses every triangle.
+constexpr uint64_t kBytesPerPoint = 320;
 constexpr uint64_t kBytesPerSegment = 16;
 constexpr uint64_t kFixedBytes = uint64_t{64} << 10;
 
@@ -39,38 +39,45 @@ bool InRange(Point2 point) {
          internal::InTriangulationRange(point.y);
 }
 
-absl::Status ValidatePoint(Point2 point, absl::string_view name) {
+absl::Status ValidatePoint(Point2 point, absl::string_view field) {
   if (InRange(point)) return absl::OkStatus();
-  return absl::InvalidArgumentError(absl::StrCat(
-      name, " = (", point.x, ", ", point.y,
-      ") is not finite or outside the exact range: each coordinate must be 0 "
-      "or of a magnitude in [2^-180, 2^200]"));
+  return InvalidFieldError(
+      field, absl::StrCat("(", point.x, ", ", point.y,
+                          ") is not finite or outside the exact range: each "
+                          "coordinate must be 0 or of a magnitude in "
+                          "[2^-180, 2^200]"));
+}
+
+absl::Status SegmentError(absl::Span<const std::array<int32_t, 2>> segments,
+                          size_t i, absl::string_view rule) {
+  return InvalidFieldError(
+      IndexedField("segments", i),
+      absl::StrCat("(", segments[i][0], ", ", segments[i][1], ") ", rule));
 }
 
 absl::Status ValidateInput(absl::Span<const Point2> points,
                            absl::Span<const std::array<int32_t, 2>> segments) {
   if (points.size() > kMaxTriangulationPoints) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("points: ", points.size(), " points exceed the limit of ",
-                     kMaxTriangulationPoints));
+    return InvalidFieldError(
+        "points", absl::StrCat(points.size(), " points exceed the limit of ",
+                               kMaxTriangulationPoints));
   }
   if (segments.size() > static_cast<size_t>(
                             std::numeric_limits<int32_t>::max())) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("segments: ", segments.size(), " segments exceed the "
-                     "limit of 2^31 - 1"));
+    return InvalidFieldError(
+        "segments",
+        absl::StrCat(segments.size(), " segments exceed the limit of 2^31 - 1"));
   }
   for (size_t i = 0; i < points.size(); ++i) {
-    RETURN_IF_ERROR(ValidatePoint(points[i], absl::StrCat("points[", i, "]")));
+    RETURN_IF_ERROR(ValidatePoint(points[i], IndexedField("points", i)));
   }
   const auto count = static_cast<int64_t>(points.size());
   for (size_t i = 0; i < segments.size(); ++i) {
     for (const int32_t end : segments[i]) {
       if (end < 0 || end >= count) {
-        return absl::InvalidArgumentError(
-            absl::StrCat("segments[", i, "] = (", segments[i][0], ", ",
-                         segments[i][1], "): point index ", end,
-                         " is outside [0, ", count, ")"));
+        return SegmentError(segments, i,
+                            absl::StrCat("has the point index ", end,
+                                         " outside [0, ", count, ")"));
       }
     }
   }
@@ -86,9 +93,7 @@ absl::Status InsertSegments(TriangleMesh2d& mesh,
     const int32_t a = mesh.representative[segments[i][0]];
     const int32_t b = mesh.representative[segments[i][1]];
     if (a == b) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("segments[", i, "] = (", segments[i][0], ", ",
-                       segments[i][1], ") joins a point to itself"));
+      return SegmentError(segments, i, "joins a point to itself");
     }
     ASSIGN_OR_RETURN(const size_t work,
                      internal::InsertSegment(mesh, a, b,
@@ -130,9 +135,10 @@ absl::StatusOr<int32_t> ConstrainedTriangulation::InsertPoint(Point2 point) {
     return mesh_->triangles[location.triangle].vertices[location.corner];
   }
   if (mesh_->points.size() >= kMaxTriangulationPoints) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        "point: the triangulation already holds the most points, ",
-        kMaxTriangulationPoints));
+    return InvalidFieldError(
+        "point", absl::StrCat("the triangulation already holds the most "
+                              "points, ",
+                              kMaxTriangulationPoints));
   }
   const auto vertex = static_cast<int32_t>(mesh_->points.size());
   mesh_->points.push_back(point);

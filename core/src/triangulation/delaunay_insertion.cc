@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "triangulation/insertion_order.h"
 #include "triangulation/predicates.h"
@@ -108,27 +109,6 @@ void SplitEdge(TriangleMesh2d& mesh, int32_t triangle, int corner,
   flips.insert(flips.end(), {triangle, triangle_half, other, other_half});
 }
 
-// Flip replaces (p, x, y) and the triangle (z, y, x) across its edge
-// opposite p by (p, x, z) and (p, z, y).
-void Flip(TriangleMesh2d& mesh, int32_t triangle) {
-  const std::array<int32_t, 3> tv = mesh.triangles[triangle].vertices;
-  const int32_t other = mesh.triangles[triangle].neighbors[0];
-  const int other_corner = mesh.CornerOpposite(other, tv[1], tv[2]);
-  const int32_t z = mesh.triangles[other].vertices[other_corner];
-  const Across across_yp = AcrossCorner(mesh, triangle, 1);
-  const Across across_px = AcrossCorner(mesh, triangle, 2);
-  const Across across_xz = AcrossCorner(mesh, other, NextCorner(other_corner));
-  const Across across_zy =
-      AcrossCorner(mesh, other, PreviousCorner(other_corner));
-  mesh.SetTriangle(triangle, {tv[0], tv[1], z});
-  mesh.SetTriangle(other, {tv[0], z, tv[2]});
-  mesh.LinkAcross(triangle, 0, across_xz.neighbor, across_xz.segment);
-  mesh.LinkAcross(triangle, 2, across_px.neighbor, across_px.segment);
-  mesh.LinkAcross(other, 0, across_zy.neighbor, across_zy.segment);
-  mesh.LinkAcross(other, 1, across_yp.neighbor, across_yp.segment);
-  mesh.LinkAcross(triangle, 1, other, kNoSegment);
-}
-
 // Legalize flips, from the triangles in `flips` (each with the new point at
 // corner 0), every edge opposite the point that carries no segment and
 // whose other triangle has the point inside its circumcircle.
@@ -140,7 +120,7 @@ void Legalize(TriangleMesh2d& mesh, std::vector<int32_t>& flips) {
     if (t.segments[0] != kNoSegment) continue;
     const int32_t other = t.neighbors[0];
     if (!mesh.InsideCircumcircle(other, mesh.points[t.vertices[0]])) continue;
-    Flip(mesh, triangle);
+    mesh.FlipEdge(triangle, 0);
     flips.insert(flips.end(), {triangle, other});
   }
 }
@@ -265,9 +245,9 @@ absl::Status BuildDelaunay(TriangleMesh2d& mesh,
     return mesh.representative[i] != i;
   });
   if (!MoveSeedTriangleToFront(mesh, order)) {
-    return absl::InvalidArgumentError(
-        "points: all points are collinear (or fewer than 3 are distinct): no "
-        "triangle exists");
+    return InvalidFieldError("points",
+                             "all points are collinear (or fewer than 3 are "
+                             "distinct): no triangle exists");
   }
   mesh.vertex_triangle.assign(mesh.points.size(), kNoTriangle);
   mesh.triangles.reserve(2 * order.size() + 2);

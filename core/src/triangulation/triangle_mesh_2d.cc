@@ -54,17 +54,46 @@ void TriangleMesh2d::SetTriangle(int32_t triangle,
 }
 
 int32_t TriangleMesh2d::AddTriangle(std::array<int32_t, 3> vertices) {
-  int32_t index;
-  if (free_triangles.empty()) {
-    index = static_cast<int32_t>(triangles.size());
-    triangles.push_back(MeshTriangle{vertices});
-  } else {
-    index = free_triangles.back();
-    free_triangles.pop_back();
-    triangles[index] = MeshTriangle{vertices};
-  }
+  const auto index = static_cast<int32_t>(triangles.size());
+  triangles.push_back(MeshTriangle{vertices});
   SetTriangle(index, vertices);
   return index;
+}
+
+void TriangleMesh2d::FlipEdge(int32_t triangle, int corner) {
+  const MeshTriangle t = triangles[triangle];
+  const int32_t p = t.vertices[corner];
+  const int32_t x = t.vertices[NextCorner(corner)];
+  const int32_t y = t.vertices[PreviousCorner(corner)];
+  const int32_t other = t.neighbors[corner];
+  const MeshTriangle o = triangles[other];
+  const int other_corner = CornerOpposite(other, x, y);
+  const int32_t z = o.vertices[other_corner];
+  SetTriangle(triangle, {p, x, z});
+  SetTriangle(other, {p, z, y});
+  // (x, z) and (z, y) were the other's, (p, x) and (y, p) this one's.
+  LinkAcross(triangle, 0, o.neighbors[NextCorner(other_corner)],
+             o.segments[NextCorner(other_corner)]);
+  LinkAcross(triangle, 2, t.neighbors[PreviousCorner(corner)],
+             t.segments[PreviousCorner(corner)]);
+  LinkAcross(other, 0, o.neighbors[PreviousCorner(other_corner)],
+             o.segments[PreviousCorner(other_corner)]);
+  LinkAcross(other, 1, t.neighbors[NextCorner(corner)],
+             t.segments[NextCorner(corner)]);
+  LinkAcross(triangle, 1, other, kNoSegment);
+}
+
+std::pair<int32_t, int> TriangleMesh2d::FindEdge(int32_t a, int32_t b) const {
+  const int32_t first = vertex_triangle[a];
+  int32_t triangle = first;
+  do {
+    const int corner = CornerOf(triangle, a);
+    const std::array<int32_t, 3>& v = triangles[triangle].vertices;
+    if (v[NextCorner(corner)] == b) return {triangle, PreviousCorner(corner)};
+    if (v[PreviousCorner(corner)] == b) return {triangle, NextCorner(corner)};
+    triangle = triangles[triangle].neighbors[NextCorner(corner)];
+  } while (triangle != first);
+  return {kNoTriangle, 0};
 }
 
 void TriangleMesh2d::LinkAcross(int32_t triangle, int corner, int32_t other,

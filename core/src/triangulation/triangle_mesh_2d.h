@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "freeform/core/constrained_delaunay.h"
@@ -43,9 +44,6 @@ struct TriangleMesh2d {
   // Per point: a triangle incident to it, or kNoTriangle while it is not a
   // vertex (not inserted yet, or merged into another).
   std::vector<int32_t> vertex_triangle;
-  // Slots of triangles removed and not yet reused (segment insertion frees
-  // two per vertex it takes out and puts back).
-  std::vector<int32_t> free_triangles;
   // Where the next point location starts.
   int32_t last_triangle = 0;
   // The edges left to check after an insertion (kept between insertions).
@@ -65,14 +63,23 @@ struct TriangleMesh2d {
   // SetTriangle writes the vertices (and keeps vertex_triangle pointing at
   // a triangle of each); links and segments are set separately.
   void SetTriangle(int32_t triangle, std::array<int32_t, 3> vertices);
-  // AddTriangle adds a triangle (in a free slot if there is one) and
-  // returns its index.
+  // AddTriangle appends a triangle and returns its index.
   int32_t AddTriangle(std::array<int32_t, 3> vertices);
   // LinkAcross makes `triangle` and `other` neighbours across the edge
   // opposite `corner` of `triangle` (which `other` must share), carrying
   // `segment` on both sides.
   void LinkAcross(int32_t triangle, int corner, int32_t other,
                   int32_t segment);
+
+  // FlipEdge replaces `triangle` (p, x, y), p at `corner`, and the
+  // triangle (z, y, x) across its edge opposite p by (p, x, z), kept in
+  // `triangle`, and (p, z, y), both with p at corner 0. The quadrilateral
+  // p, x, z, y must be strictly convex.
+  void FlipEdge(int32_t triangle, int corner);
+
+  // FindEdge returns a triangle with the edge between a and b and the
+  // corner opposite it, or {kNoTriangle, 0} when they are not joined.
+  std::pair<int32_t, int> FindEdge(int32_t a, int32_t b) const;
 
   // InsideCircumcircle returns whether `point` lies strictly inside the
   // circumcircle of `triangle`; for a ghost triangle (x, y, ghost) the

@@ -95,10 +95,11 @@ class ConstrainedTriangulation {
   // kMaxTriangulationPoints points or for points that are all collinear
   // (fewer than 3 non-collinear points: no triangle exists), "segments[i]"
   // for an index out of range or a segment whose ends merged into one
-  // vertex, and "segments[i] crosses segments[j]" for two segments that
-  // cross or overlap (sharing a piece of positive length; a segment listed
-  // twice overlaps itself). Segments may meet at input points. Returns the
-  // token's status when it is cancelled.
+  // vertex, and "segments[i]: crosses or overlaps segments[j]" for two
+  // segments that cross or overlap (share a piece of positive length; a
+  // segment listed twice overlaps itself), i the later one. Segments may
+  // meet at input points. Every error carries its field path (status.h).
+  // Returns the token's status when it is cancelled.
   static absl::StatusOr<ConstrainedTriangulation> Build(
       absl::Span<const Point2> points,
       absl::Span<const std::array<int32_t, 2>> segments,
