@@ -46,8 +46,9 @@ void Triangulate(benchmark::State& state, const std::vector<Point2>& points,
     benchmark::DoNotOptimize(result);
   }
   state.counters["triangles"] = static_cast<double>(triangles);
-  state.counters["points_per_second"] = benchmark::Counter(
-      static_cast<double>(points.size()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["points_per_second"] =
+      benchmark::Counter(static_cast<double>(points.size()),
+                         benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void BM_DelaunayUniform(benchmark::State& state) {

@@ -141,13 +141,14 @@ inline std::string CheckHullCover(const PlanarTriangulation& mesh) {
   for (const auto& t : mesh.triangles) {
     for (int k = 0; k < 3; ++k) {
       used.insert(t[k]);
-      edges.insert({std::min(t[k], t[(k + 1) % 3]),
-                    std::max(t[k], t[(k + 1) % 3])});
+      edges.insert(
+          {std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
     }
   }
   for (size_t i = 0; i < mesh.points.size(); ++i) {
-    const bool representative = i >= mesh.representative.size() ||
-                                mesh.representative[i] == static_cast<int32_t>(i);
+    const bool representative =
+        i >= mesh.representative.size() ||
+        mesh.representative[i] == static_cast<int32_t>(i);
     if (representative && used.count(static_cast<int32_t>(i)) == 0) {
       return absl::StrCat("point ", i, " is in no triangle");
     }

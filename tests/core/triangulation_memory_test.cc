@@ -75,11 +75,11 @@ void ExpectWithinBound(const char* name, const std::vector<Point2>& points,
   const size_t peak = MeasuredPeak(points, segments);
   const size_t bound =
       ConstrainedTriangulationMemoryBound(points.size(), segments.size());
-  std::printf("%s: %zu points, %zu segments: peak %zu bytes (%.1f per point), "
-              "bound %zu\n",
-              name, points.size(), segments.size(), peak,
-              static_cast<double>(peak) / static_cast<double>(points.size()),
-              bound);
+  std::printf(
+      "%s: %zu points, %zu segments: peak %zu bytes (%.1f per point), "
+      "bound %zu\n",
+      name, points.size(), segments.size(), peak,
+      static_cast<double>(peak) / static_cast<double>(points.size()), bound);
   EXPECT_LE(peak, bound) << name;
 }
 

@@ -34,8 +34,8 @@ Int ExactOrient(IntPoint a, IntPoint b, IntPoint c) {
 }
 
 Int ExactInCircle(IntPoint a, IntPoint b, IntPoint c, IntPoint d) {
-  const Int adx = a.x - d.x, ady = a.y - d.y, bdx = b.x - d.x,
-            bdy = b.y - d.y, cdx = c.x - d.x, cdy = c.y - d.y;
+  const Int adx = a.x - d.x, ady = a.y - d.y, bdx = b.x - d.x, bdy = b.y - d.y,
+            cdx = c.x - d.x, cdy = c.y - d.y;
   return (adx * adx + ady * ady) * (bdx * cdy - bdy * cdx) +
          (bdx * bdx + bdy * bdy) * (cdx * ady - cdy * adx) +
          (cdx * cdx + cdy * cdy) * (adx * bdy - ady * bdx);
@@ -58,8 +58,8 @@ TEST(Orient2dTest, ExactOnUlpGridAgainstCollinearLine) {
       ASSERT_EQ(SignOf(Orient2d(pb, pc, pa)), exact);
       ASSERT_EQ(SignOf(Orient2d(pb, pa, pc)), -exact);
       ASSERT_EQ(SignOf(Orient2dExact(pa, pb, pc)), exact);
-      const double naive = (pa.x - pc.x) * (pb.y - pc.y) -
-                           (pa.y - pc.y) * (pb.x - pc.x);
+      const double naive =
+          (pa.x - pc.x) * (pb.y - pc.y) - (pa.y - pc.y) * (pb.x - pc.x);
       naive_wrong += SignOf(naive) != exact;
       zeros += exact == 0;
     }
@@ -82,7 +82,8 @@ TEST(InCircleTest, ExactOnPerturbedCocircularPoints) {
     for (const int sx : {1, -1}) {
       for (const int sy : {1, -1}) {
         if (q == 0 && sy < 0) continue;
-        circle.push_back({kCenter + sx * p * kScale, kCenter + sy * q * kScale});
+        circle.push_back(
+            {kCenter + sx * p * kScale, kCenter + sy * q * kScale});
         if (q == 0) circle.push_back({kCenter, kCenter + sx * p * kScale});
       }
     }
@@ -150,8 +151,7 @@ TEST(PredicatesTest, ExactAtTheRangeLimits) {
     const Point2 p0{unit, 0}, p1{0, unit}, p2{-unit, 0}, p3{0, -unit};
     EXPECT_EQ(InCircle(p0, p1, p2, p3), 0.0) << unit;
     EXPECT_GT(InCircle(p0, p1, p2, {0, std::nextafter(-unit, 0.0)}), 0.0);
-    EXPECT_LT(InCircle(p0, p1, p2, {0, std::nextafter(-unit, -2 * unit)}),
-              0.0);
+    EXPECT_LT(InCircle(p0, p1, p2, {0, std::nextafter(-unit, -2 * unit)}), 0.0);
   }
   EXPECT_TRUE(InTriangulationRange(0.0));
   EXPECT_TRUE(InTriangulationRange(-kMaxTriangulationMagnitude));
@@ -167,7 +167,8 @@ TEST(ExpansionTest, SumsAndProductsAreExact) {
   EXPECT_EQ(sum.components()[0], 0x1p-60);
   // (2^30 + 1)^2 - 2^60 - 2^31 = 1.
   const Expansion x = Expansion::Of(0x1p30).Grown(1.0);
-  const Expansion square = x * x - Expansion::Of(0x1p60) - Expansion::Of(0x1p31);
+  const Expansion square =
+      x * x - Expansion::Of(0x1p60) - Expansion::Of(0x1p31);
   EXPECT_EQ(square.Sign(), 1);
   EXPECT_EQ(square.Estimate(), 1.0);
   EXPECT_EQ((x - x).Sign(), 0);

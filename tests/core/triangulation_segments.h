@@ -43,10 +43,10 @@ inline bool GridSegmentsConflict(GridPoint p, GridPoint q, GridPoint r,
   if (o1 != 0 || o2 != 0) return false;
   const bool by_x = p.x != q.x;
   const auto key = [by_x](GridPoint g) { return by_x ? g.x : g.y; };
-  const int64_t low = std::max(std::min(key(p), key(q)),
-                               std::min(key(r), key(s)));
-  const int64_t high = std::min(std::max(key(p), key(q)),
-                                std::max(key(r), key(s)));
+  const int64_t low =
+      std::max(std::min(key(p), key(q)), std::min(key(r), key(s)));
+  const int64_t high =
+      std::min(std::max(key(p), key(q)), std::max(key(r), key(s)));
   return low < high;
 }
 
@@ -58,12 +58,13 @@ inline SegmentSet RandomSegmentSet(uint64_t seed) {
   SegmentSet set;
   for (int i = 0; i < count; ++i) {
     grid_points.push_back({random.Below(grid), random.Below(grid)});
-    set.points.push_back({std::ldexp(static_cast<double>(grid_points[i].x), -3),
-                          std::ldexp(static_cast<double>(grid_points[i].y), -3)});
+    set.points.push_back(
+        {std::ldexp(static_cast<double>(grid_points[i].x), -3),
+         std::ldexp(static_cast<double>(grid_points[i].y), -3)});
   }
   // Three corners far apart make the points never all collinear.
-  for (const GridPoint corner : {GridPoint{-1, -1}, GridPoint{grid, -1},
-                                 GridPoint{-1, grid}}) {
+  for (const GridPoint corner :
+       {GridPoint{-1, -1}, GridPoint{grid, -1}, GridPoint{-1, grid}}) {
     grid_points.push_back(corner);
     set.points.push_back({std::ldexp(static_cast<double>(corner.x), -3),
                           std::ldexp(static_cast<double>(corner.y), -3)});

@@ -19,10 +19,10 @@
 namespace freeform {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::CheckHullCover;
 using testing::CheckSegmentsPresent;
 using testing::CheckTriangles;
+using ::testing::HasSubstr;
 using testing::TestRandom;
 using Region = ConstrainedTriangulationOptions::Region;
 using Segments = std::vector<std::array<int32_t, 2>>;
@@ -60,8 +60,8 @@ void AddLoop(std::vector<Point2>& points, Segments& segments, int count,
   const auto first = static_cast<int32_t>(points.size());
   for (int i = 0; i < count; ++i) {
     const double angle = 2 * std::numbers::pi * i / count;
-    points.push_back({cx + radius * std::cos(angle),
-                      cy + radius * std::sin(angle)});
+    points.push_back(
+        {cx + radius * std::cos(angle), cy + radius * std::sin(angle)});
     segments.push_back({first + i, first + (i + 1) % count});
   }
 }
@@ -133,8 +133,8 @@ TEST(DelaunayTest, ClusteredPoints) {
     const double cx = random.Uniform() * 100, cy = random.Uniform() * 100;
     const double spread = std::ldexp(1.0, -random.Below(40));
     for (int i = 0; i < 100; ++i) {
-      points.push_back({cx + spread * random.Uniform(),
-                        cy + spread * random.Uniform()});
+      points.push_back(
+          {cx + spread * random.Uniform(), cy + spread * random.Uniform()});
     }
   }
   ExpectDelaunayOfHull(points);
@@ -152,7 +152,8 @@ TEST(DelaunayTest, DuplicatesMergeIntoTheSmallestIndex) {
   EXPECT_EQ(mesh.representative[301], 20);
   EXPECT_EQ(mesh.representative[302], 10);
   EXPECT_EQ(mesh.representative[10], 10);
-  EXPECT_EQ(mesh.triangles.size(), Triangulate(Uniform(300, 3)).triangles.size());
+  EXPECT_EQ(mesh.triangles.size(),
+            Triangulate(Uniform(300, 3)).triangles.size());
 }
 
 TEST(DelaunayTest, SameInputSameOutput) {
@@ -187,8 +188,8 @@ TEST(ConstrainedTest, NestedLoops) {
       Triangulate(points, segments, Region::kInsideSegments);
   EXPECT_EQ(CheckTriangles(inside), "");
   EXPECT_EQ(CheckSegmentsPresent(inside, segments), "");
-  const long double expected = 100 - 36 + PolygonArea(points, 8, 40) -
-                               PolygonArea(points, 48, 20);
+  const long double expected =
+      100 - 36 + PolygonArea(points, 8, 40) - PolygonArea(points, 48, 20);
   ExpectRelativelyNear(testing::TotalArea(inside), expected);
 }
 
@@ -299,8 +300,7 @@ TEST(ConstrainedTest, SegmentAroundAVertexWhoseStarItCrosses) {
 TEST(ConstrainedTest, StopsWhenCancelled) {
   CancellationToken token;
   token.Cancel();
-  const auto result =
-      TriangulateConstrained(Uniform(10000, 2), {}, {}, &token);
+  const auto result = TriangulateConstrained(Uniform(10000, 2), {}, {}, &token);
   EXPECT_EQ(result.status().code(), absl::StatusCode::kCancelled);
 }
 
@@ -310,8 +310,7 @@ TEST(ConstrainedTest, StopsWhenCancelled) {
 TEST(ConstrainedTest, RandomSegmentSets) {
   for (uint64_t seed = 0; seed < 300; ++seed) {
     const testing::SegmentSet set = testing::RandomSegmentSet(seed);
-    const PlanarTriangulation mesh =
-        Triangulate(set.points, set.segments);
+    const PlanarTriangulation mesh = Triangulate(set.points, set.segments);
     ASSERT_EQ(CheckTriangles(mesh), "") << seed;
     ASSERT_EQ(CheckHullCover(mesh), "") << seed;
     ASSERT_EQ(CheckSegmentsPresent(mesh, set.segments), "") << seed;
@@ -374,8 +373,7 @@ TEST(IncrementalTest, PointOnAConstrainedEdgeSplitsIt) {
   absl::StatusOr<ConstrainedTriangulation> triangulation =
       ConstrainedTriangulation::Build(points, segments, nullptr);
   ASSERT_TRUE(triangulation.ok());
-  const absl::StatusOr<int32_t> middle =
-      triangulation->InsertPoint({0.5, 0.0});
+  const absl::StatusOr<int32_t> middle = triangulation->InsertPoint({0.5, 0.0});
   ASSERT_TRUE(middle.ok());
   const PlanarTriangulation mesh = triangulation->Result(Region::kConvexHull);
   EXPECT_EQ(CheckTriangles(mesh), "");

@@ -62,11 +62,11 @@ absl::Status ValidateInput(absl::Span<const Point2> points,
         "points", absl::StrCat(points.size(), " points exceed the limit of ",
                                kMaxTriangulationPoints));
   }
-  if (segments.size() > static_cast<size_t>(
-                            std::numeric_limits<int32_t>::max())) {
+  if (segments.size() >
+      static_cast<size_t>(std::numeric_limits<int32_t>::max())) {
     return InvalidFieldError(
-        "segments",
-        absl::StrCat(segments.size(), " segments exceed the limit of 2^31 - 1"));
+        "segments", absl::StrCat(segments.size(),
+                                 " segments exceed the limit of 2^31 - 1"));
   }
   for (size_t i = 0; i < points.size(); ++i) {
     RETURN_IF_ERROR(ValidatePoint(points[i], IndexedField("points", i)));
@@ -95,10 +95,9 @@ absl::Status InsertSegments(TriangleMesh2d& mesh,
     if (a == b) {
       return SegmentError(segments, i, "joins a point to itself");
     }
-    ASSIGN_OR_RETURN(const size_t work,
-                     internal::InsertSegment(mesh, a, b,
-                                             static_cast<int32_t>(i),
-                                             scratch));
+    ASSIGN_OR_RETURN(
+        const size_t work,
+        internal::InsertSegment(mesh, a, b, static_cast<int32_t>(i), scratch));
     RETURN_IF_ERROR(poll.Done(work));
   }
   return absl::OkStatus();
@@ -129,8 +128,8 @@ absl::StatusOr<ConstrainedTriangulation> ConstrainedTriangulation::Build(
 
 absl::StatusOr<int32_t> ConstrainedTriangulation::InsertPoint(Point2 point) {
   RETURN_IF_ERROR(ValidatePoint(point, "point"));
-  const internal::PointLocation location = internal::Locate(
-      *mesh_, point, mesh_->last_triangle, mesh_->walk_state);
+  const internal::PointLocation location =
+      internal::Locate(*mesh_, point, mesh_->last_triangle, mesh_->walk_state);
   if (location.kind == internal::PointLocation::Kind::kVertex) {
     return mesh_->triangles[location.triangle].vertices[location.corner];
   }

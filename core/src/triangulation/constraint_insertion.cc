@@ -46,10 +46,10 @@ absl::StatusOr<SegmentStart> FindSegmentStart(const TriangleMesh2d& mesh,
     const std::array<int32_t, 3>& v = mesh.triangles[triangle].vertices;
     const int32_t x = v[NextCorner(corner)];
     const int32_t y = v[PreviousCorner(corner)];
-    if (x == to) return SegmentStart{Kind::kEdgeExists, triangle,
-                                     PreviousCorner(corner)};
-    if (y == to) return SegmentStart{Kind::kEdgeExists, triangle,
-                                     NextCorner(corner)};
+    if (x == to)
+      return SegmentStart{Kind::kEdgeExists, triangle, PreviousCorner(corner)};
+    if (y == to)
+      return SegmentStart{Kind::kEdgeExists, triangle, NextCorner(corner)};
     if (!mesh.IsGhost(triangle)) {
       const double x_side = Orient2d(start, end, mesh.points[x]);
       const double y_side = Orient2d(start, end, mesh.points[y]);
@@ -58,8 +58,8 @@ absl::StatusOr<SegmentStart> FindSegmentStart(const TriangleMesh2d& mesh,
                             PreviousCorner(corner), x};
       }
       if (y_side == 0.0 && OnRay(start, end, mesh.points[y])) {
-        return SegmentStart{Kind::kThroughVertex, triangle,
-                            NextCorner(corner), y};
+        return SegmentStart{Kind::kThroughVertex, triangle, NextCorner(corner),
+                            y};
       }
       if (x_side < 0.0 && y_side > 0.0) {
         return SegmentStart{Kind::kCrossesEdge, triangle, corner};
@@ -67,8 +67,9 @@ absl::StatusOr<SegmentStart> FindSegmentStart(const TriangleMesh2d& mesh,
     }
     triangle = mesh.triangles[triangle].neighbors[NextCorner(corner)];
   } while (triangle != first);
-  return absl::InternalError("segment insertion: no triangle around a vertex "
-                             "contains the segment's direction");
+  return absl::InternalError(
+      "segment insertion: no triangle around a vertex "
+      "contains the segment's direction");
 }
 
 // MarkEdge makes the edge opposite `corner` of `triangle` carry `segment`.
@@ -159,8 +160,9 @@ absl::Status FlipCrossedEdges(TriangleMesh2d& mesh, int32_t from, int32_t to,
     if (Orient2d(pp, mesh.points[x], pz) <= 0.0 ||
         Orient2d(pp, pz, mesh.points[y]) <= 0.0) {
       if (++waits > scratch.crossing.size()) {
-        return absl::InternalError("segment insertion: no crossed edge can "
-                                   "be flipped");
+        return absl::InternalError(
+            "segment insertion: no crossed edge can "
+            "be flipped");
       }
       scratch.crossing.push_back(edge);
       continue;
@@ -209,8 +211,7 @@ void RestoreDelaunay(TriangleMesh2d& mesh, SegmentScratch& scratch,
 absl::StatusOr<int32_t> InsertPiece(TriangleMesh2d& mesh, int32_t from,
                                     int32_t to, int32_t segment,
                                     SegmentScratch& scratch, size_t& work) {
-  ASSIGN_OR_RETURN(const SegmentStart start,
-                   FindSegmentStart(mesh, from, to));
+  ASSIGN_OR_RETURN(const SegmentStart start, FindSegmentStart(mesh, from, to));
   switch (start.kind) {
     case SegmentStart::Kind::kEdgeExists:
       RETURN_IF_ERROR(MarkEdge(mesh, start.triangle, start.corner, segment));
@@ -228,8 +229,9 @@ absl::StatusOr<int32_t> InsertPiece(TriangleMesh2d& mesh, int32_t from,
   RETURN_IF_ERROR(FlipCrossedEdges(mesh, from, reached, scratch, work));
   const auto [triangle, corner] = mesh.FindEdge(from, reached);
   if (triangle == kNoTriangle) {
-    return absl::InternalError("segment insertion: the segment is no edge "
-                               "after the flips");
+    return absl::InternalError(
+        "segment insertion: the segment is no edge "
+        "after the flips");
   }
   RETURN_IF_ERROR(MarkEdge(mesh, triangle, corner, segment));
   RestoreDelaunay(mesh, scratch, work);
@@ -239,9 +241,8 @@ absl::StatusOr<int32_t> InsertPiece(TriangleMesh2d& mesh, int32_t from,
 
 }  // namespace
 
-absl::StatusOr<size_t> InsertSegment(TriangleMesh2d& mesh, int32_t a,
-                                     int32_t b, int32_t segment,
-                                     SegmentScratch& scratch) {
+absl::StatusOr<size_t> InsertSegment(TriangleMesh2d& mesh, int32_t a, int32_t b,
+                                     int32_t segment, SegmentScratch& scratch) {
   size_t work = 1;
   int32_t from = a;
   while (from != b) {

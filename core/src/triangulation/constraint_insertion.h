@@ -33,9 +33,8 @@ struct SegmentScratch {
 // pieces it took (the work done), or INVALID_ARGUMENT "segments[segment]:
 // crosses or overlaps segments[j]" when it crosses or overlaps an edge
 // carrying segment j.
-absl::StatusOr<size_t> InsertSegment(TriangleMesh2d& mesh, int32_t a,
-                                     int32_t b, int32_t segment,
-                                     SegmentScratch& scratch);
+absl::StatusOr<size_t> InsertSegment(TriangleMesh2d& mesh, int32_t a, int32_t b,
+                                     int32_t segment, SegmentScratch& scratch);
 
 }  // namespace freeform::internal
 

@@ -50,10 +50,15 @@ struct Across {
   int32_t segment;
 };
 
-Across AcrossCorner(const TriangleMesh2d& mesh, int32_t triangle,
-                    int corner) {
+Across AcrossCorner(const TriangleMesh2d& mesh, int32_t triangle, int corner) {
   const MeshTriangle& t = mesh.triangles[triangle];
   return {t.neighbors[corner], t.segments[corner]};
+}
+
+// LinkOutside links the edge opposite corner 0 of a new triangle (the
+// edge away from the new vertex) to the triangle it had across.
+void LinkOutside(TriangleMesh2d& mesh, int32_t triangle, Across across) {
+  mesh.LinkAcross(triangle, 0, across.neighbor, across.segment);
 }
 
 // SplitTriangle replaces triangle (a, b, c) by (v, b, c), (v, c, a) and
@@ -67,9 +72,9 @@ void SplitTriangle(TriangleMesh2d& mesh, int32_t triangle, int32_t vertex,
   mesh.SetTriangle(triangle, {vertex, v[1], v[2]});
   const int32_t second = mesh.AddTriangle({vertex, v[2], v[0]});
   const int32_t third = mesh.AddTriangle({vertex, v[0], v[1]});
-  mesh.LinkAcross(triangle, 0, across_a.neighbor, across_a.segment);
-  mesh.LinkAcross(second, 0, across_b.neighbor, across_b.segment);
-  mesh.LinkAcross(third, 0, across_c.neighbor, across_c.segment);
+  LinkOutside(mesh, triangle, across_a);
+  LinkOutside(mesh, second, across_b);
+  LinkOutside(mesh, third, across_c);
   mesh.LinkAcross(triangle, 1, second, kNoSegment);
   mesh.LinkAcross(triangle, 2, third, kNoSegment);
   mesh.LinkAcross(second, 1, third, kNoSegment);
@@ -98,10 +103,10 @@ void SplitEdge(TriangleMesh2d& mesh, int32_t triangle, int corner,
   const int32_t triangle_half = mesh.AddTriangle({vertex, b, c});
   mesh.SetTriangle(other, {vertex, d, b});
   const int32_t other_half = mesh.AddTriangle({vertex, a, d});
-  mesh.LinkAcross(triangle, 0, across_ca.neighbor, across_ca.segment);
-  mesh.LinkAcross(triangle_half, 0, across_bc.neighbor, across_bc.segment);
-  mesh.LinkAcross(other, 0, across_db.neighbor, across_db.segment);
-  mesh.LinkAcross(other_half, 0, across_ad.neighbor, across_ad.segment);
+  LinkOutside(mesh, triangle, across_ca);
+  LinkOutside(mesh, triangle_half, across_bc);
+  LinkOutside(mesh, other, across_db);
+  LinkOutside(mesh, other_half, across_ad);
   mesh.LinkAcross(triangle, 1, other_half, segment);
   mesh.LinkAcross(triangle, 2, triangle_half, kNoSegment);
   mesh.LinkAcross(triangle_half, 2, other, segment);
@@ -241,9 +246,8 @@ absl::Status BuildDelaunay(TriangleMesh2d& mesh,
                            const CancellationToken* cancel) {
   MergeDuplicates(mesh);
   std::vector<int32_t> order = BiasedRandomizedOrder(mesh.points);
-  std::erase_if(order, [&mesh](int32_t i) {
-    return mesh.representative[i] != i;
-  });
+  std::erase_if(order,
+                [&mesh](int32_t i) { return mesh.representative[i] != i; });
   if (!MoveSeedTriangleToFront(mesh, order)) {
     return InvalidFieldError("points",
                              "all points are collinear (or fewer than 3 are "

@@ -85,9 +85,8 @@ Expansion operator+(const Expansion& e, const Expansion& f) {
   if (f.components_.empty()) return e;
   absl::InlinedVector<double, 16> merged(e.components_.size() +
                                          f.components_.size());
-  std::merge(e.components_.begin(), e.components_.end(),
-             f.components_.begin(), f.components_.end(), merged.begin(),
-             SmallerMagnitude);
+  std::merge(e.components_.begin(), e.components_.end(), f.components_.begin(),
+             f.components_.end(), merged.begin(), SmallerMagnitude);
   Expansion result;
   DoubleDouble sum = QuickTwoSum(merged[1], merged[0]);
   AppendNonzero(sum.lo, result.components_);

@@ -82,10 +82,9 @@ double InCircle(Point2 a, Point2 b, Point2 c, Point2 d) {
   const double determinant = a_lift * (bdx_cdy - cdx_bdy) +
                              b_lift * (cdx_ady - adx_cdy) +
                              c_lift * (adx_bdy - bdx_ady);
-  const double permanent =
-      (std::abs(bdx_cdy) + std::abs(cdx_bdy)) * a_lift +
-      (std::abs(cdx_ady) + std::abs(adx_cdy)) * b_lift +
-      (std::abs(adx_bdy) + std::abs(bdx_ady)) * c_lift;
+  const double permanent = (std::abs(bdx_cdy) + std::abs(cdx_bdy)) * a_lift +
+                           (std::abs(cdx_ady) + std::abs(adx_cdy)) * b_lift +
+                           (std::abs(adx_bdy) + std::abs(bdx_ady)) * c_lift;
   const double bound = kInCircleErrorBound * permanent;
   if (std::abs(determinant) > bound) return determinant;
   return InCircleExact(a, b, c, d);

@@ -106,8 +106,7 @@ void TriangleMesh2d::LinkAcross(int32_t triangle, int corner, int32_t other,
   triangles[other].segments[other_corner] = segment;
 }
 
-bool TriangleMesh2d::InsideCircumcircle(int32_t triangle,
-                                        Point2 point) const {
+bool TriangleMesh2d::InsideCircumcircle(int32_t triangle, Point2 point) const {
   const std::array<int32_t, 3>& v = triangles[triangle].vertices;
   const int ghost = CornerOf(triangle, kGhostVertex);
   if (ghost < 0) {

@@ -68,8 +68,7 @@ struct TriangleMesh2d {
   // LinkAcross makes `triangle` and `other` neighbours across the edge
   // opposite `corner` of `triangle` (which `other` must share), carrying
   // `segment` on both sides.
-  void LinkAcross(int32_t triangle, int corner, int32_t other,
-                  int32_t segment);
+  void LinkAcross(int32_t triangle, int corner, int32_t other, int32_t segment);
 
   // FlipEdge replaces `triangle` (p, x, y), p at `corner`, and the
   // triangle (z, y, x) across its edge opposite p by (p, x, z), kept in

@@ -21,8 +21,7 @@ std::vector<int32_t> SegmentDepths(const TriangleMesh2d& mesh);
 // ExtractTriangulation returns the real triangles of `region`, the points,
 // the representatives and the edges carrying segments.
 PlanarTriangulation ExtractTriangulation(
-    const TriangleMesh2d& mesh,
-    ConstrainedTriangulationOptions::Region region);
+    const TriangleMesh2d& mesh, ConstrainedTriangulationOptions::Region region);
 
 }  // namespace freeform::internal
 

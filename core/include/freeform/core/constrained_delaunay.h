@@ -124,8 +124,8 @@ class ConstrainedTriangulation {
 
   // Result returns the triangles of `region` and the edges carrying
   // segments.
-  PlanarTriangulation Result(ConstrainedTriangulationOptions::Region region)
-      const;
+  PlanarTriangulation Result(
+      ConstrainedTriangulationOptions::Region region) const;
 
   // point_count returns the number of points, input and Steiner.
   size_t point_count() const;
