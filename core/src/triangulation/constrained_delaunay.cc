@@ -23,11 +23,12 @@ using internal::TriangleMesh2d;
 // the mesh (points 16, representatives 4, vertex triangles 4, about two
 // triangles of 36 bytes), the insertion order and its keys (16), the
 // region's depths and flood (16), the result (triangles 24, points 20,
-// segment edges) and segment insertion's lists of crossed and flipped
-// edges. tests/core/triangulation_memory_test.cc measures peaks of 116
-// bytes per point for random points, 136 for a loop of segments and 128
-// for one segment that crosses every triangle.
-constexpr uint64_t kBytesPerPoint = 320;
+// segment edges) and the worst segment insertion's scratch (a cavity of
+// every triangle: its chains, new triangles, crossed edges and the two hash
+// maps of its edges). tests/core/triangulation_memory_test.cc measures
+// peaks of 116 bytes per point for random points, 136 for a loop of
+// segments and about 300 for one segment that crosses every triangle.
+constexpr uint64_t kBytesPerPoint = 512;
 constexpr uint64_t kBytesPerSegment = 16;
 constexpr uint64_t kFixedBytes = uint64_t{64} << 10;
 

@@ -86,8 +86,8 @@ absl::Status MarkEdge(TriangleMesh2d& mesh, int32_t triangle, int corner,
 
 // CollectCrossedEdges follows the segment from the vertex at `corner` of
 // `triangle` towards `to`, listing the edges it crosses in
-// scratch.crossing, up to the first vertex on the segment, which it
-// returns.
+// scratch.crossing and its cavity in scratch.cavity, up to the first vertex
+// on the segment, which it returns.
 absl::StatusOr<int32_t> CollectCrossedEdges(const TriangleMesh2d& mesh,
                                             int32_t triangle, int corner,
                                             int32_t to, int32_t segment,
@@ -98,6 +98,10 @@ absl::StatusOr<int32_t> CollectCrossedEdges(const TriangleMesh2d& mesh,
   int32_t right = first_edge[0];
   int32_t left = first_edge[1];
   scratch.crossing.clear();
+  SegmentCavity& cavity = scratch.cavity;
+  cavity.triangles.assign({triangle});
+  cavity.left_chain.assign({left});
+  cavity.right_chain.assign({right});
   while (true) {
     const MeshTriangle& t = mesh.triangles[triangle];
     if (t.segments[corner] != kNoSegment) {
@@ -108,15 +112,18 @@ absl::StatusOr<int32_t> CollectCrossedEdges(const TriangleMesh2d& mesh,
     if (mesh.IsGhost(next)) {
       return absl::InternalError("segment insertion left the convex hull");
     }
+    cavity.triangles.push_back(next);
     const int32_t z =
         mesh.triangles[next].vertices[mesh.CornerOpposite(next, left, right)];
     if (z == to) return z;
     const double side = Orient2d(start, end, mesh.points[z]);
     if (side == 0.0) return z;
     if (side > 0.0) {
+      cavity.left_chain.push_back(z);
       corner = mesh.CornerOf(next, left);
       left = z;
     } else {
+      cavity.right_chain.push_back(z);
       corner = mesh.CornerOf(next, right);
       right = z;
     }
@@ -225,6 +232,13 @@ absl::StatusOr<int32_t> InsertPiece(TriangleMesh2d& mesh, int32_t from,
   ASSIGN_OR_RETURN(const int32_t reached,
                    CollectCrossedEdges(mesh, start.triangle, start.corner, to,
                                        segment, scratch));
+  work += scratch.crossing.size();
+  mesh.last_triangle = mesh.vertex_triangle[from];
+  if (HasSimpleChains(mesh, scratch.cavity)) {
+    RETURN_IF_ERROR(
+        RetriangulateCavity(mesh, from, reached, segment, scratch.cavity));
+    return reached;
+  }
   scratch.to_check.clear();
   RETURN_IF_ERROR(FlipCrossedEdges(mesh, from, reached, scratch, work));
   const auto [triangle, corner] = mesh.FindEdge(from, reached);
@@ -235,7 +249,6 @@ absl::StatusOr<int32_t> InsertPiece(TriangleMesh2d& mesh, int32_t from,
   }
   RETURN_IF_ERROR(MarkEdge(mesh, triangle, corner, segment));
   RestoreDelaunay(mesh, scratch, work);
-  mesh.last_triangle = mesh.vertex_triangle[from];
   return reached;
 }
 

@@ -1,6 +1,9 @@
-// Segment insertion into a (constrained) Delaunay TriangleMesh2d by flips
-// (Sloan 1993, docs/references.md): the edges the segment crosses, found by
-// a walk from one end, are flipped while their quadrilateral is strictly
+// Segment insertion into a (constrained) Delaunay TriangleMesh2d. A walk
+// from one end finds the triangles the segment crosses, up to the first
+// vertex on it (a segment through a vertex is split there). When the
+// vertices beside them form simple chains, the cavity is retriangulated
+// (cavity_retriangulation.h); otherwise (Sloan 1993, docs/references.md)
+// the crossed edges are flipped while their quadrilateral is strictly
 // convex (an edge whose quadrilateral is not waits for its neighbours)
 // until none crosses, so the segment is an edge; then Lawson's flips of
 // every edge that is not locally Delaunay and carries no segment, from the
@@ -16,6 +19,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "triangulation/cavity_retriangulation.h"
 #include "triangulation/triangle_mesh_2d.h"
 
 namespace freeform::internal {
@@ -26,6 +30,7 @@ struct SegmentScratch {
   std::deque<std::array<int32_t, 2>> crossing;
   // The edges to check for the Delaunay property.
   std::vector<std::array<int32_t, 2>> to_check;
+  SegmentCavity cavity;
 };
 
 // InsertSegment makes the vertices a and b (distinct, in the mesh) joined
