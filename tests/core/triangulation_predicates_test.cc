@@ -179,7 +179,7 @@ TEST(ExpansionTest, SumsAndProductsAreExact) {
 }
 
 // The Hilbert index visits the cells of the grid so that consecutive
-// indices are neighbouring cells (checked on the 2^31 grid's corner 8 x 8:
+// indices are neighbouring cells (checked on the 2^16 grid's corner 8 x 8:
 // the curve of the full grid passes it in 64 consecutive indices).
 TEST(InsertionOrderTest, HilbertCurveStepsBetweenNeighbours) {
   std::vector<std::array<int64_t, 2>> by_index(64);

@@ -7,7 +7,7 @@
 namespace freeform::internal {
 namespace {
 
-constexpr int kHilbertBits = 31;
+constexpr int kHilbertBits = 16;
 constexpr uint32_t kLastCell = (1u << kHilbertBits) - 1;
 // A round of fewer points is not split further.
 constexpr size_t kSmallestRound = 64;

@@ -16,8 +16,9 @@
 
 namespace freeform::internal {
 
-// HilbertIndex returns the position of the cell (x, y) of a 2^31 x 2^31 grid
-// along the Hilbert curve that fills it.
+// HilbertIndex returns the position of the cell (x, y) of a 2^16 x 2^16 grid
+// (the points' bounding box; finer cells would only order points that are
+// already neighbours) along the Hilbert curve that fills it.
 uint64_t HilbertIndex(uint32_t x, uint32_t y);
 
 // BiasedRandomizedOrder returns a permutation of the indices of `points`
