@@ -4,6 +4,7 @@
 #include "construct/interpolation_result.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/closest_point.h"
+#include "freeform/core/constrained_delaunay.h"
 #include "freeform/core/curve.h"
 #include "freeform/core/interpolation.h"
 #include "freeform/core/mesh.h"
@@ -15,3 +16,4 @@
 #include "meshing/mesh_plan.h"
 #include "queries/bezier_net.h"
 #include "refine/knot_insertion.h"
+#include "triangulation/predicates.h"

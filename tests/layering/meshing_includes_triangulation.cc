@@ -1,0 +1,3 @@
+// Must not build (tests/layering/CMakeLists.txt): triangulation/ sits above
+// meshing/.
+#include "triangulation/predicates.h"
