@@ -1,0 +1,181 @@
+// Trimmed faces: a surface cut by closed loops of 2D curves in its (u, v)
+// domain, validated once, then classified and measured.
+//
+// A TrimmedSurface is a tensor-product Surface (Bezier, B-spline or NURBS),
+// an optional outer loop running counter-clockwise in (u, v) (absent: the
+// whole parameter rectangle), holes running clockwise, and an orientation
+// flag (reversed: the face normal is -S_u x S_v). Each loop is a closed
+// chain of 2D curves of any kind the core has (curve.h). Like the curves, a
+// face holds views of the caller's arrays: they must outlive it.
+//
+// TrimmedSurface::Create checks every rule of a face once, with the field
+// path of the offending part relative to the face ("outer.curves[2]",
+// "holes[1].curves[0]", "holes[3]"), and precomputes what classification
+// needs: each loop's Bezier pieces, a polyline within a certified Hausdorff
+// distance of the loop, and a uniform grid of the polylines' segments.
+//
+// Example:
+//   TrimmedSurfaceParts parts{.surface = plane, .outer = std::nullopt,
+//                             .holes = {TrimLoop{{circle_clockwise}}}};
+//   absl::StatusOr<TrimmedSurface> face =
+//       TrimmedSurface::Create(std::move(parts), 1e-9);
+//   absl::StatusOr<std::vector<PointLocation>> where =
+//       ClassifyPoints(*face, uv, 1e-12);
+//   absl::StatusOr<FaceAreaResult> area = FaceArea(*face, 1e-10);
+//
+// Thread-safe: a face is immutable after Create; every function here is
+// const on it and may run concurrently.
+#ifndef FREEFORM_CORE_TRIMMED_SURFACE_H_
+#define FREEFORM_CORE_TRIMMED_SURFACE_H_
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "absl/types/span.h"
+#include "freeform/core/cancellation.h"
+#include "freeform/core/curve.h"
+#include "freeform/core/surface.h"
+
+namespace freeform {
+
+namespace internal {
+struct FaceBoundary;
+}  // namespace internal
+
+// A closed chain of 2D curves: curve j ends where curve j + 1 starts, and
+// the last ends where the first starts (within the face's tolerance).
+struct TrimLoop {
+  std::vector<Curve> curves;
+};
+
+// The raw parts of a face, before validation.
+struct TrimmedSurfaceParts {
+  Surface surface;
+  // Counter-clockwise in (u, v); absent: the whole parameter rectangle.
+  std::optional<TrimLoop> outer;
+  // Clockwise, each inside the outer loop, none inside another.
+  std::vector<TrimLoop> holes;
+  // When set, the face normal is -S_u x S_v.
+  bool reversed = false;
+};
+
+// The most Bezier pieces all the loops of a face may have together, and
+// the most segments of their certified polylines (RESOURCE_EXHAUSTED
+// naming "outer" or "holes" beyond).
+inline constexpr uint64_t kMaxFaceTrimPieces = uint64_t{1} << 22;
+inline constexpr uint64_t kMaxFaceBoundarySegments = uint64_t{1} << 24;
+
+// A validated face.
+class TrimmedSurface {
+ public:
+  // Create validates `parts` with `tolerance`, the closure and geometry
+  // tolerance in (u, v) (positive, finite; at least 2^-48 of the trims'
+  // largest coordinate), and precomputes the loops' polylines and grid.
+  // Fails with INVALID_ARGUMENT naming:
+  //   "tolerance" (not positive and finite, or too small to resolve);
+  //   "surface" (a triangular patch: not supported as a face yet);
+  //   "outer.curves" / "holes[i].curves" (a loop without curves);
+  //   "<loop>.curves[j]" for a curve that is not 2D, that does not start
+  //     within tolerance of the end of curve j - 1 (the last for j = 0; the
+  //     gap is in the message), that leaves the surface's parameter
+  //     rectangle by more than the tolerance (certified by the control
+  //     points of its Bezier pieces, subdivided where they poke out), or
+  //     that crosses or touches (within tolerance) another curve of its own
+  //     loop or of another loop (the other is named in the message;
+  //     neighbours in a loop may meet only at their shared end);
+  //   "outer" (signed area not positive: not counter-clockwise), "holes[i]"
+  //     (signed area not negative, outside the outer loop or the domain, or
+  //     inside another hole).
+  // Curves of zero length are allowed and skipped. Fails with
+  // RESOURCE_EXHAUSTED when the loops exceed kMaxFaceTrimPieces or
+  // kMaxFaceBoundarySegments, and with the token's CANCELLED /
+  // DEADLINE_EXCEEDED.
+  static absl::StatusOr<TrimmedSurface> Create(
+      TrimmedSurfaceParts parts, double tolerance,
+      const CancellationToken* cancel = nullptr);
+
+  const Surface& surface() const { return parts_.surface; }
+  const std::optional<TrimLoop>& outer() const { return parts_.outer; }
+  const std::vector<TrimLoop>& holes() const { return parts_.holes; }
+  bool reversed() const { return parts_.reversed; }
+  double tolerance() const { return tolerance_; }
+  // The precomputed pieces, polylines and grid (internal to the core).
+  const internal::FaceBoundary& boundary() const { return *boundary_; }
+
+ private:
+  TrimmedSurface(TrimmedSurfaceParts parts, double tolerance,
+                 std::shared_ptr<const internal::FaceBoundary> boundary)
+      : parts_(std::move(parts)),
+        tolerance_(tolerance),
+        boundary_(std::move(boundary)) {}
+
+  TrimmedSurfaceParts parts_;
+  double tolerance_;
+  std::shared_ptr<const internal::FaceBoundary> boundary_;
+};
+
+// Where a (u, v) point lies with respect to a face.
+enum class PointLocation : uint8_t { kOutside, kInside, kOnBoundary };
+
+// ClassifyPoints returns the location of every (u, v) pair of `uv`
+// (u_0, v_0, u_1, v_1, ...): on the boundary when the point is within
+// `tolerance` of a trim curve (or of the parameter rectangle's edge when
+// the face has no outer loop), else inside or outside by the winding number
+// of the loops. Points farther than `tolerance` outside the parameter
+// rectangle are outside.
+//
+// Certified: each loop's polyline lies within a Hausdorff distance e of the
+// loop (TessellateBezierCurve's flatness bound per piece). A point farther
+// than e + tolerance from every segment gets the polyline's winding number,
+// which is the loop's (the arc and the chord of every segment lie in the
+// hull of the segment's control points, within e of the chord), and is not
+// on the boundary. Near a segment the segment's arc is re-tessellated with
+// e / 8, recursively, until each sub-chord either is farther than its bound
+// plus `tolerance` (its winding counts), or is within `tolerance` minus its
+// bound (a curve point is within `tolerance`: on the boundary); the
+// recursion stops at a bound of max(tolerance / 256, 2^-44 of the piece's
+// coordinates), where the chord's distance decides. So a point farther than
+// tolerance (1 + 1/256) from the trims is never on the boundary, one within
+// tolerance (1 - 1/256) always is.
+//
+// Fast for many points: the segments are found through a uniform grid of
+// the parameter rectangle (rows for the winding ray, cells for the
+// distance). Fails with INVALID_ARGUMENT naming "uv" (odd count),
+// "uv[i]" (not finite) or "tolerance" (negative or not finite), and with
+// the token's CANCELLED / DEADLINE_EXCEEDED (polled between chunks).
+absl::StatusOr<std::vector<PointLocation>> ClassifyPoints(
+    const TrimmedSurface& face, absl::Span<const double> uv, double tolerance,
+    const CancellationToken* cancel = nullptr);
+
+// The area of a face and a bound of its error.
+struct FaceAreaResult {
+  double area = 0.0;
+  double error_bound = 0.0;
+};
+
+// FaceArea returns the surface area over the trimmed domain D,
+// the integral of |S_u x S_v| du dv (the Gram determinant's root for other
+// dimensions), reduced exactly to the boundary by Green's theorem: with
+// F(u, v) = integral of |S_u x S_v|(s, v) ds from u_start to u, the area is
+// the sum over the loops (the parameter rectangle when there is no outer
+// loop) of the integral of F(c(t)) v'(t) dt along each trim piece. The
+// outer integrals are adaptive Gauss-Kronrod (7-15) over every piece, the
+// inner F adaptive Gauss-Kronrod over each knot span of the surface in u;
+// error_bound adds the outer |K15 - G7| estimates and every inner estimate
+// weighted by |v'| and the outer rule's weights. The work stops when
+// error_bound is at most `tolerance` (absolute, positive, finite) or after
+// kMaxFaceAreaIntervals outer intervals (error_bound then says how far it
+// got). Fails with INVALID_ARGUMENT "tolerance" and with the token's
+// CANCELLED / DEADLINE_EXCEEDED.
+inline constexpr size_t kMaxFaceAreaIntervals = size_t{1} << 16;
+absl::StatusOr<FaceAreaResult> FaceArea(
+    const TrimmedSurface& face, double tolerance,
+    const CancellationToken* cancel = nullptr);
+
+}  // namespace freeform
+
+#endif  // FREEFORM_CORE_TRIMMED_SURFACE_H_

@@ -1,0 +1,239 @@
+// The certified polylines of a face's loops and their grid
+// (face_boundary.h, BuildBoundaryPolylines).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "faces/face_boundary.h"
+#include "freeform/core/saturating.h"
+#include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
+#include "freeform/core/tessellation.h"
+
+namespace freeform::internal {
+namespace {
+
+// A loop's polyline is within this fraction of the loop's extent (or the
+// face's tolerance, if larger) of the loop.
+constexpr double kPolylineFraction = 0x1p-10;
+
+// The grid has at most this many columns and rows, and at most
+// kMaxGridEntries segment entries in its cells (coarser beyond).
+constexpr int kMaxGridSide = 2048;
+constexpr uint64_t kMaxGridEntries = uint64_t{1} << 27;
+
+// LoopExtent returns the diagonal of the box of a loop's control points.
+double LoopExtent(const FaceBoundary& boundary, const BoundaryLoop& loop) {
+  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  for (int k = 0; k < loop.piece_count; ++k) {
+    const std::vector<double>& c =
+        boundary.pieces[loop.first_piece + k].bezier.coordinates;
+    for (size_t i = 0; i + 1 < c.size(); i += 2) {
+      for (int j = 0; j < 2; ++j) {
+        lo[j] = std::min(lo[j], c[i + j]);
+        hi[j] = std::max(hi[j], c[i + j]);
+      }
+    }
+  }
+  return std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
+double LoopEpsilon(const FaceBoundary& boundary, const BoundaryLoop& loop) {
+  return std::max(boundary.tolerance,
+                  kPolylineFraction * LoopExtent(boundary, loop));
+}
+
+// CheckSegmentCount refuses polylines of more than kMaxFaceBoundarySegments
+// segments, from the tessellation's a-priori bound, before any is made.
+absl::Status CheckSegmentCount(const FaceBoundary& boundary) {
+  uint64_t segments = 0;
+  for (const BoundaryLoop& loop : boundary.loops) {
+    const double epsilon = LoopEpsilon(boundary, loop);
+    for (int k = 0; k < loop.piece_count; ++k) {
+      const BezierCurveView view =
+          boundary.pieces[loop.first_piece + k].bezier.view();
+      // One more for the gap to the next piece.
+      segments = SaturatingSum(segments,
+                               BezierCurvePointBound(view, epsilon));
+    }
+  }
+  if (segments <= kMaxFaceBoundarySegments) return absl::OkStatus();
+  return ExhaustedFieldError(
+      boundary.loops.size() > 1 ? "holes" : "outer",
+      absl::StrCat("the loops' polylines would need up to ", segments,
+                   " segments, more than ", kMaxFaceBoundarySegments));
+}
+
+// AddLoopSegments tessellates one loop into boundary->segments, closing
+// the gaps between pieces with exact segments.
+absl::Status AddLoopSegments(int loop_index, FaceBoundary* boundary,
+                             const CancellationToken* cancel) {
+  BoundaryLoop& loop = boundary->loops[loop_index];
+  loop.epsilon = LoopEpsilon(*boundary, loop);
+  loop.first_segment = static_cast<uint32_t>(boundary->segments.size());
+  for (int k = 0; k < loop.piece_count; ++k) {
+    const int index = loop.first_piece + k;
+    const TrimPiece& piece = boundary->pieces[index];
+    const TrimPiece& next =
+        boundary->pieces[loop.first_piece + (k + 1) % loop.piece_count];
+    const bool linear = piece.bezier.coordinates.size() <= 4;
+    ASSIGN_OR_RETURN(
+        Polyline polyline,
+        TessellateBezierCurve(piece.bezier.view(), loop.epsilon,
+                              kMaxFaceBoundarySegments, cancel));
+    const size_t n = polyline.parameters.size();
+    for (size_t r = 0; r + 1 < n; ++r) {
+      const Point2 a = r == 0 ? piece.first
+                              : Point2{polyline.points[2 * r],
+                                       polyline.points[2 * r + 1]};
+      const Point2 b = r + 2 == n ? piece.last
+                                  : Point2{polyline.points[2 * r + 2],
+                                           polyline.points[2 * r + 3]};
+      boundary->segments.push_back({.a = a,
+                                    .b = b,
+                                    .s0 = polyline.parameters[r],
+                                    .s1 = polyline.parameters[r + 1],
+                                    .epsilon = linear ? 0.0 : loop.epsilon,
+                                    .piece = index,
+                                    .loop = loop_index});
+    }
+    if (piece.last != next.first) {
+      boundary->segments.push_back({.a = piece.last,
+                                    .b = next.first,
+                                    .epsilon = 0.0,
+                                    .piece = -1,
+                                    .loop = loop_index});
+    }
+  }
+  loop.segment_count =
+      static_cast<uint32_t>(boundary->segments.size()) - loop.first_segment;
+  return absl::OkStatus();
+}
+
+// The cells a segment's box, widened by its bound, meets.
+struct CellRange {
+  int c0, c1, r0, r1;
+};
+
+CellRange CellsOf(const SegmentGrid& grid, const BoundarySegment& s) {
+  const double e = s.epsilon;
+  return {grid.Column(std::min(s.a[0], s.b[0]) - e),
+          grid.Column(std::max(s.a[0], s.b[0]) + e),
+          grid.Row(std::min(s.a[1], s.b[1]) - e),
+          grid.Row(std::max(s.a[1], s.b[1]) + e)};
+}
+
+uint64_t GridEntries(const SegmentGrid& grid,
+                     const std::vector<BoundarySegment>& segments) {
+  uint64_t entries = 0;
+  for (const BoundarySegment& s : segments) {
+    const CellRange r = CellsOf(grid, s);
+    entries += static_cast<uint64_t>(r.c1 - r.c0 + 1) * (r.r1 - r.r0 + 1);
+  }
+  return entries;
+}
+
+// FillCells lists every segment in the cells its widened box meets, and in
+// the rows its v-range meets (horizontal segments never cross a ray along
+// u and stay out of the rows).
+void FillGrid(const std::vector<BoundarySegment>& segments,
+              SegmentGrid& grid) {
+  const size_t cells = static_cast<size_t>(grid.columns) * grid.rows;
+  grid.cell_start.assign(cells + 1, 0);
+  grid.row_start.assign(static_cast<size_t>(grid.rows) + 1, 0);
+  const auto each = [&](auto&& add_cell, auto&& add_row) {
+    for (uint32_t i = 0; i < segments.size(); ++i) {
+      const BoundarySegment& s = segments[i];
+      const CellRange r = CellsOf(grid, s);
+      for (int row = r.r0; row <= r.r1; ++row) {
+        for (int c = r.c0; c <= r.c1; ++c) {
+          add_cell(static_cast<size_t>(row) * grid.columns + c, i);
+        }
+      }
+      if (s.a[1] == s.b[1]) continue;
+      const int v0 = grid.Row(std::min(s.a[1], s.b[1]));
+      const int v1 = grid.Row(std::max(s.a[1], s.b[1]));
+      for (int row = v0; row <= v1; ++row) add_row(row, i);
+    }
+  };
+  each([&](size_t cell, uint32_t) { ++grid.cell_start[cell + 1]; },
+       [&](int row, uint32_t) { ++grid.row_start[row + 1]; });
+  for (size_t c = 0; c < cells; ++c) {
+    grid.cell_start[c + 1] += grid.cell_start[c];
+  }
+  for (int r = 0; r < grid.rows; ++r) grid.row_start[r + 1] += grid.row_start[r];
+  grid.cell_segments.resize(grid.cell_start[cells]);
+  grid.row_segments.resize(grid.row_start[grid.rows]);
+  std::vector<uint32_t> cell_fill(grid.cell_start.begin(),
+                                  grid.cell_start.end() - 1);
+  std::vector<uint32_t> row_fill(grid.row_start.begin(),
+                                 grid.row_start.end() - 1);
+  each([&](size_t cell, uint32_t i) { grid.cell_segments[cell_fill[cell]++] = i; },
+       [&](int row, uint32_t i) { grid.row_segments[row_fill[row]++] = i; });
+}
+
+// BuildGrid sizes the grid for about two segments per cell, with cells of
+// the domain's aspect, coarser while its entries would exceed the limit.
+void BuildGrid(FaceBoundary* boundary) {
+  const SurfaceDomain& d = boundary->domain;
+  const double width = d.u_end - d.u_start;
+  const double height = d.v_end - d.v_start;
+  const double cells = std::max(1.0, 0.5 * static_cast<double>(boundary->segments.size()));
+  const double aspect = width / height;
+  int columns = std::clamp(static_cast<int>(std::ceil(std::sqrt(cells * aspect))),
+                           1, kMaxGridSide);
+  int rows = std::clamp(static_cast<int>(std::ceil(std::sqrt(cells / aspect))),
+                        1, kMaxGridSide);
+  SegmentGrid& grid = boundary->grid;
+  while (true) {
+    grid.u_start = d.u_start;
+    grid.v_start = d.v_start;
+    grid.columns = columns;
+    grid.rows = rows;
+    grid.cell_u = width / columns;
+    grid.cell_v = height / rows;
+    if ((columns == 1 && rows == 1) ||
+        GridEntries(grid, boundary->segments) <= kMaxGridEntries) {
+      break;
+    }
+    columns = std::max(1, columns / 2);
+    rows = std::max(1, rows / 2);
+  }
+  FillGrid(boundary->segments, grid);
+}
+
+}  // namespace
+
+int SegmentGrid::Column(double u) const {
+  const double x = std::floor((u - u_start) / cell_u);
+  if (!(x >= 0.0)) return 0;
+  return x >= columns ? columns - 1 : static_cast<int>(x);
+}
+
+int SegmentGrid::Row(double v) const {
+  const double y = std::floor((v - v_start) / cell_v);
+  if (!(y >= 0.0)) return 0;
+  return y >= rows ? rows - 1 : static_cast<int>(y);
+}
+
+absl::Status BuildBoundaryPolylines(FaceBoundary* boundary,
+                                    const CancellationToken* cancel) {
+  RETURN_IF_ERROR(CheckSegmentCount(*boundary));
+  for (size_t l = 0; l < boundary->loops.size(); ++l) {
+    RETURN_IF_ERROR(AddLoopSegments(static_cast<int>(l), boundary, cancel));
+    RETURN_IF_ERROR(CheckCancelled(cancel));
+  }
+  if (boundary->segments.size() > kMaxFaceBoundarySegments) {
+    return ExhaustedFieldError(
+        "holes", absl::StrCat("the loops' polylines have ",
+                              boundary->segments.size(), " segments, more than ",
+                              kMaxFaceBoundarySegments));
+  }
+  BuildGrid(boundary);
+  return CheckCancelled(cancel);
+}
+
+}  // namespace freeform::internal

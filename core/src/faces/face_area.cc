@@ -1,0 +1,244 @@
+// The area of a trimmed face (trimmed_surface.h, FaceArea): Green's theorem
+// turns the surface integral over the trimmed domain into integrals of
+// F(u, v) v' along the trims, F the integral of the area density along u
+// from the domain's start.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "faces/face_boundary.h"
+#include "faces/quadrature.h"
+#include "freeform/core/bezier.h"
+#include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
+#include "freeform/core/surface.h"
+#include "freeform/core/trimmed_surface.h"
+
+namespace freeform {
+namespace {
+
+using internal::Estimate;
+using internal::FaceBoundary;
+using internal::kKronrodPoints;
+using internal::KronrodNode;
+using internal::TrimPiece;
+
+// The most intervals of one inner integral over a knot span.
+constexpr size_t kMaxInnerIntervals = 4096;
+
+// The distinct knot values strictly inside [start, end], with both ends.
+std::vector<double> Breaks(absl::Span<const double> knots, double start,
+                           double end) {
+  std::vector<double> breaks = {start};
+  for (const double k : knots) {
+    if (k > breaks.back() && k < end) breaks.push_back(k);
+  }
+  breaks.push_back(end);
+  return breaks;
+}
+
+// The area density |S_u x S_v| (the root of the Gram determinant outside
+// 3D) at (u, v) pairs, and F, its integral along u.
+class AreaDensity {
+ public:
+  AreaDensity(const Surface& surface, const SurfaceDomain& domain,
+              std::vector<double> u_breaks, double tolerance_per_unit_u)
+      : surface_(surface),
+        domain_(domain),
+        u_breaks_(std::move(u_breaks)),
+        tolerance_per_unit_u_(tolerance_per_unit_u),
+        dimension_(DimensionOf(surface)) {
+    for (auto& buffer : partials_) {
+      buffer.resize(static_cast<size_t>(kKronrodPoints) * dimension_);
+    }
+  }
+
+  // Integral returns F(u, v), u and v clamped into the domain.
+  absl::StatusOr<Estimate> Integral(double u, double v) {
+    u = std::clamp(u, domain_.u_start, domain_.u_end);
+    v = std::clamp(v, domain_.v_start, domain_.v_end);
+    Estimate total;
+    for (size_t k = 0; k + 1 < u_breaks_.size() && u_breaks_[k] < u; ++k) {
+      const double a = u_breaks_[k];
+      const double b = std::min(u_breaks_[k + 1], u);
+      const auto along_u = [&](double x, double y, Estimate* values) {
+        return Densities(x, y, v, values);
+      };
+      ASSIGN_OR_RETURN(Estimate span,
+                       internal::IntegrateAdaptive(
+                           along_u, a, b, tolerance_per_unit_u_ * (b - a),
+                           kMaxInnerIntervals, nullptr));
+      total.value += span.value;
+      total.error += span.error;
+    }
+    return total;
+  }
+
+ private:
+  // Densities writes the density at the Kronrod nodes of [a, b] x {v}.
+  absl::Status Densities(double a, double b, double v, Estimate* values) {
+    for (int k = 0; k < kKronrodPoints; ++k) {
+      uv_[2 * k] = std::clamp(KronrodNode(a, b, k), domain_.u_start,
+                              domain_.u_end);
+      uv_[2 * k + 1] = v;
+    }
+    const absl::Span<double> output[3] = {absl::MakeSpan(partials_[0]),
+                                          absl::MakeSpan(partials_[1]),
+                                          absl::MakeSpan(partials_[2])};
+    RETURN_IF_ERROR(EvaluateSurface(surface_, SurfaceSamples::Pairs(uv_),
+                                    output, {}));
+    for (int k = 0; k < kKronrodPoints; ++k) {
+      values[k] = {.value = Density(&partials_[1][k * dimension_],
+                                    &partials_[2][k * dimension_]),
+                   .error = 0.0};
+    }
+    return absl::OkStatus();
+  }
+
+  double Density(const double* su, const double* sv) const {
+    if (dimension_ == 3) {
+      return std::hypot(su[1] * sv[2] - su[2] * sv[1],
+                        su[2] * sv[0] - su[0] * sv[2],
+                        su[0] * sv[1] - su[1] * sv[0]);
+    }
+    if (dimension_ == 2) return std::abs(su[0] * sv[1] - su[1] * sv[0]);
+    double uu = 0.0, vv = 0.0, uv = 0.0;
+    for (int j = 0; j < dimension_; ++j) {
+      uu += su[j] * su[j];
+      vv += sv[j] * sv[j];
+      uv += su[j] * sv[j];
+    }
+    return std::sqrt(std::max(0.0, uu * vv - uv * uv));
+  }
+
+  const Surface& surface_;
+  const SurfaceDomain domain_;
+  const std::vector<double> u_breaks_;
+  const double tolerance_per_unit_u_;
+  const int dimension_;
+  std::array<double, 2 * kKronrodPoints> uv_{};
+  std::array<std::vector<double>, 3> partials_;
+};
+
+// VVariation returns the v-variation of a piece's control polygon (at
+// least the piece's own for a polynomial piece).
+double VVariation(const TrimPiece& piece) {
+  const std::vector<double>& c = piece.bezier.coordinates;
+  double variation = 0.0;
+  for (size_t i = 3; i < c.size(); i += 2) variation += std::abs(c[i] - c[i - 2]);
+  return variation;
+}
+
+// PieceBreaks returns the parameters of a piece to integrate between: 0,
+// 1, and for a segment where it crosses an interior knot line (the density
+// may have a kink there).
+std::vector<double> PieceBreaks(const TrimPiece& piece,
+                                const std::vector<double>& u_breaks,
+                                const std::vector<double>& v_breaks) {
+  std::vector<double> t = {0.0, 1.0};
+  if (piece.bezier.coordinates.size() == 4) {
+    for (int j = 0; j < 2; ++j) {
+      const double from = piece.first[j], to = piece.last[j];
+      const std::vector<double>& knots = j == 0 ? u_breaks : v_breaks;
+      for (size_t k = 1; k + 1 < knots.size(); ++k) {
+        const double s = (knots[k] - from) / (to - from);
+        if (s > 0.0 && s < 1.0) t.push_back(s);
+      }
+    }
+  }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
+std::vector<double> KnotsOf(const Surface& surface, bool in_u) {
+  if (const auto* bspline = std::get_if<BSplineSurface>(&surface)) {
+    return in_u ? std::vector<double>(bspline->view().knots_u.begin(),
+                                      bspline->view().knots_u.end())
+                : std::vector<double>(bspline->view().knots_v.begin(),
+                                      bspline->view().knots_v.end());
+  }
+  return {};
+}
+
+// PieceArea integrates F(c(t)) v'(t) over one piece.
+absl::StatusOr<Estimate> PieceArea(const TrimPiece& piece,
+                                   const std::vector<double>& breaks,
+                                   double tolerance, size_t max_intervals,
+                                   AreaDensity& density,
+                                   const CancellationToken* cancel) {
+  const BezierPointEvaluator evaluator(piece.bezier.view(), 1);
+  std::vector<double> scratch(evaluator.scratch_size());
+  const auto integrand = [&](double a, double b,
+                             Estimate* values) -> absl::Status {
+    for (int k = 0; k < kKronrodPoints; ++k) {
+      double c[4];
+      evaluator.Evaluate(KronrodNode(a, b, k), scratch.data(), c);
+      ASSIGN_OR_RETURN(Estimate f, density.Integral(c[0], c[1]));
+      values[k] = {.value = f.value * c[3], .error = f.error * std::abs(c[3])};
+    }
+    return absl::OkStatus();
+  };
+  Estimate total;
+  for (size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double share = breaks[k + 1] - breaks[k];
+    ASSIGN_OR_RETURN(Estimate part,
+                     internal::IntegrateAdaptive(
+                         integrand, breaks[k], breaks[k + 1],
+                         tolerance * share, max_intervals, cancel));
+    total.value += part.value;
+    total.error += part.error;
+  }
+  return total;
+}
+
+}  // namespace
+
+absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
+                                        double tolerance,
+                                        const CancellationToken* cancel) {
+  RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
+  const FaceBoundary& boundary = face.boundary();
+  const SurfaceDomain& d = boundary.domain;
+  const std::vector<double> u_breaks =
+      Breaks(KnotsOf(face.surface(), true), d.u_start, d.u_end);
+  const std::vector<double> v_breaks =
+      Breaks(KnotsOf(face.surface(), false), d.v_start, d.v_end);
+  double variation = 0.0;
+  size_t active = 0;
+  for (const TrimPiece& piece : boundary.pieces) {
+    const double piece_variation = VVariation(piece);
+    variation += piece_variation;
+    if (piece_variation > 0.0) ++active;
+  }
+  if (active == 0) return FaceAreaResult{};
+  // A quarter of the tolerance for the inner integrals (weighted by |v'|,
+  // whose integral the control polygons' variation bounds for polynomial
+  // pieces), the rest for the outer ones, shared by v-variation.
+  AreaDensity density(face.surface(), d, u_breaks,
+                      0.25 * tolerance / (variation * (d.u_end - d.u_start)));
+  const size_t max_intervals =
+      std::max<size_t>(64, kMaxFaceAreaIntervals / active);
+  FaceAreaResult result;
+  for (const TrimPiece& piece : boundary.pieces) {
+    const double piece_variation = VVariation(piece);
+    if (piece_variation == 0.0) continue;
+    ASSIGN_OR_RETURN(
+        Estimate part,
+        PieceArea(piece, PieceBreaks(piece, u_breaks, v_breaks),
+                  0.75 * tolerance * piece_variation / variation,
+                  max_intervals, density, cancel));
+    result.area += part.value;
+    result.error_bound += part.error;
+    RETURN_IF_ERROR(CheckCancelled(cancel));
+  }
+  if (!std::isfinite(result.area) || !std::isfinite(result.error_bound)) {
+    return InvalidFieldError("surface",
+                             "the area density is not finite on the face");
+  }
+  return result;
+}
+
+}  // namespace freeform

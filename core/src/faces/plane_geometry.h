@@ -1,0 +1,34 @@
+// Points and segments of the (u, v) plane shared by the face's checks and
+// classification. Internal to the core; thread-safe.
+#ifndef FREEFORM_CORE_SRC_FACES_PLANE_GEOMETRY_H_
+#define FREEFORM_CORE_SRC_FACES_PLANE_GEOMETRY_H_
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace freeform::internal {
+
+using Point2 = std::array<double, 2>;
+
+// DistanceToSegment returns the distance from p to the segment [a, b].
+inline double DistanceToSegment(const Point2& p, const Point2& a,
+                                const Point2& b) {
+  const double ab[2] = {b[0] - a[0], b[1] - a[1]};
+  const double ab2 = ab[0] * ab[0] + ab[1] * ab[1];
+  const double s =
+      ab2 > 0.0
+          ? std::clamp(((p[0] - a[0]) * ab[0] + (p[1] - a[1]) * ab[1]) / ab2,
+                       0.0, 1.0)
+          : 0.0;
+  return std::hypot(p[0] - (a[0] + s * ab[0]), p[1] - (a[1] + s * ab[1]));
+}
+
+// Cross returns (b - a) x (p - a): positive when p lies left of a -> b.
+inline double Cross(const Point2& a, const Point2& b, const Point2& p) {
+  return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+}
+
+}  // namespace freeform::internal
+
+#endif  // FREEFORM_CORE_SRC_FACES_PLANE_GEOMETRY_H_

@@ -1,0 +1,49 @@
+// Adaptive Gauss-Kronrod (7-15) quadrature of integrands that may carry
+// their own error (an inner integral), for the face's areas. Internal to
+// the core; thread-safe.
+#ifndef FREEFORM_CORE_SRC_FACES_QUADRATURE_H_
+#define FREEFORM_CORE_SRC_FACES_QUADRATURE_H_
+
+#include <cstddef>
+
+#include "absl/functional/function_ref.h"
+#include "absl/status/statusor.h"
+#include "freeform/core/cancellation.h"
+
+namespace freeform::internal {
+
+// A value with a bound of its error.
+struct Estimate {
+  double value = 0.0;
+  double error = 0.0;
+};
+
+// The points of the Kronrod rule; the Gauss rule uses every odd one.
+inline constexpr int kKronrodPoints = 15;
+
+// KronrodNode returns node k (0..14, ascending) of the 15-point rule on
+// [a, b].
+double KronrodNode(double a, double b, int k);
+
+// KronrodInterval integrates over [a, b] from the integrand's values at the
+// 15 KronrodNode points: value the Kronrod sum, error |K15 - G7| plus the
+// integrand's own errors weighted by the Kronrod weights.
+Estimate KronrodInterval(double a, double b, const Estimate* values);
+
+// An integrand of batches: values[k] at KronrodNode(a, b, k) for k in
+// 0..14.
+using KronrodIntegrand =
+    absl::FunctionRef<absl::Status(double a, double b, Estimate* values)>;
+
+// IntegrateAdaptive integrates over [a, b], halving the interval of largest
+// error until the errors add up to at most `tolerance` or `max_intervals`
+// intervals are in use; returns the sum and its error bound.
+absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
+                                           double a, double b,
+                                           double tolerance,
+                                           size_t max_intervals,
+                                           const CancellationToken* cancel);
+
+}  // namespace freeform::internal
+
+#endif  // FREEFORM_CORE_SRC_FACES_QUADRATURE_H_

@@ -1,0 +1,275 @@
+// The rule that loops neither cross themselves nor each other
+// (trim_validation.h, CheckCrossings).
+//
+// Every non-degenerate piece is halved until it is monotone along its
+// chord (each edge of its control polygon, which holds every tangent of the
+// part, points forward along the chord: no part crosses itself). Pairs of
+// parts whose control boxes come within the tolerance are found by a sweep
+// in u and intersected: two segments exactly, anything else by
+// IntersectCurves. Neighbouring parts of a loop meet at their shared end:
+// an intersection there (within kJunctionRadius tolerances of it) is
+// allowed, any other is a crossing.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
+#include "faces/trim_validation.h"
+#include "freeform/core/intersection.h"
+#include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
+#include "freeform/core/subdivision.h"
+
+namespace freeform::internal {
+namespace {
+
+// Parts are halved at most this often on their way to monotone; a part
+// still not monotone then (a cusp) is kept whole.
+constexpr int kMaxMonotoneDepth = 12;
+
+// Intersections within this many tolerances of a shared end are the
+// neighbours' meeting.
+constexpr double kJunctionRadius = 8.0;
+
+// A monotone part of a piece, with its control box and its place among
+// the parts of its loop.
+struct Part {
+  BezierCurveData bezier;
+  int piece = 0;
+  int loop = 0;
+  // Its index among its loop's parts, and the loop's part count.
+  int index = 0;
+  int loop_parts = 0;
+  Point2 lo{};
+  Point2 hi{};
+};
+
+Point2 ControlPoint(const BezierCurveData& b, size_t i) {
+  return {b.coordinates[2 * i], b.coordinates[2 * i + 1]};
+}
+
+size_t ControlCount(const BezierCurveData& b) {
+  return b.coordinates.size() / 2;
+}
+
+// IsMonotone reports whether every control polygon edge has a positive dot
+// product with the chord (a rational part needs positive weights).
+bool IsMonotone(const BezierCurveData& b) {
+  for (const double w : b.weights) {
+    if (!(w > 0.0)) return false;
+  }
+  const size_t n = ControlCount(b);
+  const Point2 first = ControlPoint(b, 0);
+  const Point2 last = ControlPoint(b, n - 1);
+  const double chord[2] = {last[0] - first[0], last[1] - first[1]};
+  for (size_t i = 0; i + 1 < n; ++i) {
+    const Point2 p = ControlPoint(b, i);
+    const Point2 q = ControlPoint(b, i + 1);
+    if (!((q[0] - p[0]) * chord[0] + (q[1] - p[1]) * chord[1] > 0.0)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// AddMonotoneParts appends the monotone parts of `bezier` to `parts`.
+absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
+                              const Part& prototype,
+                              std::vector<Part>& parts) {
+  if (depth >= kMaxMonotoneDepth || IsMonotone(bezier)) {
+    Part part = prototype;
+    part.bezier = bezier;
+    part.lo = {INFINITY, INFINITY};
+    part.hi = {-INFINITY, -INFINITY};
+    for (size_t i = 0; i < ControlCount(bezier); ++i) {
+      for (int j = 0; j < 2; ++j) {
+        part.lo[j] = std::min(part.lo[j], ControlPoint(bezier, i)[j]);
+        part.hi[j] = std::max(part.hi[j], ControlPoint(bezier, i)[j]);
+      }
+    }
+    parts.push_back(std::move(part));
+    return absl::OkStatus();
+  }
+  const double half[] = {0.5};
+  ASSIGN_OR_RETURN(std::vector<BezierCurveData> halves,
+                   SplitBezierCurve(bezier.view(), half));
+  for (const BezierCurveData& h : halves) {
+    RETURN_IF_ERROR(AddMonotoneParts(h, depth + 1, prototype, parts));
+  }
+  return absl::OkStatus();
+}
+
+// MonotoneParts returns every loop's parts in loop order.
+absl::StatusOr<std::vector<Part>> MonotoneParts(
+    const FaceBoundary& boundary, const CancellationToken* cancel) {
+  std::vector<Part> parts;
+  for (size_t l = 0; l < boundary.loops.size(); ++l) {
+    const BoundaryLoop& loop = boundary.loops[l];
+    const size_t first = parts.size();
+    for (int k = 0; k < loop.piece_count; ++k) {
+      const TrimPiece& piece = boundary.pieces[loop.first_piece + k];
+      if (piece.degenerate) continue;
+      const Part prototype{.piece = loop.first_piece + k,
+                           .loop = static_cast<int>(l)};
+      RETURN_IF_ERROR(AddMonotoneParts(piece.bezier, 0, prototype, parts));
+    }
+    for (size_t i = first; i < parts.size(); ++i) {
+      parts[i].index = static_cast<int>(i - first);
+      parts[i].loop_parts = static_cast<int>(parts.size() - first);
+    }
+    RETURN_IF_ERROR(CheckCancelled(cancel));
+  }
+  return parts;
+}
+
+// Junctions returns the shared ends of two parts that are neighbours in
+// their loop (none, one, or two for a loop of two parts).
+std::vector<Point2> Junctions(const Part& a, const Part& b) {
+  std::vector<Point2> junctions;
+  if (a.loop != b.loop) return junctions;
+  const int n = a.loop_parts;
+  const auto end_of = [](const Part& p) {
+    return ControlPoint(p.bezier, ControlCount(p.bezier) - 1);
+  };
+  if ((a.index + 1) % n == b.index) junctions.push_back(end_of(a));
+  if ((b.index + 1) % n == a.index) junctions.push_back(end_of(b));
+  return junctions;
+}
+
+bool NearJunction(const Point2& p, const std::vector<Point2>& junctions,
+                  double radius) {
+  for (const Point2& j : junctions) {
+    if (std::hypot(p[0] - j[0], p[1] - j[1]) <= radius) return true;
+  }
+  return false;
+}
+
+// SegmentContact returns a point where two segments come within the
+// tolerance, other than their shared ends: where they cross, or an end of
+// one within the tolerance of the other (a segment that folds back onto
+// its neighbour has its far end on it).
+std::optional<Point2> SegmentContact(const Part& a, const Part& b,
+                                     double tolerance,
+                                     const std::vector<Point2>& junctions,
+                                     double radius) {
+  const Point2 a0 = ControlPoint(a.bezier, 0);
+  const Point2 a1 = ControlPoint(a.bezier, 1);
+  const Point2 b0 = ControlPoint(b.bezier, 0);
+  const Point2 b1 = ControlPoint(b.bezier, 1);
+  const double d1 = Cross(a0, a1, b0), d2 = Cross(a0, a1, b1);
+  const double d3 = Cross(b0, b1, a0), d4 = Cross(b0, b1, a1);
+  if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) &&
+      ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) {
+    const double s = d3 / (d3 - d4);
+    const Point2 x{a0[0] + s * (a1[0] - a0[0]), a0[1] + s * (a1[1] - a0[1])};
+    if (!NearJunction(x, junctions, radius)) return x;
+  }
+  const auto end_near = [&](const Point2& q, const Point2& s0,
+                            const Point2& s1) -> std::optional<Point2> {
+    if (NearJunction(q, junctions, radius)) return std::nullopt;
+    if (DistanceToSegment(q, s0, s1) <= tolerance) return q;
+    return std::nullopt;
+  };
+  for (const auto& [p, s0, s1] :
+       {std::array{a0, b0, b1}, std::array{a1, b0, b1}, std::array{b0, a0, a1},
+        std::array{b1, a0, a1}}) {
+    if (std::optional<Point2> q = end_near(p, s0, s1)) return q;
+  }
+  return std::nullopt;
+}
+
+Point2 PointAt(const BezierCurveData& bezier, double t) {
+  BezierPointEvaluator evaluator(bezier.view(), 0);
+  std::vector<double> scratch(evaluator.scratch_size());
+  Point2 point{};
+  evaluator.Evaluate(t, scratch.data(), point.data());
+  return point;
+}
+
+// CurveContact is SegmentContact for any parts, by IntersectCurves.
+absl::StatusOr<std::optional<Point2>> CurveContact(
+    const Part& a, const Part& b, double tolerance,
+    const std::vector<Point2>& junctions, double radius,
+    const CancellationToken* cancel) {
+  IntersectionOptions options;
+  options.tolerance = tolerance;
+  options.separation = tolerance;
+  ASSIGN_OR_RETURN(CurveIntersections found,
+                   IntersectCurves(PieceCurve(a.bezier), PieceCurve(b.bezier),
+                                   options, cancel));
+  for (size_t k = 0; k < found.first_parameters.size(); ++k) {
+    const Point2 p{found.points[2 * k], found.points[2 * k + 1]};
+    if (!NearJunction(p, junctions, radius)) return p;
+  }
+  for (const double t : found.first_intervals) {
+    const Point2 p = PointAt(a.bezier, t);
+    if (!NearJunction(p, junctions, radius)) return p;
+  }
+  return std::nullopt;
+}
+
+absl::Status CrossingError(const FaceBoundary& boundary, const Part& a,
+                           const Part& b, const Point2& at) {
+  const Part& later = a.piece > b.piece ? a : b;
+  const Part& earlier = a.piece > b.piece ? b : a;
+  const std::string other =
+      CurvePath(boundary, boundary.pieces[earlier.piece]);
+  const std::string what =
+      later.piece == earlier.piece ? "crosses itself" : "crosses or touches";
+  return InvalidFieldError(
+      CurvePath(boundary, boundary.pieces[later.piece]),
+      absl::StrCat(what, later.piece == earlier.piece ? "" : " ",
+                   later.piece == earlier.piece ? "" : other,
+                   " near (u, v) = (", at[0], ", ", at[1],
+                   "): loops must not cross themselves or each other"));
+}
+
+absl::Status CheckPair(const FaceBoundary& boundary, const Part& a,
+                       const Part& b, const CancellationToken* cancel) {
+  const double tolerance = boundary.tolerance;
+  const std::vector<Point2> junctions = Junctions(a, b);
+  const double radius = kJunctionRadius * tolerance;
+  std::optional<Point2> contact;
+  if (ControlCount(a.bezier) == 2 && ControlCount(b.bezier) == 2) {
+    contact = SegmentContact(a, b, tolerance, junctions, radius);
+  } else {
+    ASSIGN_OR_RETURN(contact, CurveContact(a, b, tolerance, junctions,
+                                           radius, cancel));
+  }
+  if (!contact.has_value()) return absl::OkStatus();
+  return CrossingError(boundary, a, b, *contact);
+}
+
+}  // namespace
+
+absl::Status CheckCrossings(const FaceBoundary& boundary,
+                            const CancellationToken* cancel) {
+  ASSIGN_OR_RETURN(std::vector<Part> parts, MonotoneParts(boundary, cancel));
+  std::vector<size_t> order(parts.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&parts](size_t x, size_t y) {
+    return parts[x].lo[0] < parts[y].lo[0];
+  });
+  const double tolerance = boundary.tolerance;
+  CancellationPoll poll(cancel);
+  for (size_t i = 0; i < order.size(); ++i) {
+    const Part& a = parts[order[i]];
+    for (size_t k = i + 1; k < order.size(); ++k) {
+      const Part& b = parts[order[k]];
+      if (b.lo[0] > a.hi[0] + tolerance) break;
+      if (b.lo[1] > a.hi[1] + tolerance || a.lo[1] > b.hi[1] + tolerance) {
+        continue;
+      }
+      RETURN_IF_ERROR(CheckPair(boundary, a, b, cancel));
+      RETURN_IF_ERROR(poll.Done(
+          16 * (a.bezier.coordinates.size() + b.bezier.coordinates.size())));
+    }
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace freeform::internal

@@ -1,0 +1,90 @@
+#include "freeform/core/trimmed_surface.h"
+
+#include <cmath>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "faces/face_boundary.h"
+#include "faces/trim_validation.h"
+#include "faces/winding.h"
+#include "freeform/core/points.h"
+#include "freeform/core/status.h"
+#include "freeform/core/status_macros.h"
+
+namespace freeform {
+namespace {
+
+using internal::FaceBoundary;
+using internal::Point2;
+
+// Points classified between two polls of the token.
+constexpr size_t kPointsPerPoll = 1024;
+
+absl::StatusOr<std::shared_ptr<const FaceBoundary>> BuildBoundary(
+    const TrimmedSurfaceParts& parts, double tolerance,
+    const CancellationToken* cancel) {
+  auto boundary = std::make_shared<FaceBoundary>();
+  boundary->domain = DomainOf(parts.surface);
+  boundary->tolerance = tolerance;
+  RETURN_IF_ERROR(internal::BuildTrimPieces(parts, boundary.get(), cancel));
+  RETURN_IF_ERROR(internal::CheckTrimResolution(*boundary));
+  RETURN_IF_ERROR(internal::CheckClosure(*boundary));
+  RETURN_IF_ERROR(internal::CheckInsideDomain(*boundary, cancel));
+  RETURN_IF_ERROR(internal::CheckCrossings(*boundary, cancel));
+  RETURN_IF_ERROR(internal::CheckOrientation(*boundary));
+  RETURN_IF_ERROR(internal::BuildBoundaryPolylines(boundary.get(), cancel));
+  RETURN_IF_ERROR(internal::CheckContainment(*boundary, cancel));
+  return boundary;
+}
+
+PointLocation Classify(const FaceBoundary& boundary, const Point2& p,
+                       double tolerance) {
+  const SurfaceDomain& d = boundary.domain;
+  if (p[0] < d.u_start - tolerance || p[0] > d.u_end + tolerance ||
+      p[1] < d.v_start - tolerance || p[1] > d.v_end + tolerance) {
+    return PointLocation::kOutside;
+  }
+  const internal::WindingAt at = internal::FaceWinding(boundary, p, tolerance);
+  if (at.on_boundary) return PointLocation::kOnBoundary;
+  return at.winding > 0 ? PointLocation::kInside : PointLocation::kOutside;
+}
+
+}  // namespace
+
+absl::StatusOr<TrimmedSurface> TrimmedSurface::Create(
+    TrimmedSurfaceParts parts, double tolerance,
+    const CancellationToken* cancel) {
+  RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
+  if (IsTriangular(parts.surface)) {
+    return InvalidFieldError(
+        "surface",
+        "a triangular patch cannot be trimmed yet: use a tensor-product "
+        "surface");
+  }
+  ASSIGN_OR_RETURN(std::shared_ptr<const FaceBoundary> boundary,
+                   BuildBoundary(parts, tolerance, cancel));
+  return TrimmedSurface(std::move(parts), tolerance, std::move(boundary));
+}
+
+absl::StatusOr<std::vector<PointLocation>> ClassifyPoints(
+    const TrimmedSurface& face, absl::Span<const double> uv, double tolerance,
+    const CancellationToken* cancel) {
+  if (uv.size() % 2 != 0) {
+    return InvalidFieldError("uv", "must hold (u, v) pairs");
+  }
+  RETURN_IF_ERROR(ValidateFinite(uv, "uv"));
+  if (!(std::isfinite(tolerance) && tolerance >= 0.0)) {
+    return InvalidFieldError("tolerance", "must be finite and not negative");
+  }
+  std::vector<PointLocation> locations(uv.size() / 2);
+  for (size_t i = 0; i < locations.size(); ++i) {
+    if (i % kPointsPerPoll == 0) RETURN_IF_ERROR(CheckCancelled(cancel));
+    locations[i] =
+        Classify(face.boundary(), {uv[2 * i], uv[2 * i + 1]}, tolerance);
+  }
+  return locations;
+}
+
+}  // namespace freeform
