@@ -40,6 +40,9 @@ struct BoundaryLoop {
   // without an outer loop.
   std::string path;
   bool hole = false;
+  // The parameter rectangle: trims may touch it (they are inside it by
+  // CheckInsideDomain), so it takes no part in CheckCrossings.
+  bool is_domain = false;
   int first_piece = 0;
   int piece_count = 0;
   // Its segments are segments[first_segment .. first_segment +

@@ -72,7 +72,7 @@ absl::Status CheckHoleContainment(const FaceBoundary& boundary, int index) {
     if (LoopWinding(boundary, 0, p, 0.0).winding == 0) {
       return InvalidFieldError(
           hole.path, absl::StrCat("lies outside the ",
-                                  boundary.loops[0].path == "outer"
+                                  !boundary.loops[0].is_domain
                                       ? "outer loop"
                                       : "parameter rectangle",
                                   ": holes must lie inside it"));

@@ -109,6 +109,7 @@ absl::StatusOr<std::vector<Part>> MonotoneParts(
   std::vector<Part> parts;
   for (size_t l = 0; l < boundary.loops.size(); ++l) {
     const BoundaryLoop& loop = boundary.loops[l];
+    if (loop.is_domain) continue;
     const size_t first = parts.size();
     for (int k = 0; k < loop.piece_count; ++k) {
       const TrimPiece& piece = boundary.pieces[loop.first_piece + k];

@@ -145,6 +145,7 @@ absl::Status BuildTrimPieces(const TrimmedSurfaceParts& parts,
     end_loop(index);
   } else {
     const int index = start_loop("domain", false);
+    boundary->loops[index].is_domain = true;
     int edge = 0;
     for (BezierCurveData& bezier : DomainEdges(boundary->domain)) {
       ASSIGN_OR_RETURN(TrimPiece piece,
