@@ -136,6 +136,28 @@ uint64_t GridEntries(const SegmentGrid& grid,
   return entries;
 }
 
+// SortRows orders every row both ways (SegmentGrid).
+void SortRows(const std::vector<BoundarySegment>& segments,
+              SegmentGrid& grid) {
+  const auto largest_u = [&segments](uint32_t i) {
+    return std::max(segments[i].a[0], segments[i].b[0]);
+  };
+  const auto smallest_u = [&segments](uint32_t i) {
+    return std::min(segments[i].a[0], segments[i].b[0]);
+  };
+  grid.leftward = grid.rightward;
+  for (int r = 0; r < grid.rows; ++r) {
+    const auto from = static_cast<ptrdiff_t>(grid.row_start[r]);
+    const auto to = static_cast<ptrdiff_t>(grid.row_start[r + 1]);
+    std::sort(grid.rightward.begin() + from, grid.rightward.begin() + to,
+              [&](uint32_t x, uint32_t y) { return largest_u(x) > largest_u(y); });
+    std::sort(grid.leftward.begin() + from, grid.leftward.begin() + to,
+              [&](uint32_t x, uint32_t y) {
+                return smallest_u(x) < smallest_u(y);
+              });
+  }
+}
+
 // FillCells lists every segment in the cells its widened box meets, and in
 // the rows its v-range meets (horizontal segments never cross a ray along
 // u and stay out of the rows).
@@ -166,13 +188,14 @@ void FillGrid(const std::vector<BoundarySegment>& segments,
   }
   for (int r = 0; r < grid.rows; ++r) grid.row_start[r + 1] += grid.row_start[r];
   grid.cell_segments.resize(grid.cell_start[cells]);
-  grid.row_segments.resize(grid.row_start[grid.rows]);
+  grid.rightward.resize(grid.row_start[grid.rows]);
   std::vector<uint32_t> cell_fill(grid.cell_start.begin(),
                                   grid.cell_start.end() - 1);
   std::vector<uint32_t> row_fill(grid.row_start.begin(),
                                  grid.row_start.end() - 1);
   each([&](size_t cell, uint32_t i) { grid.cell_segments[cell_fill[cell]++] = i; },
-       [&](int row, uint32_t i) { grid.row_segments[row_fill[row]++] = i; });
+       [&](int row, uint32_t i) { grid.rightward[row_fill[row]++] = i; });
+  SortRows(segments, grid);
 }
 
 // BuildGrid sizes the grid for about two segments per cell, with cells of

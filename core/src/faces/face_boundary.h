@@ -81,10 +81,13 @@ struct SegmentGrid {
   // those whose box, widened by their epsilon, meets the cell.
   std::vector<uint32_t> cell_start;
   std::vector<uint32_t> cell_segments;
-  // The segments whose v-range meets row j:
-  // row_segments[row_start[j] .. row_start[j + 1]).
+  // The segments whose v-range meets row j, in two orders:
+  // rightward[row_start[j] .. row_start[j + 1]) by their largest u,
+  // descending (a ray along +u from u needs those reaching past u, a
+  // prefix), leftward by their smallest u, ascending (for a ray along -u).
   std::vector<uint32_t> row_start;
-  std::vector<uint32_t> row_segments;
+  std::vector<uint32_t> rightward;
+  std::vector<uint32_t> leftward;
 
   int Column(double u) const;
   int Row(double v) const;

@@ -35,6 +35,14 @@ constexpr int kMaxMonotoneDepth = 12;
 // neighbours' meeting.
 constexpr double kJunctionRadius = 8.0;
 
+// Neighbours whose control points lie in cones of this cosine about the
+// tangent at their shared end J (the part before behind J, the one after
+// ahead of it) are within a tolerance of each other only within
+// kJunctionRadius tolerances of J: for points a and b of the two,
+// |a - b| >= kJunctionCone (|a - J| + |b - J|) - gap, the gap at J being at
+// most a tolerance.
+constexpr double kJunctionCone = 2.0 / kJunctionRadius;
+
 // A monotone part of a piece, with its control box and its place among
 // the parts of its loop.
 struct Part {
@@ -149,6 +157,84 @@ bool NearJunction(const Point2& p, const std::vector<Point2>& junctions,
   return false;
 }
 
+bool PositiveWeights(const BezierCurveData& b) {
+  for (const double w : b.weights) {
+    if (!(w > 0.0)) return false;
+  }
+  return true;
+}
+
+// SeparatedAcrossChords reports whether the control points of the two
+// parts (their hulls hold them) project onto the normal of either's chord
+// in intervals more than `tolerance` apart.
+bool SeparatedAcrossChords(const Part& a, const Part& b, double tolerance) {
+  if (!PositiveWeights(a.bezier) || !PositiveWeights(b.bezier)) return false;
+  for (const Part* along : {&a, &b}) {
+    const Point2 p0 = ControlPoint(along->bezier, 0);
+    const Point2 p1 =
+        ControlPoint(along->bezier, ControlCount(along->bezier) - 1);
+    const Point2 normal{p0[1] - p1[1], p1[0] - p0[0]};
+    const double length = std::hypot(normal[0], normal[1]);
+    if (!(length > 0.0)) continue;
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (int side = 0; side < 2; ++side) {
+      const BezierCurveData& bezier = (side == 0 ? a : b).bezier;
+      for (size_t i = 0; i < ControlCount(bezier); ++i) {
+        const Point2 q = ControlPoint(bezier, i);
+        const double x = (q[0] * normal[0] + q[1] * normal[1]) / length;
+        lo[side] = std::min(lo[side], x);
+        hi[side] = std::max(hi[side], x);
+      }
+    }
+    if (hi[0] + tolerance < lo[1] || hi[1] + tolerance < lo[0]) return true;
+  }
+  return false;
+}
+
+// MeetOnlyAtJunction reports whether `before`, which ends where `after`
+// starts, and `after` lie in the cones of kJunctionCone about the tangent
+// there (so every contact is within kJunctionRadius tolerances of it).
+bool MeetOnlyAtJunction(const Part& before, const Part& after) {
+  if (!PositiveWeights(before.bezier) || !PositiveWeights(after.bezier)) {
+    return false;
+  }
+  const size_t n = ControlCount(before.bezier);
+  const Point2 end = ControlPoint(before.bezier, n - 1);
+  const Point2 start = ControlPoint(after.bezier, 0);
+  const Point2 into = ControlPoint(before.bezier, n - 2);
+  const Point2 out = ControlPoint(after.bezier, 1);
+  const double in_length = std::hypot(end[0] - into[0], end[1] - into[1]);
+  const double out_length = std::hypot(out[0] - start[0], out[1] - start[1]);
+  if (!(in_length > 0.0 && out_length > 0.0)) return false;
+  Point2 tangent{(end[0] - into[0]) / in_length + (out[0] - start[0]) / out_length,
+                 (end[1] - into[1]) / in_length + (out[1] - start[1]) / out_length};
+  const double length = std::hypot(tangent[0], tangent[1]);
+  if (!(length > 0.0)) return false;
+  tangent = {tangent[0] / length, tangent[1] / length};
+  const auto in_cone = [&tangent](const Point2& from, const Point2& to) {
+    const Point2 d{to[0] - from[0], to[1] - from[1]};
+    return d[0] * tangent[0] + d[1] * tangent[1] >=
+           kJunctionCone * std::hypot(d[0], d[1]);
+  };
+  for (size_t i = 0; i + 1 < n; ++i) {
+    if (!in_cone(ControlPoint(before.bezier, i), end)) return false;
+  }
+  for (size_t i = 1; i < ControlCount(after.bezier); ++i) {
+    if (!in_cone(start, ControlPoint(after.bezier, i))) return false;
+  }
+  return true;
+}
+
+// ApartOrMeetingAtTheirEnd reports whether two parts are certainly apart,
+// or neighbours that certainly meet only at their shared end.
+bool ApartOrMeetingAtTheirEnd(const Part& a, const Part& b,
+                              size_t junctions, double tolerance) {
+  if (junctions == 0) return SeparatedAcrossChords(a, b, tolerance);
+  if (junctions != 1) return false;
+  return (a.index + 1) % a.loop_parts == b.index ? MeetOnlyAtJunction(a, b)
+                                                 : MeetOnlyAtJunction(b, a);
+}
+
 // SegmentContact returns a point where two segments come within the
 // tolerance, other than their shared ends: where they cross, or an end of
 // one within the tolerance of the other (a segment that folds back onto
@@ -234,6 +320,9 @@ absl::Status CheckPair(const FaceBoundary& boundary, const Part& a,
   const double tolerance = boundary.tolerance;
   const std::vector<Point2> junctions = Junctions(a, b);
   const double radius = kJunctionRadius * tolerance;
+  if (ApartOrMeetingAtTheirEnd(a, b, junctions.size(), tolerance)) {
+    return absl::OkStatus();
+  }
   std::optional<Point2> contact;
   if (ControlCount(a.bezier) == 2 && ControlCount(b.bezier) == 2) {
     contact = SegmentContact(a, b, tolerance, junctions, radius);

@@ -24,14 +24,19 @@ constexpr double kFloorOfScale = 0x1p-44;
 constexpr size_t kMaxArcPoints = size_t{1} << 12;
 
 // ChordCrossing returns the signed crossing of the chord a -> b with the
-// ray from p along +u (Sunday's winding number: +1 upward with p on the
-// left, -1 downward with p on the right, half-open in v).
-int ChordCrossing(const Point2& a, const Point2& b, const Point2& p) {
+// ray from p along +u, or along -u when not `rightward` (Sunday's winding
+// number: along +u, +1 for an upward chord with p on its left and -1 for a
+// downward one with p on its right; along -u the other sides, negated;
+// half-open in v, so the two rays agree on a closed loop).
+int ChordCrossing(const Point2& a, const Point2& b, const Point2& p,
+                  bool rightward) {
   const double left = Cross(a, b, p);
+  const double side = rightward ? left : -left;
+  const int sign = rightward ? 1 : -1;
   if (a[1] <= p[1]) {
-    if (b[1] > p[1] && left > 0.0) return 1;
-  } else if (b[1] <= p[1] && left < 0.0) {
-    return -1;
+    if (b[1] > p[1] && side > 0.0) return sign;
+  } else if (b[1] <= p[1] && side < 0.0) {
+    return -sign;
   }
   return 0;
 }
@@ -59,8 +64,11 @@ double LargestCoordinate(const BezierCurveData& bezier) {
 class WindingCounter {
  public:
   WindingCounter(const FaceBoundary& boundary, const Point2& p,
-                 double tolerance)
-      : boundary_(boundary), p_(p), tolerance_(tolerance) {}
+                 double tolerance, bool rightward)
+      : boundary_(boundary),
+        p_(p),
+        tolerance_(tolerance),
+        rightward_(rightward) {}
 
   const WindingAt& result() const { return result_; }
   bool on_boundary() const { return result_.on_boundary; }
@@ -78,7 +86,7 @@ class WindingCounter {
   }
 
   void AddChord(const BoundarySegment& s) {
-    result_.winding += ChordCrossing(s.a, s.b, p_);
+    result_.winding += ChordCrossing(s.a, s.b, p_, rightward_);
   }
 
   // AddArc adds the winding of a near segment's arc.
@@ -132,12 +140,13 @@ class WindingCounter {
       result_.on_boundary = true;
       return;
     }
-    result_.winding += ChordCrossing(a, b, p_);
+    result_.winding += ChordCrossing(a, b, p_, rightward_);
   }
 
   const FaceBoundary& boundary_;
   const Point2 p_;
   const double tolerance_;
+  const bool rightward_;
   WindingAt result_;
 };
 
@@ -146,7 +155,10 @@ class WindingCounter {
 WindingAt FaceWinding(const FaceBoundary& boundary, const Point2& p,
                       double tolerance, int exclude_loop) {
   const SegmentGrid& grid = boundary.grid;
-  WindingCounter counter(boundary, p, tolerance);
+  // The ray runs to the nearer side of the parameter rectangle.
+  const bool rightward =
+      p[0] >= 0.5 * (boundary.domain.u_start + boundary.domain.u_end);
+  WindingCounter counter(boundary, p, tolerance, rightward);
   absl::InlinedVector<uint32_t, 16> near;
   const int c0 = grid.Column(p[0] - tolerance);
   const int c1 = grid.Column(p[0] + tolerance);
@@ -168,9 +180,16 @@ WindingAt FaceWinding(const FaceBoundary& boundary, const Point2& p,
     }
   }
   const int row = grid.Row(p[1]);
+  const std::vector<uint32_t>& order =
+      rightward ? grid.rightward : grid.leftward;
   for (uint32_t k = grid.row_start[row]; k < grid.row_start[row + 1]; ++k) {
-    const uint32_t index = grid.row_segments[k];
+    const uint32_t index = order[k];
     const BoundarySegment& s = boundary.segments[index];
+    // The rest of the row lies wholly behind the ray's start.
+    if (rightward ? std::max(s.a[0], s.b[0]) < p[0]
+                  : std::min(s.a[0], s.b[0]) > p[0]) {
+      break;
+    }
     if (s.loop == exclude_loop) continue;
     if (!near.empty() &&
         std::find(near.begin(), near.end(), index) != near.end()) {
@@ -188,7 +207,7 @@ WindingAt FaceWinding(const FaceBoundary& boundary, const Point2& p,
 WindingAt LoopWinding(const FaceBoundary& boundary, int loop, const Point2& p,
                       double tolerance) {
   const BoundaryLoop& l = boundary.loops[loop];
-  WindingCounter counter(boundary, p, tolerance);
+  WindingCounter counter(boundary, p, tolerance, /*rightward=*/true);
   for (uint32_t k = 0; k < l.segment_count && !counter.on_boundary(); ++k) {
     const BoundarySegment& s = boundary.segments[l.first_segment + k];
     if (!counter.IsNear(s)) {
