@@ -134,6 +134,42 @@ inline BSplineCurveData Flower(double cu, double cv, double radius,
   return flower;
 }
 
+// The circles of radius r about the centres of a side x side grid of
+// cells of the unit square, clockwise: holes.
+inline std::vector<BSplineCurveData> GridOfHoles(int side, double r) {
+  std::vector<BSplineCurveData> circles;
+  for (int i = 0; i < side; ++i) {
+    for (int j = 0; j < side; ++j) {
+      circles.push_back(
+          ClockwiseCircle(r, (i + 0.5) / side, (j + 0.5) / side));
+    }
+  }
+  return circles;
+}
+
+// PolygonVertex returns vertex k (taken modulo n) of the regular n-gon of
+// `radius` about (cu, cv), vertex 0 on the +u axis.
+inline std::array<double, 2> PolygonVertex(int n, double radius, double cu,
+                                           double cv, int k) {
+  const double theta = 2 * std::numbers::pi * (k % n) / n;
+  return {cu + radius * std::cos(theta), cv + radius * std::sin(theta)};
+}
+
+// The regular n-gon as one degree-1 B-spline, counter-clockwise (n linear
+// segments, the first vertex repeated as the last).
+inline BSplineCurveData RegularPolygon(int n, double radius, double cu,
+                                       double cv) {
+  BSplineCurveData polygon{.degree = 1, .dimension = 2};
+  polygon.knots.push_back(0.0);
+  for (int k = 0; k <= n; ++k) {
+    const std::array<double, 2> p = PolygonVertex(n, radius, cu, cv, k);
+    polygon.coordinates.insert(polygon.coordinates.end(), {p[0], p[1]});
+    polygon.knots.push_back(static_cast<double>(k) / n);
+  }
+  polygon.knots.push_back(1.0);
+  return polygon;
+}
+
 inline TrimLoop LoopOf(const BSplineCurveData& curve) {
   return TrimLoop{{*BSplineCurve::Create(curve.view())}};
 }
@@ -144,6 +180,14 @@ inline TrimLoop LoopOf(const std::vector<BezierCurveData>& chain) {
     loop.curves.push_back(*BezierCurve::Create(piece.view()));
   }
   return loop;
+}
+
+// LoopsOf returns one loop per curve.
+inline std::vector<TrimLoop> LoopsOf(
+    const std::vector<BSplineCurveData>& curves) {
+  std::vector<TrimLoop> loops;
+  for (const BSplineCurveData& curve : curves) loops.push_back(LoopOf(curve));
+  return loops;
 }
 
 }  // namespace freeform::trim_testing

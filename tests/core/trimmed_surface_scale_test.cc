@@ -18,6 +18,7 @@ namespace {
 using trim_testing::BilinearPlane;
 using trim_testing::ClockwiseCircle;
 using trim_testing::LoopOf;
+using trim_testing::PolygonVertex;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -34,19 +35,12 @@ TEST(TrimmedSurfaceAtScale, TenThousandTinyHoles) {
   const Surface surface = *BezierSurface::Create(plane.bezier_view());
   constexpr int kSide = 100;
   const double r = 0.003;
-  std::vector<BSplineCurveData> circles;
-  std::vector<TrimLoop> holes;
-  for (int i = 0; i < kSide; ++i) {
-    for (int j = 0; j < kSide; ++j) {
-      circles.push_back(
-          ClockwiseCircle(r, (i + 0.5) / kSide, (j + 0.5) / kSide));
-    }
-  }
-  for (const BSplineCurveData& circle : circles) {
-    holes.push_back(LoopOf(circle));
-  }
+  const std::vector<BSplineCurveData> circles =
+      trim_testing::GridOfHoles(kSide, r);
   absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
-      {.surface = surface, .outer = std::nullopt, .holes = std::move(holes)},
+      {.surface = surface,
+       .outer = std::nullopt,
+       .holes = trim_testing::LoopsOf(circles)},
       1e-9);
   ASSERT_TRUE(face.ok()) << face.status();
   const std::vector<double> uv = RandomPoints(10000, 3);
@@ -65,62 +59,72 @@ TEST(TrimmedSurfaceAtScale, TenThousandTinyHoles) {
               distance < 0 ? PointLocation::kOutside : PointLocation::kInside)
         << u << ", " << v;
   }
-  // About pi r^2 kSide^2 of the points fall in holes.
-  EXPECT_GT(in_holes, 150);
+  // About pi r^2 kSide^2 (28%) of the points fall in holes.
+  EXPECT_GT(in_holes, 2000);
+}
+
+// ExpectPolygonClassification checks every point against the n-gon of
+// radius 0.4 about (0.5, 0.5) less the disk of radius 0.1 there, skipping
+// points within 1e-9 of either.
+void ExpectPolygonClassification(int n, const std::vector<double>& uv,
+                                 const std::vector<PointLocation>& at) {
+  for (size_t k = 0; k < at.size(); ++k) {
+    const std::array<double, 2> p = {uv[2 * k], uv[2 * k + 1]};
+    double theta = std::atan2(p[1] - 0.5, p[0] - 0.5);
+    if (theta < 0) theta += 2 * kPi;
+    const int sector = static_cast<int>(theta / (2 * kPi) * n);
+    const std::array<double, 2> a = PolygonVertex(n, 0.4, 0.5, 0.5, sector);
+    const std::array<double, 2> b =
+        PolygonVertex(n, 0.4, 0.5, 0.5, sector + 1);
+    const double side =
+        ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) /
+        std::hypot(b[0] - a[0], b[1] - a[1]);
+    const double to_hole = std::hypot(p[0] - 0.5, p[1] - 0.5) - 0.1;
+    if (std::abs(side) < 1e-9 || std::abs(to_hole) < 1e-9) continue;
+    const bool inside = side > 0 && to_hole > 0;
+    EXPECT_EQ(at[k], inside ? PointLocation::kInside : PointLocation::kOutside)
+        << p[0] << ", " << p[1];
+  }
+}
+
+absl::StatusOr<TrimmedSurface> PolygonFace(const Surface& surface,
+                                           const BSplineCurveData& polygon,
+                                           const BSplineCurveData& hole) {
+  return TrimmedSurface::Create(
+      {.surface = surface, .outer = LoopOf(polygon), .holes = {LoopOf(hole)}},
+      1e-9);
 }
 
 TEST(TrimmedSurfaceAtScale, ALoopOfAHundredThousandSegments) {
   const SurfaceData plane = BilinearPlane();
   const Surface surface = *BezierSurface::Create(plane.bezier_view());
   constexpr int kSegments = 100000;
-  const double radius = 0.4;
-  // The regular polygon as one degree-1 B-spline, counter-clockwise.
-  BSplineCurveData polygon{.degree = 1, .dimension = 2};
-  const auto vertex = [&](int k) {
-    const double theta = 2 * kPi * (k % kSegments) / kSegments;
-    return std::array<double, 2>{0.5 + radius * std::cos(theta),
-                                 0.5 + radius * std::sin(theta)};
-  };
-  for (int k = 0; k <= kSegments; ++k) {
-    polygon.coordinates.push_back(vertex(k)[0]);
-    polygon.coordinates.push_back(vertex(k)[1]);
-  }
-  polygon.knots.push_back(0.0);
-  for (int k = 0; k <= kSegments; ++k) {
-    polygon.knots.push_back(static_cast<double>(k) / kSegments);
-  }
-  polygon.knots.push_back(1.0);
+  const BSplineCurveData polygon =
+      trim_testing::RegularPolygon(kSegments, 0.4, 0.5, 0.5);
   const BSplineCurveData hole = ClockwiseCircle(0.1, 0.5, 0.5);
-  absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
-      {.surface = surface, .outer = LoopOf(polygon), .holes = {LoopOf(hole)}},
-      1e-9);
+  absl::StatusOr<TrimmedSurface> face = PolygonFace(surface, polygon, hole);
   ASSERT_TRUE(face.ok()) << face.status();
   const std::vector<double> uv = RandomPoints(10000, 5);
   absl::StatusOr<std::vector<PointLocation>> at =
       ClassifyPoints(*face, uv, 1e-12);
   ASSERT_TRUE(at.ok()) << at.status();
-  for (size_t k = 0; k < at->size(); ++k) {
-    const std::array<double, 2> p = {uv[2 * k], uv[2 * k + 1]};
-    // The polygon's edge in the point's sector, and the hole's distance.
-    double theta = std::atan2(p[1] - 0.5, p[0] - 0.5);
-    if (theta < 0) theta += 2 * kPi;
-    const int sector = static_cast<int>(theta / (2 * kPi) * kSegments);
-    const std::array<double, 2> a = vertex(sector), b = vertex(sector + 1);
-    const double edge = std::hypot(b[0] - a[0], b[1] - a[1]);
-    const double side =
-        ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) /
-        edge;
-    const double to_hole = std::hypot(p[0] - 0.5, p[1] - 0.5) - 0.1;
-    if (std::abs(side) < 1e-9 || std::abs(to_hole) < 1e-9) continue;
-    const bool inside = side > 0 && to_hole > 0;
-    EXPECT_EQ((*at)[k], inside ? PointLocation::kInside : PointLocation::kOutside)
-        << p[0] << ", " << p[1];
-  }
-  absl::StatusOr<FaceAreaResult> area = FaceArea(*face, 1e-10);
+  ExpectPolygonClassification(kSegments, uv, *at);
+}
+
+TEST(TrimmedSurfaceAtScale, AreaOfAPolygonOfTenThousandSegments) {
+  const SurfaceData plane = BilinearPlane();
+  const Surface surface = *BezierSurface::Create(plane.bezier_view());
+  constexpr int kSegments = 10000;
+  const BSplineCurveData polygon =
+      trim_testing::RegularPolygon(kSegments, 0.4, 0.5, 0.5);
+  const BSplineCurveData hole = ClockwiseCircle(0.1, 0.5, 0.5);
+  absl::StatusOr<TrimmedSurface> face = PolygonFace(surface, polygon, hole);
+  ASSERT_TRUE(face.ok()) << face.status();
+  absl::StatusOr<FaceAreaResult> area = FaceArea(*face, 1e-11);
   ASSERT_TRUE(area.ok()) << area.status();
   const double polygon_area =
-      0.5 * kSegments * radius * radius * std::sin(2 * kPi / kSegments);
-  EXPECT_NEAR(area->area, polygon_area - kPi * 0.01, 1e-10);
+      0.5 * kSegments * 0.16 * std::sin(2 * kPi / kSegments);
+  EXPECT_NEAR(area->area, polygon_area - kPi * 0.01, 1e-11);
 }
 
 }  // namespace

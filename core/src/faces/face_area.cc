@@ -49,50 +49,90 @@ class AreaDensity {
         domain_(domain),
         u_breaks_(std::move(u_breaks)),
         tolerance_per_unit_u_(tolerance_per_unit_u),
-        dimension_(DimensionOf(surface)) {
-    for (auto& buffer : partials_) {
-      buffer.resize(static_cast<size_t>(kKronrodPoints) * dimension_);
-    }
-  }
+        dimension_(DimensionOf(surface)) {}
 
-  // Integral returns F(u, v), u and v clamped into the domain.
-  absl::StatusOr<Estimate> Integral(double u, double v) {
-    u = std::clamp(u, domain_.u_start, domain_.u_end);
-    v = std::clamp(v, domain_.v_start, domain_.v_end);
-    Estimate total;
-    for (size_t k = 0; k + 1 < u_breaks_.size() && u_breaks_[k] < u; ++k) {
-      const double a = u_breaks_[k];
-      const double b = std::min(u_breaks_[k + 1], u);
-      const auto along_u = [&](double x, double y, Estimate* values) {
-        return Densities(x, y, v, values);
-      };
-      ASSIGN_OR_RETURN(Estimate span,
-                       internal::IntegrateAdaptive(
-                           along_u, a, b, tolerance_per_unit_u_ * (b - a),
-                           kMaxInnerIntervals, nullptr));
-      total.value += span.value;
-      total.error += span.error;
+  // Integrals writes F(u[i], v[i]) for i < kKronrodPoints, u and v clamped
+  // into the domain: one Kronrod rule per knot span for all of them in one
+  // evaluation, then adaptive halving of the spans that need it.
+  absl::Status Integrals(const double* u, const double* v, Estimate* out) {
+    spans_.clear();
+    for (int i = 0; i < kKronrodPoints; ++i) {
+      out[i] = {};
+      const double ui = std::clamp(u[i], domain_.u_start, domain_.u_end);
+      for (size_t k = 0; k + 1 < u_breaks_.size() && u_breaks_[k] < ui; ++k) {
+        spans_.push_back({.node = i,
+                          .a = u_breaks_[k],
+                          .b = std::min(u_breaks_[k + 1], ui),
+                          .v = std::clamp(v[i], domain_.v_start,
+                                          domain_.v_end)});
+      }
     }
-    return total;
+    uv_.clear();
+    for (const Span& span : spans_) AppendNodes(span.a, span.b, span.v);
+    RETURN_IF_ERROR(EvaluateDensities());
+    for (size_t k = 0; k < spans_.size(); ++k) {
+      const Span& span = spans_[k];
+      for (int j = 0; j < kKronrodPoints; ++j) {
+        values_[j] = {.value = density_[k * kKronrodPoints + j], .error = 0.0};
+      }
+      Estimate estimate = internal::KronrodInterval(span.a, span.b,
+                                                    values_.data());
+      const double target = tolerance_per_unit_u_ * (span.b - span.a);
+      if (estimate.error > target) {
+        ASSIGN_OR_RETURN(estimate, Refined(span, target));
+      }
+      out[span.node].value += estimate.value;
+      out[span.node].error += estimate.error;
+    }
+    return absl::OkStatus();
   }
 
  private:
-  // Densities writes the density at the Kronrod nodes of [a, b] x {v}.
-  absl::Status Densities(double a, double b, double v, Estimate* values) {
-    for (int k = 0; k < kKronrodPoints; ++k) {
-      uv_[2 * k] = std::clamp(KronrodNode(a, b, k), domain_.u_start,
-                              domain_.u_end);
-      uv_[2 * k + 1] = v;
+  // One knot span [a, b] of the integral of node `node`, at v.
+  struct Span {
+    int node;
+    double a;
+    double b;
+    double v;
+  };
+
+  absl::StatusOr<Estimate> Refined(const Span& span, double target) {
+    const auto along_u = [&](double x, double y, Estimate* values) {
+      uv_.clear();
+      AppendNodes(x, y, span.v);
+      RETURN_IF_ERROR(EvaluateDensities());
+      for (int j = 0; j < kKronrodPoints; ++j) {
+        values[j] = {.value = density_[j], .error = 0.0};
+      }
+      return absl::OkStatus();
+    };
+    return internal::IntegrateAdaptive(along_u, span.a, span.b, target,
+                                       kMaxInnerIntervals, nullptr);
+  }
+
+  void AppendNodes(double a, double b, double v) {
+    for (int j = 0; j < kKronrodPoints; ++j) {
+      uv_.push_back(
+          std::clamp(KronrodNode(a, b, j), domain_.u_start, domain_.u_end));
+      uv_.push_back(v);
+    }
+  }
+
+  // EvaluateDensities fills density_ at the pairs of uv_.
+  absl::Status EvaluateDensities() {
+    const size_t count = uv_.size() / 2;
+    for (std::vector<double>& buffer : partials_) {
+      buffer.resize(count * dimension_);
     }
     const absl::Span<double> output[3] = {absl::MakeSpan(partials_[0]),
                                           absl::MakeSpan(partials_[1]),
                                           absl::MakeSpan(partials_[2])};
     RETURN_IF_ERROR(EvaluateSurface(surface_, SurfaceSamples::Pairs(uv_),
                                     output, {}));
-    for (int k = 0; k < kKronrodPoints; ++k) {
-      values[k] = {.value = Density(&partials_[1][k * dimension_],
-                                    &partials_[2][k * dimension_]),
-                   .error = 0.0};
+    density_.resize(count);
+    for (size_t k = 0; k < count; ++k) {
+      density_[k] = Density(&partials_[1][k * dimension_],
+                            &partials_[2][k * dimension_]);
     }
     return absl::OkStatus();
   }
@@ -118,8 +158,11 @@ class AreaDensity {
   const std::vector<double> u_breaks_;
   const double tolerance_per_unit_u_;
   const int dimension_;
-  std::array<double, 2 * kKronrodPoints> uv_{};
+  std::vector<Span> spans_;
+  std::vector<double> uv_;
   std::array<std::vector<double>, 3> partials_;
+  std::vector<double> density_;
+  std::array<Estimate, kKronrodPoints> values_;
 };
 
 // VVariation returns the v-variation of a piece's control polygon (at
@@ -173,11 +216,19 @@ absl::StatusOr<Estimate> PieceArea(const TrimPiece& piece,
   std::vector<double> scratch(evaluator.scratch_size());
   const auto integrand = [&](double a, double b,
                              Estimate* values) -> absl::Status {
+    double u[kKronrodPoints], v[kKronrodPoints], dv[kKronrodPoints];
     for (int k = 0; k < kKronrodPoints; ++k) {
       double c[4];
       evaluator.Evaluate(KronrodNode(a, b, k), scratch.data(), c);
-      ASSIGN_OR_RETURN(Estimate f, density.Integral(c[0], c[1]));
-      values[k] = {.value = f.value * c[3], .error = f.error * std::abs(c[3])};
+      u[k] = c[0];
+      v[k] = c[1];
+      dv[k] = c[3];
+    }
+    Estimate f[kKronrodPoints];
+    RETURN_IF_ERROR(density.Integrals(u, v, f));
+    for (int k = 0; k < kKronrodPoints; ++k) {
+      values[k] = {.value = f[k].value * dv[k],
+                   .error = f[k].error * std::abs(dv[k])};
     }
     return absl::OkStatus();
   };
