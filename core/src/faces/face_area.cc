@@ -97,7 +97,7 @@ class AreaDensity {
   };
 
   absl::StatusOr<Estimate> Refined(const Span& span, double target) {
-    const auto along_u = [&](double x, double y, Estimate* values) {
+    const auto along_u = [&](size_t, double x, double y, Estimate* values) {
       uv_.clear();
       AppendNodes(x, y, span.v);
       RETURN_IF_ERROR(EvaluateDensities());
@@ -206,43 +206,27 @@ std::vector<double> KnotsOf(const Surface& surface, bool in_u) {
   return {};
 }
 
-// PieceArea integrates F(c(t)) v'(t) over one piece.
-absl::StatusOr<Estimate> PieceArea(const TrimPiece& piece,
-                                   const std::vector<double>& breaks,
-                                   double tolerance, size_t max_intervals,
-                                   AreaDensity& density,
-                                   const CancellationToken* cancel) {
+// BoundaryIntegrand writes F(c(t)) v'(t) at the Kronrod nodes of [a, b]
+// of one piece.
+absl::Status BoundaryIntegrand(const TrimPiece& piece, double a, double b,
+                               AreaDensity& density, Estimate* values) {
   const BezierPointEvaluator evaluator(piece.bezier.view(), 1);
   std::vector<double> scratch(evaluator.scratch_size());
-  const auto integrand = [&](double a, double b,
-                             Estimate* values) -> absl::Status {
-    double u[kKronrodPoints], v[kKronrodPoints], dv[kKronrodPoints];
-    for (int k = 0; k < kKronrodPoints; ++k) {
-      double c[4];
-      evaluator.Evaluate(KronrodNode(a, b, k), scratch.data(), c);
-      u[k] = c[0];
-      v[k] = c[1];
-      dv[k] = c[3];
-    }
-    Estimate f[kKronrodPoints];
-    RETURN_IF_ERROR(density.Integrals(u, v, f));
-    for (int k = 0; k < kKronrodPoints; ++k) {
-      values[k] = {.value = f[k].value * dv[k],
-                   .error = f[k].error * std::abs(dv[k])};
-    }
-    return absl::OkStatus();
-  };
-  Estimate total;
-  for (size_t k = 0; k + 1 < breaks.size(); ++k) {
-    const double share = breaks[k + 1] - breaks[k];
-    ASSIGN_OR_RETURN(Estimate part,
-                     internal::IntegrateAdaptive(
-                         integrand, breaks[k], breaks[k + 1],
-                         tolerance * share, max_intervals, cancel));
-    total.value += part.value;
-    total.error += part.error;
+  double u[kKronrodPoints], v[kKronrodPoints], dv[kKronrodPoints];
+  for (int k = 0; k < kKronrodPoints; ++k) {
+    double c[4];
+    evaluator.Evaluate(KronrodNode(a, b, k), scratch.data(), c);
+    u[k] = c[0];
+    v[k] = c[1];
+    dv[k] = c[3];
   }
-  return total;
+  Estimate f[kKronrodPoints];
+  RETURN_IF_ERROR(density.Integrals(u, v, f));
+  for (int k = 0; k < kKronrodPoints; ++k) {
+    values[k] = {.value = f[k].value * dv[k],
+                 .error = f[k].error * std::abs(dv[k])};
+  }
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -258,33 +242,35 @@ absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
   const std::vector<double> v_breaks =
       Breaks(KnotsOf(face.surface(), false), d.v_start, d.v_end);
   double variation = 0.0;
-  size_t active = 0;
-  for (const TrimPiece& piece : boundary.pieces) {
-    const double piece_variation = VVariation(piece);
-    variation += piece_variation;
-    if (piece_variation > 0.0) ++active;
-  }
-  if (active == 0) return FaceAreaResult{};
-  // A quarter of the tolerance for the inner integrals (weighted by |v'|,
-  // whose integral the control polygons' variation bounds for polynomial
-  // pieces), the rest for the outer ones, shared by v-variation.
-  AreaDensity density(face.surface(), d, u_breaks,
-                      0.25 * tolerance / (variation * (d.u_end - d.u_start)));
-  const size_t max_intervals =
-      std::max<size_t>(64, kMaxFaceAreaIntervals / active);
-  FaceAreaResult result;
-  for (const TrimPiece& piece : boundary.pieces) {
+  std::vector<internal::PartInterval> parts;
+  for (size_t i = 0; i < boundary.pieces.size(); ++i) {
+    const TrimPiece& piece = boundary.pieces[i];
     const double piece_variation = VVariation(piece);
     if (piece_variation == 0.0) continue;
-    ASSIGN_OR_RETURN(
-        Estimate part,
-        PieceArea(piece, PieceBreaks(piece, u_breaks, v_breaks),
-                  0.75 * tolerance * piece_variation / variation,
-                  max_intervals, density, cancel));
-    result.area += part.value;
-    result.error_bound += part.error;
-    RETURN_IF_ERROR(CheckCancelled(cancel));
+    variation += piece_variation;
+    const std::vector<double> breaks = PieceBreaks(piece, u_breaks, v_breaks);
+    for (size_t k = 0; k + 1 < breaks.size(); ++k) {
+      parts.push_back({.part = i, .a = breaks[k], .b = breaks[k + 1]});
+    }
   }
+  if (parts.empty()) return FaceAreaResult{};
+  // A quarter of the tolerance for the inner integrals (weighted by |v'|,
+  // whose integral the control polygons' variation bounds for polynomial
+  // pieces), the rest for the outer ones, all pieces' intervals refined
+  // together.
+  AreaDensity density(face.surface(), d, u_breaks,
+                      0.25 * tolerance / (variation * (d.u_end - d.u_start)));
+  const auto integrand = [&](size_t part, double a, double b,
+                             Estimate* values) {
+    return BoundaryIntegrand(boundary.pieces[part], a, b, density, values);
+  };
+  ASSIGN_OR_RETURN(
+      Estimate total,
+      internal::IntegrateAdaptive(integrand, parts, 0.75 * tolerance,
+                                  parts.size() + kMaxFaceAreaIntervals,
+                                  cancel));
+  const FaceAreaResult result{.area = total.value,
+                              .error_bound = total.error};
   if (!std::isfinite(result.area) || !std::isfinite(result.error_bound)) {
     return InvalidFieldError("surface",
                              "the area density is not finite on the face");

@@ -48,7 +48,7 @@ double PieceSignedArea(const BezierCurveData& bezier) {
   }
   double extent = 0.0;
   for (const double c : bezier.coordinates) extent = std::max(extent, std::abs(c));
-  const auto integrand = [&](double a, double b, Estimate* values) {
+  const auto integrand = [&](size_t, double a, double b, Estimate* values) {
     for (int k = 0; k < kKronrodPoints; ++k) {
       values[k] = {.value = u_dv(KronrodNode(a, b, k)), .error = 0.0};
     }

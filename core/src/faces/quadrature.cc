@@ -39,8 +39,7 @@ double GaussWeight(int k) {
 }
 
 struct Interval {
-  double a;
-  double b;
+  PartInterval where;
   Estimate estimate;
   bool operator<(const Interval& other) const {
     return estimate.error < other.estimate.error;
@@ -67,34 +66,41 @@ Estimate KronrodInterval(double a, double b, const Estimate* values) {
           .error = std::abs(half) * (std::abs(kronrod - gauss) + inherited)};
 }
 
-absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
-                                           double a, double b,
-                                           double tolerance,
-                                           size_t max_intervals,
-                                           const CancellationToken* cancel) {
+absl::StatusOr<Estimate> IntegrateAdaptive(
+    KronrodIntegrand integrand, absl::Span<const PartInterval> parts,
+    double tolerance, size_t max_intervals, const CancellationToken* cancel) {
   std::array<Estimate, kKronrodPoints> values;
-  const auto measure = [&](double x, double y) -> absl::StatusOr<Interval> {
-    RETURN_IF_ERROR(integrand(x, y, values.data()));
-    return Interval{x, y, KronrodInterval(x, y, values.data())};
+  const auto measure =
+      [&](const PartInterval& where) -> absl::StatusOr<Interval> {
+    RETURN_IF_ERROR(integrand(where.part, where.a, where.b, values.data()));
+    return Interval{where, KronrodInterval(where.a, where.b, values.data())};
   };
   std::priority_queue<Interval> heap;
-  ASSIGN_OR_RETURN(Interval whole, measure(a, b));
-  heap.push(whole);
-  Estimate total = whole.estimate;
-  while (total.error > tolerance && heap.size() < max_intervals) {
+  Estimate total;
+  CancellationPoll poll(cancel, 64);
+  for (const PartInterval& where : parts) {
+    ASSIGN_OR_RETURN(Interval interval, measure(where));
+    total.value += interval.estimate.value;
+    total.error += interval.estimate.error;
+    heap.push(interval);
+    RETURN_IF_ERROR(poll.Done(1));
+  }
+  while (!heap.empty() && total.error > tolerance &&
+         heap.size() < max_intervals) {
     const Interval worst = heap.top();
-    const double middle = 0.5 * (worst.a + worst.b);
-    if (!(middle > worst.a && middle < worst.b)) break;
+    const PartInterval& w = worst.where;
+    const double middle = 0.5 * (w.a + w.b);
+    if (!(middle > w.a && middle < w.b)) break;
     heap.pop();
-    ASSIGN_OR_RETURN(Interval left, measure(worst.a, middle));
-    ASSIGN_OR_RETURN(Interval right, measure(middle, worst.b));
+    ASSIGN_OR_RETURN(Interval left, measure({w.part, w.a, middle}));
+    ASSIGN_OR_RETURN(Interval right, measure({w.part, middle, w.b}));
     total.value += left.estimate.value + right.estimate.value -
                    worst.estimate.value;
     total.error += left.estimate.error + right.estimate.error -
                    worst.estimate.error;
     heap.push(left);
     heap.push(right);
-    RETURN_IF_ERROR(CheckCancelled(cancel));
+    RETURN_IF_ERROR(poll.Done(2));
   }
   // The running sums drift by rounding: add the intervals up again.
   total = {};
@@ -104,6 +110,15 @@ absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
     heap.pop();
   }
   return total;
+}
+
+absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
+                                           double a, double b,
+                                           double tolerance,
+                                           size_t max_intervals,
+                                           const CancellationToken* cancel) {
+  const PartInterval whole[] = {{.part = 0, .a = a, .b = b}};
+  return IntegrateAdaptive(integrand, whole, tolerance, max_intervals, cancel);
 }
 
 }  // namespace freeform::internal

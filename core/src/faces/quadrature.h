@@ -8,6 +8,7 @@
 
 #include "absl/functional/function_ref.h"
 #include "absl/status/statusor.h"
+#include "absl/types/span.h"
 #include "freeform/core/cancellation.h"
 
 namespace freeform::internal {
@@ -31,13 +32,26 @@ double KronrodNode(double a, double b, int k);
 Estimate KronrodInterval(double a, double b, const Estimate* values);
 
 // An integrand of batches: values[k] at KronrodNode(a, b, k) for k in
-// 0..14.
-using KronrodIntegrand =
-    absl::FunctionRef<absl::Status(double a, double b, Estimate* values)>;
+// 0..14, of the integrand numbered `part`.
+using KronrodIntegrand = absl::FunctionRef<absl::Status(
+    size_t part, double a, double b, Estimate* values)>;
 
-// IntegrateAdaptive integrates over [a, b], halving the interval of largest
-// error until the errors add up to at most `tolerance` or `max_intervals`
+// One interval of one integrand.
+struct PartInterval {
+  size_t part = 0;
+  double a = 0.0;
+  double b = 0.0;
+};
+
+// IntegrateAdaptive integrates over every interval of `parts` (each of its
+// own integrand `part`) together, halving the interval of largest error
+// until the errors add up to at most `tolerance` or `max_intervals`
 // intervals are in use; returns the sum and its error bound.
+absl::StatusOr<Estimate> IntegrateAdaptive(
+    KronrodIntegrand integrand, absl::Span<const PartInterval> parts,
+    double tolerance, size_t max_intervals, const CancellationToken* cancel);
+
+// IntegrateAdaptive over the one interval [a, b] of integrand 0.
 absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
                                            double a, double b,
                                            double tolerance,

@@ -163,13 +163,15 @@ struct FaceAreaResult {
 // F(u, v) = integral of |S_u x S_v|(s, v) ds from u_start to u, the area is
 // the sum over the loops (the parameter rectangle when there is no outer
 // loop) of the integral of F(c(t)) v'(t) dt along each trim piece. The
-// outer integrals are adaptive Gauss-Kronrod (7-15) over every piece, the
-// inner F adaptive Gauss-Kronrod over each knot span of the surface in u;
-// error_bound adds the outer |K15 - G7| estimates and every inner estimate
-// weighted by |v'| and the outer rule's weights. The work stops when
-// error_bound is at most `tolerance` (absolute, positive, finite) or after
-// kMaxFaceAreaIntervals outer intervals (error_bound then says how far it
-// got). Fails with INVALID_ARGUMENT "tolerance" and with the token's
+// outer integrals are adaptive Gauss-Kronrod (7-15), the intervals of all
+// pieces (cut where a segment crosses a knot line) refined together, the
+// interval of largest error first; the inner F adaptive Gauss-Kronrod over
+// each knot span of the surface in u, the 15 nodes of an outer interval in
+// one surface evaluation. error_bound adds the outer |K15 - G7| estimates
+// and every inner estimate weighted by |v'| and the outer rule's weights.
+// The work stops when error_bound is at most `tolerance` (absolute,
+// positive, finite) or after kMaxFaceAreaIntervals halvings (error_bound
+// then says how far it got). Fails with INVALID_ARGUMENT "tolerance" and with the token's
 // CANCELLED / DEADLINE_EXCEEDED.
 inline constexpr size_t kMaxFaceAreaIntervals = size_t{1} << 16;
 absl::StatusOr<FaceAreaResult> FaceArea(
