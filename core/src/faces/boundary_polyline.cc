@@ -204,7 +204,7 @@ void BuildGrid(FaceBoundary* boundary) {
   const SurfaceDomain& d = boundary->domain;
   const double width = d.u_end - d.u_start;
   const double height = d.v_end - d.v_start;
-  const double cells = std::max(1.0, 0.5 * static_cast<double>(boundary->segments.size()));
+  const double cells = std::max(1.0, 2.0 * static_cast<double>(boundary->segments.size()));
   const double aspect = width / height;
   int columns = std::clamp(static_cast<int>(std::ceil(std::sqrt(cells * aspect))),
                            1, kMaxGridSide);
