@@ -178,6 +178,40 @@ absl::StatusOr<FaceAreaResult> FaceArea(
     const TrimmedSurface& face, double tolerance,
     const CancellationToken* cancel = nullptr);
 
+// Samples of one trim curve, in its parameter order.
+struct TrimSamples {
+  std::vector<double> uv;          // (u, v) pairs on the curve
+  std::vector<double> parameters;  // the curve's own parameter of each
+};
+
+// SampleTrimCurve samples curve `curve` of the outer loop (hole = -1) or of
+// holes[hole] so that the face's 3D curve S(c(t)) between consecutive
+// samples lies within `tolerance` (3D, absolute) of the chord between their
+// points: the first sample at the curve's start, the last at its end,
+// every point evaluated on the trim curve.
+//
+// Certified: each Bezier part c of the trim on [0, 1] is accepted when
+// max |(S o c)''| / 8, the bound of linear interpolation's error, is at
+// most `tolerance`, the second derivative bounded from control points
+// alone (the hodographs of the part's homogeneous coordinates, and the
+// first and second differences of the homogeneous nets of the surface's
+// Bezier pieces that the part's control box meets, through the quotient
+// rule for rational geometry; the derivation is in
+// core/src/faces/trim_sampling.cc); any other part is halved. The bound
+// is conservative (it uses the largest derivatives over the box), so
+// there are more samples than a measured deviation would need.
+//
+// Fails with INVALID_ARGUMENT naming "tolerance" (not positive and finite,
+// or not met after 40 halvings, where the surface's parametrization
+// degenerates), "hole" (not -1 or a hole's index; -1 without an outer
+// loop) or "curve" (not a curve of the loop), RESOURCE_EXHAUSTED naming
+// "max_samples" when more samples would be needed, and with the token's
+// CANCELLED / DEADLINE_EXCEEDED.
+absl::StatusOr<TrimSamples> SampleTrimCurve(
+    const TrimmedSurface& face, int hole, int curve, double tolerance,
+    size_t max_samples = size_t{1} << 20,
+    const CancellationToken* cancel = nullptr);
+
 }  // namespace freeform
 
 #endif  // FREEFORM_CORE_TRIMMED_SURFACE_H_
