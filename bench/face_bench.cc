@@ -98,9 +98,9 @@ void Classify(benchmark::State& state, TrimmedSurfaceParts (*parts)()) {
         freeform::ClassifyPoints(*face, uv, 1e-9);
     benchmark::DoNotOptimize(at->data());
   }
-  state.counters["points/s"] = benchmark::Counter(
-      1e4 * static_cast<double>(state.iterations()),
-      benchmark::Counter::kIsRate);
+  state.counters["points/s"] =
+      benchmark::Counter(1e4 * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
 }
 
 void Area(benchmark::State& state, TrimmedSurfaceParts (*parts)()) {

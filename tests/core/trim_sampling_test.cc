@@ -51,8 +51,8 @@ double LargestChordDeviation(const Surface& surface, const Curve& curve,
   for (size_t k = 0; k < uv_on_curve.size(); ++k) {
     EXPECT_NEAR(uv_on_curve[k], samples.uv[k], 1e-15);
   }
-  const std::vector<double> ends = testing_util::SurfacePoints(
-      surface, SurfaceSamples::Pairs(samples.uv));
+  const std::vector<double> ends =
+      testing_util::SurfacePoints(surface, SurfaceSamples::Pairs(samples.uv));
   double largest = 0.0;
   for (size_t k = 0; k + 1 < samples.parameters.size(); ++k) {
     std::vector<double> t;
@@ -65,9 +65,9 @@ double LargestChordDeviation(const Surface& surface, const Curve& curve,
     const std::vector<double> points =
         testing_util::SurfacePoints(surface, SurfaceSamples::Pairs(uv));
     for (size_t j = 0; j < t.size(); ++j) {
-      largest = std::max(largest,
-                         DistanceToSegment3(&points[3 * j], &ends[3 * k],
-                                            &ends[3 * k + 3]));
+      largest = std::max(
+          largest,
+          DistanceToSegment3(&points[3 * j], &ends[3 * k], &ends[3 * k + 3]));
     }
   }
   return largest;
@@ -104,8 +104,7 @@ TEST(SampleTrimCurve, TrimsOnARationalCylinderAndSphereStayWithinTolerance) {
   const SurfaceData sphere_data = testing_util::NurbsSphere(2.0);
   for (const SurfaceData* data : {&cylinder_data, &sphere_data}) {
     const Surface surface = *BSplineSurface::Create(data->bspline_view());
-    const std::vector<BezierCurveData> window =
-        Square(0.1, 0.02, 0.9, 0.6);
+    const std::vector<BezierCurveData> window = Square(0.1, 0.02, 0.9, 0.6);
     const BSplineCurveData hole = ClockwiseCircle(0.15, 0.45, 0.3);
     absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
         {.surface = surface, .outer = LoopOf(window), .holes = {LoopOf(hole)}},
@@ -117,9 +116,9 @@ TEST(SampleTrimCurve, TrimsOnARationalCylinderAndSphereStayWithinTolerance) {
         absl::StatusOr<TrimSamples> samples =
             SampleTrimCurve(*face, hole_index, curve_index, tolerance);
         ASSERT_TRUE(samples.ok()) << samples.status();
-        const Curve curve =
-            hole_index < 0 ? face->outer()->curves[curve_index]
-                           : face->holes()[hole_index].curves[curve_index];
+        const Curve curve = hole_index < 0
+                                ? face->outer()->curves[curve_index]
+                                : face->holes()[hole_index].curves[curve_index];
         EXPECT_LE(LargestChordDeviation(surface, curve, *samples), tolerance)
             << hole_index << " " << curve_index;
       }
@@ -137,8 +136,7 @@ TEST(SampleTrimCurve, BadArgumentsAreNamed) {
   ASSERT_TRUE(face.ok()) << face.status();
   EXPECT_EQ(FieldPathOf(SampleTrimCurve(*face, -1, 0, 1e-3).status()), "hole");
   EXPECT_EQ(FieldPathOf(SampleTrimCurve(*face, 1, 0, 1e-3).status()), "hole");
-  EXPECT_EQ(FieldPathOf(SampleTrimCurve(*face, 0, 1, 1e-3).status()),
-            "curve");
+  EXPECT_EQ(FieldPathOf(SampleTrimCurve(*face, 0, 1, 1e-3).status()), "curve");
   EXPECT_EQ(FieldPathOf(SampleTrimCurve(*face, 0, 0, 0.0).status()),
             "tolerance");
   absl::StatusOr<TrimSamples> too_many = SampleTrimCurve(*face, 0, 0, 1e-9, 10);

@@ -29,11 +29,8 @@ inline SurfaceData BilinearPlane() {
 
 // The same plane as a bilinear B-spline with knots at u = 0.5, v = 0.5.
 inline SurfaceData KnottedPlane() {
-  SurfaceData plane{.degree_u = 1,
-                    .degree_v = 1,
-                    .dimension = 3,
-                    .count_u = 3,
-                    .count_v = 3};
+  SurfaceData plane{
+      .degree_u = 1, .degree_v = 1, .dimension = 3, .count_u = 3, .count_v = 3};
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       plane.coordinates.insert(plane.coordinates.end(),
@@ -118,8 +115,7 @@ inline std::vector<BezierCurveData> Reversed(
 // r(theta) = radius + amplitude cos(petals theta) about (cu, cv),
 // counter-clockwise, the first repeated as the last.
 inline BSplineCurveData Flower(double cu, double cv, double radius,
-                               double amplitude, int petals,
-                               int count = 40) {
+                               double amplitude, int petals, int count = 40) {
   BSplineCurveData flower{.degree = 3, .dimension = 2};
   for (int i = 0; i <= count; ++i) {
     const double theta = 2 * std::numbers::pi * (i % count) / count;
@@ -140,8 +136,7 @@ inline std::vector<BSplineCurveData> GridOfHoles(int side, double r) {
   std::vector<BSplineCurveData> circles;
   for (int i = 0; i < side; ++i) {
     for (int j = 0; j < side; ++j) {
-      circles.push_back(
-          ClockwiseCircle(r, (i + 0.5) / side, (j + 0.5) / side));
+      circles.push_back(ClockwiseCircle(r, (i + 0.5) / side, (j + 0.5) / side));
     }
   }
   return circles;

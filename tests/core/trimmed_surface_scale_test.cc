@@ -37,11 +37,11 @@ TEST(TrimmedSurfaceAtScale, TenThousandTinyHoles) {
   const double r = 0.003;
   const std::vector<BSplineCurveData> circles =
       trim_testing::GridOfHoles(kSide, r);
-  absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
-      {.surface = surface,
-       .outer = std::nullopt,
-       .holes = trim_testing::LoopsOf(circles)},
-      1e-9);
+  absl::StatusOr<TrimmedSurface> face =
+      TrimmedSurface::Create({.surface = surface,
+                              .outer = std::nullopt,
+                              .holes = trim_testing::LoopsOf(circles)},
+                             1e-9);
   ASSERT_TRUE(face.ok()) << face.status();
   const std::vector<double> uv = RandomPoints(10000, 3);
   absl::StatusOr<std::vector<PointLocation>> at =
@@ -74,8 +74,7 @@ void ExpectPolygonClassification(int n, const std::vector<double>& uv,
     if (theta < 0) theta += 2 * kPi;
     const int sector = static_cast<int>(theta / (2 * kPi) * n);
     const std::array<double, 2> a = PolygonVertex(n, 0.4, 0.5, 0.5, sector);
-    const std::array<double, 2> b =
-        PolygonVertex(n, 0.4, 0.5, 0.5, sector + 1);
+    const std::array<double, 2> b = PolygonVertex(n, 0.4, 0.5, 0.5, sector + 1);
     const double side =
         ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])) /
         std::hypot(b[0] - a[0], b[1] - a[1]);
@@ -87,40 +86,42 @@ void ExpectPolygonClassification(int n, const std::vector<double>& uv,
   }
 }
 
-absl::StatusOr<TrimmedSurface> PolygonFace(const Surface& surface,
-                                           const BSplineCurveData& polygon,
-                                           const BSplineCurveData& hole) {
-  return TrimmedSurface::Create(
-      {.surface = surface, .outer = LoopOf(polygon), .holes = {LoopOf(hole)}},
-      1e-9);
-}
+// The unit plane inside the regular n-gon of radius 0.4 about (0.5, 0.5),
+// less the disk of radius 0.1 there; the data outlives the face.
+struct PolygonWithHole {
+  explicit PolygonWithHole(int n)
+      : plane(BilinearPlane()),
+        surface(*BezierSurface::Create(plane.bezier_view())),
+        polygon(trim_testing::RegularPolygon(n, 0.4, 0.5, 0.5)),
+        hole(ClockwiseCircle(0.1, 0.5, 0.5)),
+        face(TrimmedSurface::Create({.surface = surface,
+                                     .outer = LoopOf(polygon),
+                                     .holes = {LoopOf(hole)}},
+                                    1e-9)) {}
+
+  SurfaceData plane;
+  Surface surface;
+  BSplineCurveData polygon;
+  BSplineCurveData hole;
+  absl::StatusOr<TrimmedSurface> face;
+};
 
 TEST(TrimmedSurfaceAtScale, ALoopOfAHundredThousandSegments) {
-  const SurfaceData plane = BilinearPlane();
-  const Surface surface = *BezierSurface::Create(plane.bezier_view());
   constexpr int kSegments = 100000;
-  const BSplineCurveData polygon =
-      trim_testing::RegularPolygon(kSegments, 0.4, 0.5, 0.5);
-  const BSplineCurveData hole = ClockwiseCircle(0.1, 0.5, 0.5);
-  absl::StatusOr<TrimmedSurface> face = PolygonFace(surface, polygon, hole);
-  ASSERT_TRUE(face.ok()) << face.status();
+  const PolygonWithHole shape(kSegments);
+  ASSERT_TRUE(shape.face.ok()) << shape.face.status();
   const std::vector<double> uv = RandomPoints(10000, 5);
   absl::StatusOr<std::vector<PointLocation>> at =
-      ClassifyPoints(*face, uv, 1e-12);
+      ClassifyPoints(*shape.face, uv, 1e-12);
   ASSERT_TRUE(at.ok()) << at.status();
   ExpectPolygonClassification(kSegments, uv, *at);
 }
 
 TEST(TrimmedSurfaceAtScale, AreaOfAPolygonOfTenThousandSegments) {
-  const SurfaceData plane = BilinearPlane();
-  const Surface surface = *BezierSurface::Create(plane.bezier_view());
   constexpr int kSegments = 10000;
-  const BSplineCurveData polygon =
-      trim_testing::RegularPolygon(kSegments, 0.4, 0.5, 0.5);
-  const BSplineCurveData hole = ClockwiseCircle(0.1, 0.5, 0.5);
-  absl::StatusOr<TrimmedSurface> face = PolygonFace(surface, polygon, hole);
-  ASSERT_TRUE(face.ok()) << face.status();
-  absl::StatusOr<FaceAreaResult> area = FaceArea(*face, 1e-11);
+  const PolygonWithHole shape(kSegments);
+  ASSERT_TRUE(shape.face.ok()) << shape.face.status();
+  absl::StatusOr<FaceAreaResult> area = FaceArea(*shape.face, 1e-11);
   ASSERT_TRUE(area.ok()) << area.status();
   const double polygon_area =
       0.5 * kSegments * 0.16 * std::sin(2 * kPi / kSegments);

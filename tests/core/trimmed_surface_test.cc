@@ -38,9 +38,10 @@ absl::StatusOr<TrimmedSurface> MakeFace(const Surface& surface,
                                         std::optional<TrimLoop> outer,
                                         std::vector<TrimLoop> holes,
                                         double tolerance = 1e-9) {
-  return TrimmedSurface::Create(
-      {.surface = surface, .outer = std::move(outer), .holes = std::move(holes)},
-      tolerance);
+  return TrimmedSurface::Create({.surface = surface,
+                                 .outer = std::move(outer),
+                                 .holes = std::move(holes)},
+                                tolerance);
 }
 
 PointLocation Where(const TrimmedSurface& face, double u, double v,
@@ -266,8 +267,7 @@ TEST(TrimmedSurface, ZeroLengthPiecesAreSkipped) {
   // A square with a zero-length curve at one corner.
   std::vector<BezierCurveData> outer = Square(0.2, 0.2, 0.8, 0.8);
   outer.insert(outer.begin() + 2, BrokenLine({{0.8, 0.8}, {0.8, 0.8}})[0]);
-  absl::StatusOr<TrimmedSurface> face =
-      MakeFace(surface, LoopOf(outer), {});
+  absl::StatusOr<TrimmedSurface> face = MakeFace(surface, LoopOf(outer), {});
   ASSERT_TRUE(face.ok()) << face.status();
   absl::StatusOr<FaceAreaResult> area = FaceArea(*face, 1e-13);
   ASSERT_TRUE(area.ok()) << area.status();
@@ -293,8 +293,7 @@ TEST(TrimmedSurfaceValidation, BadLoopsAreNamedByPath) {
   EXPECT_EQ(PathOf(MakeFace(surface, LoopOf(square), {LoopOf(counter)})),
             "holes[0]");
   // The outer loop running clockwise.
-  const std::vector<BezierCurveData> clockwise =
-      trim_testing::Reversed(square);
+  const std::vector<BezierCurveData> clockwise = trim_testing::Reversed(square);
   EXPECT_EQ(PathOf(MakeFace(surface, LoopOf(clockwise), {})), "outer");
   // A trim outside the domain.
   const BSplineCurveData outside = ClockwiseCircle(0.2, 0.9, 0.5);
@@ -316,8 +315,7 @@ TEST(TrimmedSurfaceValidation, BadLoopsAreNamedByPath) {
   // A loop crossing itself: a bow tie.
   const std::vector<BezierCurveData> bow =
       BrokenLine({{0.2, 0.2}, {0.8, 0.8}, {0.8, 0.2}, {0.2, 0.8}, {0.2, 0.2}});
-  EXPECT_EQ(PathOf(MakeFace(surface, LoopOf(bow), {})),
-            "outer.curves[2]");
+  EXPECT_EQ(PathOf(MakeFace(surface, LoopOf(bow), {})), "outer.curves[2]");
   // A 3D trim curve.
   const BezierCurveData spatial{
       .dimension = 3, .coordinates = {0.2, 0.2, 0, 0.8, 0.2, 0}, .weights = {}};
@@ -376,8 +374,8 @@ TEST(TrimmedSurface, ClassificationAgreesWithBruteForceRayCasting) {
   const BSplineCurveData flower = trim_testing::Flower(0.5, 0.5, 0.35, 0.08, 5);
   const BSplineCurveData hole1 = ClockwiseCircle(0.1, 0.5, 0.5);
   const BSplineCurveData hole2 = ClockwiseCircle(0.03, 0.68, 0.5);
-  absl::StatusOr<TrimmedSurface> face = MakeFace(
-      surface, LoopOf(flower), {LoopOf(hole1), LoopOf(hole2)});
+  absl::StatusOr<TrimmedSurface> face =
+      MakeFace(surface, LoopOf(flower), {LoopOf(hole1), LoopOf(hole2)});
   ASSERT_TRUE(face.ok()) << face.status();
   std::vector<std::vector<double>> polygons;
   for (const BSplineCurveData* loop : {&flower, &hole1, &hole2}) {
@@ -392,15 +390,17 @@ TEST(TrimmedSurface, ClassificationAgreesWithBruteForceRayCasting) {
     uv.push_back(coordinate(rng));
     uv.push_back(coordinate(rng));
   }
-  absl::StatusOr<std::vector<PointLocation>> at = ClassifyPoints(*face, uv, 1e-9);
+  absl::StatusOr<std::vector<PointLocation>> at =
+      ClassifyPoints(*face, uv, 1e-9);
   ASSERT_TRUE(at.ok()) << at.status();
   int compared = 0;
   for (size_t k = 0; k < at->size(); ++k) {
     const double u = uv[2 * k], v = uv[2 * k + 1];
     if (DistanceToSamples(polygons, u, v) < 1e-3) continue;
-    const bool inside = u >= 0 && u <= 1 && v >= 0 && v <= 1 &&
-                        EvenOdd(polygons, u, v);
-    EXPECT_EQ((*at)[k], inside ? PointLocation::kInside : PointLocation::kOutside)
+    const bool inside =
+        u >= 0 && u <= 1 && v >= 0 && v <= 1 && EvenOdd(polygons, u, v);
+    EXPECT_EQ((*at)[k],
+              inside ? PointLocation::kInside : PointLocation::kOutside)
         << u << ", " << v;
     ++compared;
   }

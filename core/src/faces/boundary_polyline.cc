@@ -56,8 +56,7 @@ absl::Status CheckSegmentCount(const FaceBoundary& boundary) {
       const BezierCurveView view =
           boundary.pieces[loop.first_piece + k].bezier.view();
       // One more for the gap to the next piece.
-      segments = SaturatingSum(segments,
-                               BezierCurvePointBound(view, epsilon));
+      segments = SaturatingSum(segments, BezierCurvePointBound(view, epsilon));
     }
   }
   if (segments <= kMaxFaceBoundarySegments) return absl::OkStatus();
@@ -80,15 +79,14 @@ absl::Status AddLoopSegments(int loop_index, FaceBoundary* boundary,
     const TrimPiece& next =
         boundary->pieces[loop.first_piece + (k + 1) % loop.piece_count];
     const bool linear = piece.bezier.coordinates.size() <= 4;
-    ASSIGN_OR_RETURN(
-        Polyline polyline,
-        TessellateBezierCurve(piece.bezier.view(), loop.epsilon,
-                              kMaxFaceBoundarySegments, cancel));
+    ASSIGN_OR_RETURN(Polyline polyline,
+                     TessellateBezierCurve(piece.bezier.view(), loop.epsilon,
+                                           kMaxFaceBoundarySegments, cancel));
     const size_t n = polyline.parameters.size();
     for (size_t r = 0; r + 1 < n; ++r) {
-      const Point2 a = r == 0 ? piece.first
-                              : Point2{polyline.points[2 * r],
-                                       polyline.points[2 * r + 1]};
+      const Point2 a =
+          r == 0 ? piece.first
+                 : Point2{polyline.points[2 * r], polyline.points[2 * r + 1]};
       const Point2 b = r + 2 == n ? piece.last
                                   : Point2{polyline.points[2 * r + 2],
                                            polyline.points[2 * r + 3]};
@@ -137,8 +135,7 @@ uint64_t GridEntries(const SegmentGrid& grid,
 }
 
 // SortRows orders every row both ways (SegmentGrid).
-void SortRows(const std::vector<BoundarySegment>& segments,
-              SegmentGrid& grid) {
+void SortRows(const std::vector<BoundarySegment>& segments, SegmentGrid& grid) {
   const auto largest_u = [&segments](uint32_t i) {
     return std::max(segments[i].a[0], segments[i].b[0]);
   };
@@ -149,20 +146,19 @@ void SortRows(const std::vector<BoundarySegment>& segments,
   for (int r = 0; r < grid.rows; ++r) {
     const auto from = static_cast<ptrdiff_t>(grid.row_start[r]);
     const auto to = static_cast<ptrdiff_t>(grid.row_start[r + 1]);
-    std::sort(grid.rightward.begin() + from, grid.rightward.begin() + to,
-              [&](uint32_t x, uint32_t y) { return largest_u(x) > largest_u(y); });
-    std::sort(grid.leftward.begin() + from, grid.leftward.begin() + to,
-              [&](uint32_t x, uint32_t y) {
-                return smallest_u(x) < smallest_u(y);
-              });
+    std::sort(
+        grid.rightward.begin() + from, grid.rightward.begin() + to,
+        [&](uint32_t x, uint32_t y) { return largest_u(x) > largest_u(y); });
+    std::sort(
+        grid.leftward.begin() + from, grid.leftward.begin() + to,
+        [&](uint32_t x, uint32_t y) { return smallest_u(x) < smallest_u(y); });
   }
 }
 
 // FillCells lists every segment in the cells its widened box meets, and in
 // the rows its v-range meets (horizontal segments never cross a ray along
 // u and stay out of the rows).
-void FillGrid(const std::vector<BoundarySegment>& segments,
-              SegmentGrid& grid) {
+void FillGrid(const std::vector<BoundarySegment>& segments, SegmentGrid& grid) {
   const size_t cells = static_cast<size_t>(grid.columns) * grid.rows;
   grid.cell_start.assign(cells + 1, 0);
   grid.row_start.assign(static_cast<size_t>(grid.rows) + 1, 0);
@@ -186,14 +182,16 @@ void FillGrid(const std::vector<BoundarySegment>& segments,
   for (size_t c = 0; c < cells; ++c) {
     grid.cell_start[c + 1] += grid.cell_start[c];
   }
-  for (int r = 0; r < grid.rows; ++r) grid.row_start[r + 1] += grid.row_start[r];
+  for (int r = 0; r < grid.rows; ++r)
+    grid.row_start[r + 1] += grid.row_start[r];
   grid.cell_segments.resize(grid.cell_start[cells]);
   grid.rightward.resize(grid.row_start[grid.rows]);
   std::vector<uint32_t> cell_fill(grid.cell_start.begin(),
                                   grid.cell_start.end() - 1);
   std::vector<uint32_t> row_fill(grid.row_start.begin(),
                                  grid.row_start.end() - 1);
-  each([&](size_t cell, uint32_t i) { grid.cell_segments[cell_fill[cell]++] = i; },
+  each([&](size_t cell,
+           uint32_t i) { grid.cell_segments[cell_fill[cell]++] = i; },
        [&](int row, uint32_t i) { grid.rightward[row_fill[row]++] = i; });
   SortRows(segments, grid);
 }
@@ -204,10 +202,11 @@ void BuildGrid(FaceBoundary* boundary) {
   const SurfaceDomain& d = boundary->domain;
   const double width = d.u_end - d.u_start;
   const double height = d.v_end - d.v_start;
-  const double cells = std::max(1.0, 2.0 * static_cast<double>(boundary->segments.size()));
+  const double cells =
+      std::max(1.0, 2.0 * static_cast<double>(boundary->segments.size()));
   const double aspect = width / height;
-  int columns = std::clamp(static_cast<int>(std::ceil(std::sqrt(cells * aspect))),
-                           1, kMaxGridSide);
+  int columns = std::clamp(
+      static_cast<int>(std::ceil(std::sqrt(cells * aspect))), 1, kMaxGridSide);
   int rows = std::clamp(static_cast<int>(std::ceil(std::sqrt(cells / aspect))),
                         1, kMaxGridSide);
   SegmentGrid& grid = boundary->grid;
@@ -251,9 +250,9 @@ absl::Status BuildBoundaryPolylines(FaceBoundary* boundary,
   }
   if (boundary->segments.size() > kMaxFaceBoundarySegments) {
     return ExhaustedFieldError(
-        "holes", absl::StrCat("the loops' polylines have ",
-                              boundary->segments.size(), " segments, more than ",
-                              kMaxFaceBoundarySegments));
+        "holes",
+        absl::StrCat("the loops' polylines have ", boundary->segments.size(),
+                     " segments, more than ", kMaxFaceBoundarySegments));
   }
   BuildGrid(boundary);
   return CheckCancelled(cancel);

@@ -60,11 +60,11 @@ class AreaDensity {
       out[i] = {};
       const double ui = std::clamp(u[i], domain_.u_start, domain_.u_end);
       for (size_t k = 0; k + 1 < u_breaks_.size() && u_breaks_[k] < ui; ++k) {
-        spans_.push_back({.node = i,
-                          .a = u_breaks_[k],
-                          .b = std::min(u_breaks_[k + 1], ui),
-                          .v = std::clamp(v[i], domain_.v_start,
-                                          domain_.v_end)});
+        spans_.push_back(
+            {.node = i,
+             .a = u_breaks_[k],
+             .b = std::min(u_breaks_[k + 1], ui),
+             .v = std::clamp(v[i], domain_.v_start, domain_.v_end)});
       }
     }
     uv_.clear();
@@ -75,8 +75,8 @@ class AreaDensity {
       for (int j = 0; j < kKronrodPoints; ++j) {
         values_[j] = {.value = density_[k * kKronrodPoints + j], .error = 0.0};
       }
-      Estimate estimate = internal::KronrodInterval(span.a, span.b,
-                                                    values_.data());
+      Estimate estimate =
+          internal::KronrodInterval(span.a, span.b, values_.data());
       const double target = tolerance_per_unit_u_ * (span.b - span.a);
       if (estimate.error > target) {
         ASSIGN_OR_RETURN(estimate, Refined(span, target));
@@ -127,12 +127,12 @@ class AreaDensity {
     const absl::Span<double> output[3] = {absl::MakeSpan(partials_[0]),
                                           absl::MakeSpan(partials_[1]),
                                           absl::MakeSpan(partials_[2])};
-    RETURN_IF_ERROR(EvaluateSurface(surface_, SurfaceSamples::Pairs(uv_),
-                                    output, {}));
+    RETURN_IF_ERROR(
+        EvaluateSurface(surface_, SurfaceSamples::Pairs(uv_), output, {}));
     density_.resize(count);
     for (size_t k = 0; k < count; ++k) {
-      density_[k] = Density(&partials_[1][k * dimension_],
-                            &partials_[2][k * dimension_]);
+      density_[k] =
+          Density(&partials_[1][k * dimension_], &partials_[2][k * dimension_]);
     }
     return absl::OkStatus();
   }
@@ -170,7 +170,8 @@ class AreaDensity {
 double VVariation(const TrimPiece& piece) {
   const std::vector<double>& c = piece.bezier.coordinates;
   double variation = 0.0;
-  for (size_t i = 3; i < c.size(); i += 2) variation += std::abs(c[i] - c[i - 2]);
+  for (size_t i = 3; i < c.size(); i += 2)
+    variation += std::abs(c[i] - c[i - 2]);
   return variation;
 }
 
@@ -264,13 +265,11 @@ absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
                              Estimate* values) {
     return BoundaryIntegrand(boundary.pieces[part], a, b, density, values);
   };
-  ASSIGN_OR_RETURN(
-      Estimate total,
-      internal::IntegrateAdaptive(integrand, parts, 0.75 * tolerance,
-                                  parts.size() + kMaxFaceAreaIntervals,
-                                  cancel));
-  const FaceAreaResult result{.area = total.value,
-                              .error_bound = total.error};
+  ASSIGN_OR_RETURN(Estimate total,
+                   internal::IntegrateAdaptive(
+                       integrand, parts, 0.75 * tolerance,
+                       parts.size() + kMaxFaceAreaIntervals, cancel));
+  const FaceAreaResult result{.area = total.value, .error_bound = total.error};
   if (!std::isfinite(result.area) || !std::isfinite(result.error_bound)) {
     return InvalidFieldError("surface",
                              "the area density is not finite on the face");

@@ -47,7 +47,8 @@ double PieceSignedArea(const BezierCurveData& bezier) {
     return 0.5 * sum;
   }
   double extent = 0.0;
-  for (const double c : bezier.coordinates) extent = std::max(extent, std::abs(c));
+  for (const double c : bezier.coordinates)
+    extent = std::max(extent, std::abs(c));
   const auto integrand = [&](size_t, double a, double b, Estimate* values) {
     for (int k = 0; k < kKronrodPoints; ++k) {
       values[k] = {.value = u_dv(KronrodNode(a, b, k)), .error = 0.0};
@@ -71,16 +72,15 @@ absl::Status CheckHoleContainment(const FaceBoundary& boundary, int index) {
     if (around.winding == 1) return absl::OkStatus();
     if (LoopWinding(boundary, 0, p, 0.0).winding == 0) {
       return InvalidFieldError(
-          hole.path, absl::StrCat("lies outside the ",
-                                  !boundary.loops[0].is_domain
-                                      ? "outer loop"
-                                      : "parameter rectangle",
-                                  ": holes must lie inside it"));
+          hole.path,
+          absl::StrCat("lies outside the ",
+                       !boundary.loops[0].is_domain ? "outer loop"
+                                                    : "parameter rectangle",
+                       ": holes must lie inside it"));
     }
     for (size_t other = 1; other < boundary.loops.size(); ++other) {
       if (static_cast<int>(other) == index) continue;
-      if (LoopWinding(boundary, static_cast<int>(other), p, 0.0).winding !=
-          0) {
+      if (LoopWinding(boundary, static_cast<int>(other), p, 0.0).winding != 0) {
         return InvalidFieldError(
             hole.path, absl::StrCat("lies inside ", boundary.loops[other].path,
                                     ": holes must not be nested"));
@@ -109,10 +109,9 @@ absl::Status CheckOrientation(const FaceBoundary& boundary) {
     const double area = LoopSignedArea(boundary, static_cast<int>(l));
     if (!loop.hole && !(area > 0.0)) {
       return InvalidFieldError(
-          loop.path,
-          absl::StrCat("runs clockwise (signed area ", area,
-                       " in (u, v)): the outer loop must run "
-                       "counter-clockwise"));
+          loop.path, absl::StrCat("runs clockwise (signed area ", area,
+                                  " in (u, v)): the outer loop must run "
+                                  "counter-clockwise"));
     }
     if (loop.hole && !(area < 0.0)) {
       return InvalidFieldError(

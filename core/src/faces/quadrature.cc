@@ -29,9 +29,7 @@ constexpr std::array<double, 4> kGaussWeights = {
 
 // Node k of 0..14 on [-1, 1] and its weights.
 double Abscissa(int k) { return k < 7 ? -kAbscissae[k] : kAbscissae[14 - k]; }
-double KronrodWeight(int k) {
-  return kKronrodWeights[k < 7 ? k : 14 - k];
-}
+double KronrodWeight(int k) { return kKronrodWeights[k < 7 ? k : 14 - k]; }
 double GaussWeight(int k) {
   if (k % 2 == 0) return 0.0;
   const int m = k < 7 ? k : 14 - k;
@@ -66,9 +64,11 @@ Estimate KronrodInterval(double a, double b, const Estimate* values) {
           .error = std::abs(half) * (std::abs(kronrod - gauss) + inherited)};
 }
 
-absl::StatusOr<Estimate> IntegrateAdaptive(
-    KronrodIntegrand integrand, absl::Span<const PartInterval> parts,
-    double tolerance, size_t max_intervals, const CancellationToken* cancel) {
+absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
+                                           absl::Span<const PartInterval> parts,
+                                           double tolerance,
+                                           size_t max_intervals,
+                                           const CancellationToken* cancel) {
   std::array<Estimate, kKronrodPoints> values;
   const auto measure =
       [&](const PartInterval& where) -> absl::StatusOr<Interval> {
@@ -94,10 +94,10 @@ absl::StatusOr<Estimate> IntegrateAdaptive(
     heap.pop();
     ASSIGN_OR_RETURN(Interval left, measure({w.part, w.a, middle}));
     ASSIGN_OR_RETURN(Interval right, measure({w.part, middle, w.b}));
-    total.value += left.estimate.value + right.estimate.value -
-                   worst.estimate.value;
-    total.error += left.estimate.error + right.estimate.error -
-                   worst.estimate.error;
+    total.value +=
+        left.estimate.value + right.estimate.value - worst.estimate.value;
+    total.error +=
+        left.estimate.error + right.estimate.error - worst.estimate.error;
     heap.push(left);
     heap.push(right);
     RETURN_IF_ERROR(poll.Done(2));
@@ -112,9 +112,8 @@ absl::StatusOr<Estimate> IntegrateAdaptive(
   return total;
 }
 
-absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
-                                           double a, double b,
-                                           double tolerance,
+absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand, double a,
+                                           double b, double tolerance,
                                            size_t max_intervals,
                                            const CancellationToken* cancel) {
   const PartInterval whole[] = {{.part = 0, .a = a, .b = b}};

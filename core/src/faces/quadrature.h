@@ -47,14 +47,15 @@ struct PartInterval {
 // own integrand `part`) together, halving the interval of largest error
 // until the errors add up to at most `tolerance` or `max_intervals`
 // intervals are in use; returns the sum and its error bound.
-absl::StatusOr<Estimate> IntegrateAdaptive(
-    KronrodIntegrand integrand, absl::Span<const PartInterval> parts,
-    double tolerance, size_t max_intervals, const CancellationToken* cancel);
+absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
+                                           absl::Span<const PartInterval> parts,
+                                           double tolerance,
+                                           size_t max_intervals,
+                                           const CancellationToken* cancel);
 
 // IntegrateAdaptive over the one interval [a, b] of integrand 0.
-absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
-                                           double a, double b,
-                                           double tolerance,
+absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand, double a,
+                                           double b, double tolerance,
                                            size_t max_intervals,
                                            const CancellationToken* cancel);
 

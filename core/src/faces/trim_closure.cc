@@ -61,10 +61,10 @@ absl::Status CheckPieceInside(const BezierCurveData& bezier, const Box& box,
       return InvalidFieldError(
           CurvePath(boundary, piece),
           absl::StrCat("leaves the surface's parameter rectangle [",
-                             domain.u_start, ", ", domain.u_end, "] x [",
-                             domain.v_start, ", ", domain.v_end, "] by ",
-                             excess, " beyond the tolerance at (u, v) = (",
-                             end[0], ", ", end[1], ")"));
+                       domain.u_start, ", ", domain.u_end, "] x [",
+                       domain.v_start, ", ", domain.v_end, "] by ", excess,
+                       " beyond the tolerance at (u, v) = (", end[0], ", ",
+                       end[1], ")"));
     }
   }
   const double half[] = {0.5};

@@ -86,8 +86,7 @@ bool IsMonotone(const BezierCurveData& b) {
 
 // AddMonotoneParts appends the monotone parts of `bezier` to `parts`.
 absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
-                              const Part& prototype,
-                              std::vector<Part>& parts) {
+                              const Part& prototype, std::vector<Part>& parts) {
   if (depth >= kMaxMonotoneDepth || IsMonotone(bezier)) {
     Part part = prototype;
     part.bezier = bezier;
@@ -206,8 +205,9 @@ bool MeetOnlyAtJunction(const Part& before, const Part& after) {
   const double in_length = std::hypot(end[0] - into[0], end[1] - into[1]);
   const double out_length = std::hypot(out[0] - start[0], out[1] - start[1]);
   if (!(in_length > 0.0 && out_length > 0.0)) return false;
-  Point2 tangent{(end[0] - into[0]) / in_length + (out[0] - start[0]) / out_length,
-                 (end[1] - into[1]) / in_length + (out[1] - start[1]) / out_length};
+  Point2 tangent{
+      (end[0] - into[0]) / in_length + (out[0] - start[0]) / out_length,
+      (end[1] - into[1]) / in_length + (out[1] - start[1]) / out_length};
   const double length = std::hypot(tangent[0], tangent[1]);
   if (!(length > 0.0)) return false;
   tangent = {tangent[0] / length, tangent[1] / length};
@@ -227,8 +227,8 @@ bool MeetOnlyAtJunction(const Part& before, const Part& after) {
 
 // ApartOrMeetingAtTheirEnd reports whether two parts are certainly apart,
 // or neighbours that certainly meet only at their shared end.
-bool ApartOrMeetingAtTheirEnd(const Part& a, const Part& b,
-                              size_t junctions, double tolerance) {
+bool ApartOrMeetingAtTheirEnd(const Part& a, const Part& b, size_t junctions,
+                              double tolerance) {
   if (junctions == 0) return SeparatedAcrossChords(a, b, tolerance);
   if (junctions != 1) return false;
   return (a.index + 1) % a.loop_parts == b.index ? MeetOnlyAtJunction(a, b)
@@ -303,8 +303,7 @@ absl::Status CrossingError(const FaceBoundary& boundary, const Part& a,
                            const Part& b, const Point2& at) {
   const Part& later = a.piece > b.piece ? a : b;
   const Part& earlier = a.piece > b.piece ? b : a;
-  const std::string other =
-      CurvePath(boundary, boundary.pieces[earlier.piece]);
+  const std::string other = CurvePath(boundary, boundary.pieces[earlier.piece]);
   const std::string what =
       later.piece == earlier.piece ? "crosses itself" : "crosses or touches";
   return InvalidFieldError(
@@ -327,8 +326,8 @@ absl::Status CheckPair(const FaceBoundary& boundary, const Part& a,
   if (ControlCount(a.bezier) == 2 && ControlCount(b.bezier) == 2) {
     contact = SegmentContact(a, b, tolerance, junctions, radius);
   } else {
-    ASSIGN_OR_RETURN(contact, CurveContact(a, b, tolerance, junctions,
-                                           radius, cancel));
+    ASSIGN_OR_RETURN(contact,
+                     CurveContact(a, b, tolerance, junctions, radius, cancel));
   }
   if (!contact.has_value()) return absl::OkStatus();
   return CrossingError(boundary, a, b, *contact);

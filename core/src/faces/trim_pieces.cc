@@ -49,9 +49,8 @@ double ControlExtent(const BezierCurveData& bezier) {
 
 // MakePiece completes a piece's end points and degeneracy; fails when an
 // end weight is 0 (a point at infinity cannot lie in the domain).
-absl::StatusOr<TrimPiece> MakePiece(BezierCurveData bezier, int loop,
-                                    int curve, double start, double end,
-                                    double tolerance,
+absl::StatusOr<TrimPiece> MakePiece(BezierCurveData bezier, int loop, int curve,
+                                    double start, double end, double tolerance,
                                     absl::string_view path) {
   if (!bezier.weights.empty() &&
       !(bezier.weights.front() > 0.0 && bezier.weights.back() > 0.0)) {
@@ -80,7 +79,8 @@ absl::Status AddLoopPieces(const TrimLoop& loop, int loop_index,
                              "a loop needs at least one curve");
   }
   for (size_t j = 0; j < loop.curves.size(); ++j) {
-    const std::string curve_path = IndexedField(absl::StrCat(path, ".curves"), j);
+    const std::string curve_path =
+        IndexedField(absl::StrCat(path, ".curves"), j);
     const Curve& curve = loop.curves[j];
     if (DimensionOf(curve) != 2) {
       return InvalidFieldError(
@@ -148,9 +148,9 @@ absl::Status BuildTrimPieces(const TrimmedSurfaceParts& parts,
     boundary->loops[index].is_domain = true;
     int edge = 0;
     for (BezierCurveData& bezier : DomainEdges(boundary->domain)) {
-      ASSIGN_OR_RETURN(TrimPiece piece,
-                       MakePiece(std::move(bezier), index, edge, 0.0, 1.0,
-                                 0.0, "domain"));
+      ASSIGN_OR_RETURN(
+          TrimPiece piece,
+          MakePiece(std::move(bezier), index, edge, 0.0, 1.0, 0.0, "domain"));
       boundary->pieces.push_back(std::move(piece));
       ++edge;
     }
@@ -166,8 +166,8 @@ absl::Status BuildTrimPieces(const TrimmedSurfaceParts& parts,
 }
 
 std::string CurvePath(const FaceBoundary& boundary, const TrimPiece& piece) {
-  return IndexedField(
-      absl::StrCat(boundary.loops[piece.loop].path, ".curves"), piece.curve);
+  return IndexedField(absl::StrCat(boundary.loops[piece.loop].path, ".curves"),
+                      piece.curve);
 }
 
 Curve PieceCurve(const BezierCurveData& bezier) {

@@ -85,11 +85,10 @@ TrimBounds TrimPartBounds(const BezierCurveData& part) {
                                                Weight(part.weights, i)));
     }
     if (i + 2 < count) {
-      weight2 = std::max(
-          weight2, n * (n - 1) *
-                       std::abs(Weight(part.weights, i + 2) -
-                                2 * Weight(part.weights, i + 1) +
-                                Weight(part.weights, i)));
+      weight2 = std::max(weight2, n * (n - 1) *
+                                      std::abs(Weight(part.weights, i + 2) -
+                                               2 * Weight(part.weights, i + 1) +
+                                               Weight(part.weights, i)));
     }
   }
   if (!(min_weight > 0.0)) {
@@ -110,8 +109,8 @@ TrimBounds TrimPartBounds(const BezierCurveData& part) {
     for (size_t i = 0; i + 1 < count; ++i) {
       first = std::max(first, n * std::abs(h(i + 1) - h(i)));
       if (i + 2 < count) {
-        second = std::max(second,
-                          n * (n - 1) * std::abs(h(i + 2) - 2 * h(i + 1) + h(i)));
+        second = std::max(
+            second, n * (n - 1) * std::abs(h(i + 2) - 2 * h(i + 1) + h(i)));
       }
     }
     bounds.first[j] = (first + radius * weight1) / min_weight;
@@ -126,9 +125,7 @@ TrimBounds TrimPartBounds(const BezierCurveData& part) {
 struct SurfacePieces {
   SurfaceDecomposition decomposition;
 
-  size_t rows() const {
-    return decomposition.pieces.breakpoints_v.size() - 1;
-  }
+  size_t rows() const { return decomposition.pieces.breakpoints_v.size() - 1; }
   std::array<double, 4> Rectangle(size_t index) const {
     const auto& p = decomposition.pieces;
     const size_t i = index / rows(), j = index % rows();
@@ -146,28 +143,30 @@ void AddNetBounds(const SurfaceData& net, double du, double dv,
   for (int k = 0; k <= p; ++k) {
     for (int l = 0; l <= q; ++l) {
       if (k < p) {
-        field.u = std::max(field.u, p / du * std::abs(value(k + 1, l) - value(k, l)));
+        field.u =
+            std::max(field.u, p / du * std::abs(value(k + 1, l) - value(k, l)));
       }
       if (l < q) {
-        field.v = std::max(field.v, q / dv * std::abs(value(k, l + 1) - value(k, l)));
+        field.v =
+            std::max(field.v, q / dv * std::abs(value(k, l + 1) - value(k, l)));
       }
       if (k + 1 < p) {
-        field.uu = std::max(field.uu, p * (p - 1) / (du * du) *
-                                          std::abs(value(k + 2, l) -
-                                                   2 * value(k + 1, l) +
-                                                   value(k, l)));
+        field.uu = std::max(
+            field.uu,
+            p * (p - 1) / (du * du) *
+                std::abs(value(k + 2, l) - 2 * value(k + 1, l) + value(k, l)));
       }
       if (l + 1 < q) {
-        field.vv = std::max(field.vv, q * (q - 1) / (dv * dv) *
-                                          std::abs(value(k, l + 2) -
-                                                   2 * value(k, l + 1) +
-                                                   value(k, l)));
+        field.vv = std::max(
+            field.vv,
+            q * (q - 1) / (dv * dv) *
+                std::abs(value(k, l + 2) - 2 * value(k, l + 1) + value(k, l)));
       }
       if (k < p && l < q) {
-        field.uv = std::max(
-            field.uv, p * q / (du * dv) *
-                          std::abs(value(k + 1, l + 1) - value(k + 1, l) -
-                                   value(k, l + 1) + value(k, l)));
+        field.uv = std::max(field.uv,
+                            p * q / (du * dv) *
+                                std::abs(value(k + 1, l + 1) - value(k + 1, l) -
+                                         value(k, l + 1) + value(k, l)));
       }
     }
   }
@@ -211,7 +210,9 @@ SurfaceBounds RegionBounds(const SurfacePieces& pieces, const double lo[2],
           const double centre = 0.5 * (low[x] + high[x]);
           const double d =
               net.coordinates[(static_cast<size_t>(k) * net.count_v + l) *
-                                  dimension + x] - centre;
+                                  dimension +
+                              x] -
+              centre;
           squared += d * d;
         }
         bounds.radius = std::max(bounds.radius, std::sqrt(squared));
@@ -224,15 +225,16 @@ SurfaceBounds RegionBounds(const SurfacePieces& pieces, const double lo[2],
     for (int x = 0; x < dimension; ++x) {
       const double centre = 0.5 * (low[x] + high[x]);
       FieldBounds coordinate;
-      AddNetBounds(net, du, dv,
-                   [&](int k, int l) {
-                     return weight(k, l) *
-                            (net.coordinates[(static_cast<size_t>(k) *
-                                                  net.count_v + l) *
-                                                 dimension + x] -
-                             centre);
-                   },
-                   coordinate);
+      AddNetBounds(
+          net, du, dv,
+          [&](int k, int l) {
+            return weight(k, l) *
+                   (net.coordinates[(static_cast<size_t>(k) * net.count_v + l) *
+                                        dimension +
+                                    x] -
+                    centre);
+          },
+          coordinate);
       numerator.u = std::hypot(numerator.u, coordinate.u);
       numerator.v = std::hypot(numerator.v, coordinate.v);
       numerator.uu = std::hypot(numerator.uu, coordinate.uu);
@@ -252,9 +254,9 @@ SurfaceBounds RegionBounds(const SurfacePieces& pieces, const double lo[2],
 // Along returns the bounds of F' and F'' of a field along a trim part.
 std::array<double, 2> Along(const FieldBounds& f, const TrimBounds& c) {
   const double u1 = c.first[0], v1 = c.first[1];
-  return {f.u * u1 + f.v * v1,
-          f.uu * u1 * u1 + 2 * f.uv * u1 * v1 + f.vv * v1 * v1 +
-              f.u * c.second[0] + f.v * c.second[1]};
+  return {f.u * u1 + f.v * v1, f.uu * u1 * u1 + 2 * f.uv * u1 * v1 +
+                                   f.vv * v1 * v1 + f.u * c.second[0] +
+                                   f.v * c.second[1]};
 }
 
 // ChordDeviationBound returns the bound of max |g''| / 8 of a trim part,
@@ -302,8 +304,9 @@ class PieceSampler {
     if (depth >= kMaxSamplingDepth) {
       return InvalidFieldError(
           "tolerance",
-          absl::StrCat(tolerance_, " is not met by halving the trim near "
-                                   "piece parameter ",
+          absl::StrCat(tolerance_,
+                       " is not met by halving the trim near "
+                       "piece parameter ",
                        s0, " (the surface or the trim degenerates there)"));
     }
     const double half[] = {0.5};
@@ -347,8 +350,9 @@ absl::StatusOr<TrimSamples> SampleTrimCurve(const TrimmedSurface& face,
   ASSIGN_OR_RETURN(const int loop, LoopIndex(face, hole));
   const FaceBoundary& boundary = face.boundary();
   const internal::BoundaryLoop& l = boundary.loops[loop];
-  const int curves = hole < 0 ? static_cast<int>(face.outer()->curves.size())
-                              : static_cast<int>(face.holes()[hole].curves.size());
+  const int curves = hole < 0
+                         ? static_cast<int>(face.outer()->curves.size())
+                         : static_cast<int>(face.holes()[hole].curves.size());
   if (curve < 0 || curve >= curves) {
     return InvalidFieldError(
         "curve", absl::StrCat(curve, " is not a curve of the loop (it has ",

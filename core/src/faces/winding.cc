@@ -102,8 +102,7 @@ class WindingCounter {
   // Refine re-tessellates the arc on [s0, s1] (from a to b) with a finer
   // bound and counts each sub-chord, recursing into the near ones.
   void Refine(const BezierCurveData& bezier, double s0, double s1,
-              const Point2& a, const Point2& b, double epsilon,
-              double floor) {
+              const Point2& a, const Point2& b, double epsilon, double floor) {
     const double finer = std::max(epsilon * kRefinement, floor);
     const BezierCurveData arc = SubArc(bezier, s0, s1);
     absl::StatusOr<Polyline> polyline =
@@ -116,8 +115,7 @@ class WindingCounter {
     const std::vector<double>& x = polyline->points;
     for (size_t k = 0; k + 1 < n && !result_.on_boundary; ++k) {
       const Point2 c = k == 0 ? a : Point2{x[2 * k], x[2 * k + 1]};
-      const Point2 d =
-          k + 2 == n ? b : Point2{x[2 * k + 2], x[2 * k + 3]};
+      const Point2 d = k + 2 == n ? b : Point2{x[2 * k + 2], x[2 * k + 3]};
       const double dist = DistanceToSegment(p_, c, d);
       if (dist + finer <= tolerance_) {
         result_.on_boundary = true;

@@ -171,8 +171,8 @@ struct FaceAreaResult {
 // and every inner estimate weighted by |v'| and the outer rule's weights.
 // The work stops when error_bound is at most `tolerance` (absolute,
 // positive, finite) or after kMaxFaceAreaIntervals halvings (error_bound
-// then says how far it got). Fails with INVALID_ARGUMENT "tolerance" and with the token's
-// CANCELLED / DEADLINE_EXCEEDED.
+// then says how far it got). Fails with INVALID_ARGUMENT "tolerance" and with
+// the token's CANCELLED / DEADLINE_EXCEEDED.
 inline constexpr size_t kMaxFaceAreaIntervals = size_t{1} << 16;
 absl::StatusOr<FaceAreaResult> FaceArea(
     const TrimmedSurface& face, double tolerance,
