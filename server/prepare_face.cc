@@ -2,6 +2,7 @@
 #include "prepare_face.h"
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -9,6 +10,7 @@
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "prepare.h"
+#include "prepare_options.h"
 
 namespace freeform::server {
 namespace {
@@ -35,18 +37,21 @@ absl::StatusOr<TrimLoop> PrepareLoop(const v1::TrimLoop& message,
 absl::StatusOr<FaceRequest> PrepareFace(const v1::TrimmedSurface& message,
                                         const ServiceLimits& limits,
                                         absl::string_view field) {
-  FaceRequest request;
-  request.field = std::string(field);
-  if (message.has_tolerance()) {
-    RETURN_IF_ERROR(ValidatePositive(message.tolerance(),
-                                     absl::StrCat(field, ".tolerance")));
-    request.tolerance = message.tolerance();
-  }
+  ASSIGN_OR_RETURN(const double tolerance,
+                   Tolerance(message.has_tolerance(), message.tolerance(),
+                             kDefaultFaceTolerance,
+                             absl::StrCat(field, ".tolerance")));
   ASSIGN_OR_RETURN(
       Surface surface,
       PrepareSurface(message.surface(), limits, absl::StrCat(field, ".surface")));
-  request.parts.surface = std::move(surface);
-  request.parts.reversed = message.reversed();
+  FaceRequest request{
+      .parts = {.surface = std::move(surface),
+                .outer = std::nullopt,
+                .holes = {},
+                .reversed = message.reversed()},
+      .tolerance = tolerance,
+      .field = std::string(field),
+      .curve_count = 0};
   // Every curve has at least one control point, so the curves are bounded
   // by the control-point limit like the points themselves.
   uint64_t curves = static_cast<uint64_t>(message.outer().curves_size());
@@ -81,17 +86,12 @@ absl::StatusOr<TrimmedSurface> CreateFace(FaceRequest request,
   return face;
 }
 
-absl::StatusOr<uint64_t> FaceWorkBytes(const FaceRequest& request,
-                                       const ServiceLimits& limits) {
-  ASSIGN_OR_RETURN(uint64_t bytes, TrimmedSurfaceWorkBytes(request.parts));
-  if (bytes > limits.memory_budget_bytes) {
-    return ExhaustedFieldError(
-        request.field,
-        absl::StrCat("validating the face needs up to ", bytes,
-                     " bytes, more than the server's memory budget (",
-                     limits.memory_budget_bytes, ")"));
-  }
-  return bytes;
+absl::StatusOr<TrimmedSurfaceWork> FaceWork(const FaceRequest& request,
+                                            const CancellationToken* cancel) {
+  absl::StatusOr<TrimmedSurfaceWork> work =
+      TrimmedSurfaceWorkBytes(request.parts, request.tolerance, cancel);
+  if (!work.ok()) return PrefixFieldPath(work.status(), request.field);
+  return work;
 }
 
 }  // namespace freeform::server

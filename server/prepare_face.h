@@ -20,6 +20,8 @@ namespace freeform::server {
 
 // The closure and geometry tolerance of a face without one.
 inline constexpr double kDefaultFaceTolerance = 1e-9;
+// The area's absolute tolerance when a request gives none.
+inline constexpr double kDefaultFaceAreaTolerance = 1e-9;
 
 // What a face message prepares to: its parts and tolerance, validated
 // together by CreateFace (the work of a call, under its token).
@@ -45,12 +47,11 @@ absl::StatusOr<FaceRequest> PrepareFace(const v1::TrimmedSurface& message,
 absl::StatusOr<TrimmedSurface> CreateFace(FaceRequest request,
                                           const CancellationToken* cancel);
 
-// FaceWorkBytes returns an upper bound of the working memory of validating
-// and classifying against the face (its Bezier pieces, polylines and
-// grid), or RESOURCE_EXHAUSTED naming the face's field when it is over the
-// server's memory budget.
-absl::StatusOr<uint64_t> FaceWorkBytes(const FaceRequest& request,
-                                       const ServiceLimits& limits);
+// FaceWork returns the work of validating the face (an upper bound of the
+// memory of its Bezier pieces, polylines and grid: TrimmedSurfaceWorkBytes),
+// the errors of cutting its loops into pieces under the face's field.
+absl::StatusOr<TrimmedSurfaceWork> FaceWork(const FaceRequest& request,
+                                            const CancellationToken* cancel);
 
 }  // namespace freeform::server
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <vector>
+#include <utility>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
@@ -21,9 +22,12 @@ namespace {
 constexpr double kPolylineFraction = 0x1p-10;
 
 // The grid has at most this many columns and rows, and at most
-// kMaxGridEntries segment entries in its cells (coarser beyond).
+// GridEntryLimit(segments) segment entries in its cells (coarser beyond).
 constexpr int kMaxGridSide = 2048;
-constexpr uint64_t kMaxGridEntries = uint64_t{1} << 27;
+
+// A grid of one cell holds every segment once, so the halving in BuildGrid
+// always ends within the limit.
+uint64_t GridEntryLimit(uint64_t segments) { return 8 * segments + 64; }
 
 // LoopExtent returns the diagonal of the box of a loop's control points.
 double LoopExtent(const FaceBoundary& boundary, const BoundaryLoop& loop) {
@@ -46,9 +50,9 @@ double LoopEpsilon(const FaceBoundary& boundary, const BoundaryLoop& loop) {
                   kPolylineFraction * LoopExtent(boundary, loop));
 }
 
-// CheckSegmentCount refuses polylines of more than kMaxFaceBoundarySegments
-// segments, from the tessellation's a-priori bound, before any is made.
-absl::Status CheckSegmentCount(const FaceBoundary& boundary) {
+// SegmentBound returns the tessellation's a-priori bound of the segments of
+// every loop's polyline (saturating).
+uint64_t SegmentBound(const FaceBoundary& boundary) {
   uint64_t segments = 0;
   for (const BoundaryLoop& loop : boundary.loops) {
     const double epsilon = LoopEpsilon(boundary, loop);
@@ -59,6 +63,13 @@ absl::Status CheckSegmentCount(const FaceBoundary& boundary) {
       segments = SaturatingSum(segments, BezierCurvePointBound(view, epsilon));
     }
   }
+  return segments;
+}
+
+// CheckSegmentCount refuses polylines of more than kMaxFaceBoundarySegments
+// segments, from the tessellation's a-priori bound, before any is made.
+absl::Status CheckSegmentCount(const FaceBoundary& boundary) {
+  const uint64_t segments = SegmentBound(boundary);
   if (segments <= kMaxFaceBoundarySegments) return absl::OkStatus();
   return ExhaustedFieldError(
       boundary.loops.size() > 1 ? "holes" : "outer",
@@ -196,29 +207,36 @@ void FillGrid(const std::vector<BoundarySegment>& segments, SegmentGrid& grid) {
   SortRows(segments, grid);
 }
 
-// BuildGrid sizes the grid for about two segments per cell, with cells of
-// the domain's aspect, coarser while its entries would exceed the limit.
-void BuildGrid(FaceBoundary* boundary) {
-  const SurfaceDomain& d = boundary->domain;
+// The columns and rows of the finest grid for `segments` segments: about
+// two segments per cell, with cells of the domain's aspect.
+std::pair<int, int> GridSides(const SurfaceDomain& d, uint64_t segments) {
   const double width = d.u_end - d.u_start;
   const double height = d.v_end - d.v_start;
-  const double cells =
-      std::max(1.0, 2.0 * static_cast<double>(boundary->segments.size()));
+  const double cells = std::max(1.0, 2.0 * static_cast<double>(segments));
   const double aspect = width / height;
-  int columns = std::clamp(
+  const int columns = std::clamp(
       static_cast<int>(std::ceil(std::sqrt(cells * aspect))), 1, kMaxGridSide);
-  int rows = std::clamp(static_cast<int>(std::ceil(std::sqrt(cells / aspect))),
-                        1, kMaxGridSide);
+  const int rows = std::clamp(
+      static_cast<int>(std::ceil(std::sqrt(cells / aspect))), 1, kMaxGridSide);
+  return {columns, rows};
+}
+
+// BuildGrid sizes the grid by GridSides, coarser while its entries would
+// exceed GridEntryLimit.
+void BuildGrid(FaceBoundary* boundary) {
+  const SurfaceDomain& d = boundary->domain;
+  auto [columns, rows] = GridSides(d, boundary->segments.size());
+  const uint64_t limit = GridEntryLimit(boundary->segments.size());
   SegmentGrid& grid = boundary->grid;
   while (true) {
     grid.u_start = d.u_start;
     grid.v_start = d.v_start;
     grid.columns = columns;
     grid.rows = rows;
-    grid.cell_u = width / columns;
-    grid.cell_v = height / rows;
+    grid.cell_u = (d.u_end - d.u_start) / columns;
+    grid.cell_v = (d.v_end - d.v_start) / rows;
     if ((columns == 1 && rows == 1) ||
-        GridEntries(grid, boundary->segments) <= kMaxGridEntries) {
+        GridEntries(grid, boundary->segments) <= limit) {
       break;
     }
     columns = std::max(1, columns / 2);
@@ -239,6 +257,33 @@ int SegmentGrid::Row(double v) const {
   const double y = std::floor((v - v_start) / cell_v);
   if (!(y >= 0.0)) return 0;
   return y >= rows ? rows - 1 : static_cast<int>(y);
+}
+
+absl::StatusOr<uint64_t> BoundaryPolylineBytes(const FaceBoundary& boundary) {
+  RETURN_IF_ERROR(CheckSegmentCount(boundary));
+  const uint64_t segments = SegmentBound(boundary);
+  // The largest polyline of one piece, made and dropped in turn: its
+  // parameters and points (TessellateBezierCurve, 2D).
+  uint64_t largest_piece = 0;
+  for (const BoundaryLoop& loop : boundary.loops) {
+    const double epsilon = LoopEpsilon(boundary, loop);
+    for (int k = 0; k < loop.piece_count; ++k) {
+      largest_piece = std::max<uint64_t>(
+          largest_piece,
+          BezierCurvePointBound(
+              boundary.pieces[loop.first_piece + k].bezier.view(), epsilon));
+    }
+  }
+  const auto [columns, rows] = GridSides(boundary.domain, segments);
+  const uint64_t cells =
+      static_cast<uint64_t>(columns) * static_cast<uint64_t>(rows);
+  // Segments grow by push_back: up to twice their count. Each grid entry is
+  // in cell_segments, and at most once in each row order; the fill
+  // counters copy the starts.
+  return 2 * segments * sizeof(BoundarySegment) +
+         3 * GridEntryLimit(segments) * sizeof(uint32_t) +
+         2 * (cells + static_cast<uint64_t>(rows) + 2) * sizeof(uint32_t) +
+         largest_piece * 3 * sizeof(double);
 }
 
 absl::Status BuildBoundaryPolylines(FaceBoundary* boundary,

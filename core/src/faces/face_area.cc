@@ -232,6 +232,27 @@ absl::Status BoundaryIntegrand(const TrimPiece& piece, double a, double b,
 
 }  // namespace
 
+uint64_t FaceAreaWorkBytes(const Surface& surface, uint64_t pieces) {
+  const SurfaceDomain d = DomainOf(surface);
+  const uint64_t u_breaks =
+      Breaks(KnotsOf(surface, true), d.u_start, d.u_end).size();
+  const uint64_t v_breaks =
+      Breaks(KnotsOf(surface, false), d.v_start, d.v_end).size();
+  // A piece is cut where it crosses a knot line: at most once per line in
+  // each direction per monotone stretch, bounded here by every line.
+  const uint64_t parts = pieces * (u_breaks + v_breaks + 1);
+  const uint64_t dimension = static_cast<uint64_t>(DimensionOf(surface));
+  // The inner integrals: one heap of kMaxInnerIntervals at a time, and the
+  // nodes of every u span of an outer interval's 15 nodes with their
+  // partials (value, S_u, S_v) and densities.
+  const uint64_t nodes = (u_breaks + 1) * kKronrodPoints * kKronrodPoints;
+  return 2 * parts * sizeof(internal::PartInterval) +
+         internal::IntegrateAdaptiveBytes(parts + kMaxFaceAreaIntervals) +
+         internal::IntegrateAdaptiveBytes(kMaxInnerIntervals) +
+         2 * nodes * (2 + 3 * dimension + 1) * sizeof(double) +
+         2 * (u_breaks + v_breaks) * sizeof(double);
+}
+
 absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
                                         double tolerance,
                                         const CancellationToken* cancel) {

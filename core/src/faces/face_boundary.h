@@ -119,6 +119,11 @@ absl::Status BuildTrimPieces(const TrimmedSurfaceParts& parts,
 absl::Status BuildBoundaryPolylines(FaceBoundary* boundary,
                                     const CancellationToken* cancel);
 
+// BoundaryPolylineBytes returns an upper bound of the memory
+// BuildBoundaryPolylines adds to a boundary whose pieces are built (the
+// polylines and the grid), or its RESOURCE_EXHAUSTED.
+absl::StatusOr<uint64_t> BoundaryPolylineBytes(const FaceBoundary& boundary);
+
 // CurvePath returns "<loop path>.curves[j]" of a piece's curve.
 std::string CurvePath(const FaceBoundary& boundary, const TrimPiece& piece);
 

@@ -64,6 +64,11 @@ Estimate KronrodInterval(double a, double b, const Estimate* values) {
           .error = std::abs(half) * (std::abs(kronrod - gauss) + inherited)};
 }
 
+uint64_t IntegrateAdaptiveBytes(uint64_t max_intervals) {
+  // One more than the limit may be pushed before the loop stops.
+  return 2 * (max_intervals + 2) * sizeof(Interval);
+}
+
 absl::StatusOr<Estimate> IntegrateAdaptive(KronrodIntegrand integrand,
                                            absl::Span<const PartInterval> parts,
                                            double tolerance,

@@ -5,6 +5,7 @@
 #define FREEFORM_CORE_SRC_FACES_QUADRATURE_H_
 
 #include <cstddef>
+#include <cstdint>
 
 #include "absl/functional/function_ref.h"
 #include "absl/status/statusor.h"
@@ -42,6 +43,10 @@ struct PartInterval {
   double a = 0.0;
   double b = 0.0;
 };
+
+// IntegrateAdaptiveBytes bounds the memory of IntegrateAdaptive with
+// `max_intervals` intervals (its heap, grown by doubling).
+uint64_t IntegrateAdaptiveBytes(uint64_t max_intervals);
 
 // IntegrateAdaptive integrates over every interval of `parts` (each of its
 // own integrand `part`) together, halving the interval of largest error

@@ -84,9 +84,18 @@ bool IsMonotone(const BezierCurveData& b) {
   return true;
 }
 
-// AddMonotoneParts appends the monotone parts of `bezier` to `parts`.
+// AddMonotoneParts appends the monotone parts of `bezier` to `parts`, at
+// most `limit` in all (RESOURCE_EXHAUSTED naming `loop_path` beyond).
 absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
-                              const Part& prototype, std::vector<Part>& parts) {
+                              const Part& prototype, uint64_t limit,
+                              const std::string& loop_path,
+                              std::vector<Part>& parts) {
+  if (parts.size() >= limit) {
+    return ExhaustedFieldError(
+        loop_path, absl::StrCat("the trims would be cut into more than ", limit,
+                              " monotone parts (curves that turn often or "
+                              "have cusps)"));
+  }
   if (depth >= kMaxMonotoneDepth || IsMonotone(bezier)) {
     Part part = prototype;
     part.bezier = bezier;
@@ -105,15 +114,42 @@ absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
   ASSIGN_OR_RETURN(std::vector<BezierCurveData> halves,
                    SplitBezierCurve(bezier.view(), half));
   for (const BezierCurveData& h : halves) {
-    RETURN_IF_ERROR(AddMonotoneParts(h, depth + 1, prototype, parts));
+    RETURN_IF_ERROR(
+        AddMonotoneParts(h, depth + 1, prototype, limit, loop_path, parts));
   }
   return absl::OkStatus();
 }
 
 // MonotoneParts returns every loop's parts in loop order.
+}  // namespace
+
+uint64_t MonotonePartLimit(const FaceBoundary& boundary) {
+  uint64_t limit = 64;
+  for (const TrimPiece& piece : boundary.pieces) {
+    limit += 16 * (piece.bezier.coordinates.size() / 2);
+  }
+  return limit;
+}
+
+uint64_t CrossingCheckBytes(const FaceBoundary& boundary) {
+  size_t largest = 0;
+  for (const TrimPiece& piece : boundary.pieces) {
+    largest = std::max(largest, piece.bezier.coordinates.size() +
+                                    piece.bezier.weights.size());
+  }
+  // Parts grow by push_back (up to twice their count), each with its
+  // control points; the halving keeps a chain of halves per depth.
+  const uint64_t part_bytes = sizeof(Part) + largest * sizeof(double);
+  return 2 * MonotonePartLimit(boundary) * part_bytes +
+         2 * kMaxMonotoneDepth * part_bytes;
+}
+
+namespace {
+
 absl::StatusOr<std::vector<Part>> MonotoneParts(
     const FaceBoundary& boundary, const CancellationToken* cancel) {
   std::vector<Part> parts;
+  const uint64_t limit = MonotonePartLimit(boundary);
   for (size_t l = 0; l < boundary.loops.size(); ++l) {
     const BoundaryLoop& loop = boundary.loops[l];
     if (loop.is_domain) continue;
@@ -123,7 +159,8 @@ absl::StatusOr<std::vector<Part>> MonotoneParts(
       if (piece.degenerate) continue;
       const Part prototype{.piece = loop.first_piece + k,
                            .loop = static_cast<int>(l)};
-      RETURN_IF_ERROR(AddMonotoneParts(piece.bezier, 0, prototype, parts));
+      RETURN_IF_ERROR(AddMonotoneParts(piece.bezier, 0, prototype, limit,
+                                       loop.path, parts));
     }
     for (size_t i = first; i < parts.size(); ++i) {
       parts[i].index = static_cast<int>(i - first);

@@ -4,6 +4,8 @@
 #ifndef FREEFORM_CORE_SRC_FACES_TRIM_VALIDATION_H_
 #define FREEFORM_CORE_SRC_FACES_TRIM_VALIDATION_H_
 
+#include <cstdint>
+
 #include "absl/status/status.h"
 #include "faces/face_boundary.h"
 #include "freeform/core/cancellation.h"
@@ -25,6 +27,12 @@ absl::Status CheckClosure(const FaceBoundary& boundary);
 // out while the curve may not ("<loop>.curves[j]").
 absl::Status CheckInsideDomain(const FaceBoundary& boundary,
                                const CancellationToken* cancel);
+
+// MonotonePartLimit is the most parts CheckCrossings cuts the pieces into
+// (RESOURCE_EXHAUSTED naming the loop beyond): 16 per control point, and
+// 64. CrossingCheckBytes bounds the memory of those parts.
+uint64_t MonotonePartLimit(const FaceBoundary& boundary);
+uint64_t CrossingCheckBytes(const FaceBoundary& boundary);
 
 // CheckCrossings checks that no two pieces cross or touch within the
 // tolerance, except neighbours in a loop at their shared end

@@ -68,6 +68,34 @@ absl::StatusOr<TrimmedSurface> TrimmedSurface::Create(
   return TrimmedSurface(std::move(parts), tolerance, std::move(boundary));
 }
 
+absl::StatusOr<TrimmedSurfaceWork> TrimmedSurfaceWorkBytes(
+    const TrimmedSurfaceParts& parts, double tolerance,
+    const CancellationToken* cancel) {
+  RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
+  if (IsTriangular(parts.surface)) {
+    return TrimmedSurfaceWork{};  // Create refuses it
+  }
+  FaceBoundary boundary;
+  boundary.domain = DomainOf(parts.surface);
+  boundary.tolerance = tolerance;
+  RETURN_IF_ERROR(internal::BuildTrimPieces(parts, &boundary, cancel));
+  // The pieces, as Create keeps them (grown by push_back: up to twice).
+  uint64_t piece_bytes = 0;
+  for (const internal::TrimPiece& piece : boundary.pieces) {
+    piece_bytes += sizeof(internal::TrimPiece) +
+                   (piece.bezier.coordinates.capacity() +
+                    piece.bezier.weights.capacity()) *
+                       sizeof(double);
+  }
+  ASSIGN_OR_RETURN(const uint64_t polyline_bytes,
+                   internal::BoundaryPolylineBytes(boundary));
+  return TrimmedSurfaceWork{
+      .bytes = 2 * piece_bytes +
+               2 * boundary.loops.size() * sizeof(internal::BoundaryLoop) +
+               internal::CrossingCheckBytes(boundary) + polyline_bytes,
+      .pieces = boundary.pieces.size()};
+}
+
 absl::StatusOr<std::vector<PointLocation>> ClassifyPoints(
     const TrimmedSurface& face, absl::Span<const double> uv, double tolerance,
     const CancellationToken* cancel) {
@@ -85,6 +113,41 @@ absl::StatusOr<std::vector<PointLocation>> ClassifyPoints(
         Classify(face.boundary(), {uv[2 * i], uv[2 * i + 1]}, tolerance);
   }
   return locations;
+}
+
+absl::Status ClassifySamples(const TrimmedSurface& face,
+                             const SurfaceSamples& samples, double tolerance,
+                             absl::Span<PointLocation> locations,
+                             const ExecutionContext& context) {
+  if (locations.size() != samples.size()) {
+    return InvalidFieldError("locations", "must hold one per sample");
+  }
+  if (!(std::isfinite(tolerance) && tolerance >= 0.0)) {
+    return InvalidFieldError("tolerance", "must be finite and not negative");
+  }
+  if (samples.grid) {
+    RETURN_IF_ERROR(ValidateFinite(samples.u, "u"));
+    RETURN_IF_ERROR(ValidateFinite(samples.v, "v"));
+  } else {
+    RETURN_IF_ERROR(ValidateFinite(samples.uv, "uv"));
+  }
+  const FaceBoundary& boundary = face.boundary();
+  const size_t v_count = samples.v.size();
+  return ParallelFor(
+      locations.size(), context, [&](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; ++i) {
+          const Point2 p =
+              samples.grid
+                  ? Point2{samples.u[i / v_count], samples.v[i % v_count]}
+                  : Point2{samples.uv[2 * i], samples.uv[2 * i + 1]};
+          locations[i] = Classify(boundary, p, tolerance);
+        }
+      });
+}
+
+void OrientFaceNormals(const TrimmedSurface& face, absl::Span<double> normals) {
+  if (!face.reversed()) return;
+  for (double& x : normals) x = -x;
 }
 
 }  // namespace freeform

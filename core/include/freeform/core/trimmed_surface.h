@@ -39,6 +39,8 @@
 #include "freeform/core/cancellation.h"
 #include "freeform/core/curve.h"
 #include "freeform/core/surface.h"
+#include "freeform/core/surface_output.h"
+#include "freeform/core/thread_pool.h"
 
 namespace freeform {
 
@@ -118,6 +120,26 @@ class TrimmedSurface {
   std::shared_ptr<const internal::FaceBoundary> boundary_;
 };
 
+// The work of creating a face, known before it is made.
+struct TrimmedSurfaceWork {
+  // An upper bound of the memory TrimmedSurface::Create uses and the face
+  // then holds: the loops' Bezier pieces, the monotone parts of the
+  // crossing check, the polylines by the tessellation's a-priori bound and
+  // their grid.
+  uint64_t bytes = 0;
+  // The loops' Bezier pieces (FaceAreaWorkBytes needs them).
+  uint64_t pieces = 0;
+};
+
+// TrimmedSurfaceWorkBytes returns the work of TrimmedSurface::Create(parts,
+// tolerance), cutting the loops into their Bezier pieces as Create does.
+// Fails as Create does on the pieces (a curve not 2D, too many pieces or
+// segments) and with the token's status; the other rules are Create's to
+// check.
+absl::StatusOr<TrimmedSurfaceWork> TrimmedSurfaceWorkBytes(
+    const TrimmedSurfaceParts& parts, double tolerance,
+    const CancellationToken* cancel = nullptr);
+
 // Where a (u, v) point lies with respect to a face.
 enum class PointLocation : uint8_t { kOutside, kInside, kOnBoundary };
 
@@ -151,6 +173,20 @@ absl::StatusOr<std::vector<PointLocation>> ClassifyPoints(
     const TrimmedSurface& face, absl::Span<const double> uv, double tolerance,
     const CancellationToken* cancel = nullptr);
 
+// ClassifySamples is ClassifyPoints for surface samples (pairs or a grid,
+// u-major), writing one location per sample into `locations`, the samples
+// split over the context's pool. Fails with INVALID_ARGUMENT naming
+// "locations" (not one per sample), "uv[i]" / "u[i]" / "v[i]" (not
+// finite) or "tolerance", and with the token's status.
+absl::Status ClassifySamples(const TrimmedSurface& face,
+                             const SurfaceSamples& samples, double tolerance,
+                             absl::Span<PointLocation> locations,
+                             const ExecutionContext& context = {});
+
+// OrientFaceNormals turns unit normals of the face's surface (x, y, z
+// triples) into the face's normals: reversed when the face is.
+void OrientFaceNormals(const TrimmedSurface& face, absl::Span<double> normals);
+
 // The area of a face and a bound of its error.
 struct FaceAreaResult {
   double area = 0.0;
@@ -174,6 +210,11 @@ struct FaceAreaResult {
 // then says how far it got). Fails with INVALID_ARGUMENT "tolerance" and with
 // the token's CANCELLED / DEADLINE_EXCEEDED.
 inline constexpr size_t kMaxFaceAreaIntervals = size_t{1} << 16;
+
+// FaceAreaWorkBytes bounds the working memory of FaceArea on a face of
+// `surface` whose loops have `pieces` Bezier pieces
+// (TrimmedSurfaceWork::pieces).
+uint64_t FaceAreaWorkBytes(const Surface& surface, uint64_t pieces);
 absl::StatusOr<FaceAreaResult> FaceArea(
     const TrimmedSurface& face, double tolerance,
     const CancellationToken* cancel = nullptr);
