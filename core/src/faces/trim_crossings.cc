@@ -126,7 +126,9 @@ absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
 uint64_t MonotonePartLimit(const FaceBoundary& boundary) {
   uint64_t limit = 64;
   for (const TrimPiece& piece : boundary.pieces) {
-    limit += 16 * (piece.bezier.coordinates.size() / 2);
+    // A segment is monotone along its chord; a degenerate piece is skipped.
+    const uint64_t controls = piece.bezier.coordinates.size() / 2;
+    limit += piece.degenerate ? 0 : controls <= 2 ? 1 : 16 * controls;
   }
   return limit;
 }
@@ -138,8 +140,10 @@ uint64_t CrossingCheckBytes(const FaceBoundary& boundary) {
                                     piece.bezier.weights.size());
   }
   // Parts grow by push_back (up to twice their count), each with its
-  // control points; the halving keeps a chain of halves per depth.
-  const uint64_t part_bytes = sizeof(Part) + largest * sizeof(double);
+  // control points and weights in blocks of their own (the allocator's
+  // header and rounding: 16 bytes each); the halving keeps a chain of
+  // halves per depth.
+  const uint64_t part_bytes = sizeof(Part) + largest * sizeof(double) + 32;
   return 2 * MonotonePartLimit(boundary) * part_bytes +
          2 * kMaxMonotoneDepth * part_bytes;
 }
