@@ -108,6 +108,17 @@ absl::Status AddLoopSegments(int loop_index, FaceBoundary* boundary,
   }
   loop.segment_count =
       static_cast<uint32_t>(boundary->segments.size()) - loop.first_segment;
+  loop.lo = {INFINITY, INFINITY};
+  loop.hi = {-INFINITY, -INFINITY};
+  for (uint32_t k = 0; k < loop.segment_count; ++k) {
+    const BoundarySegment& s = boundary->segments[loop.first_segment + k];
+    for (int j = 0; j < 2; ++j) {
+      loop.lo[j] =
+          std::min({loop.lo[j], s.a[j] - loop.epsilon, s.b[j] - loop.epsilon});
+      loop.hi[j] =
+          std::max({loop.hi[j], s.a[j] + loop.epsilon, s.b[j] + loop.epsilon});
+    }
+  }
   return absl::OkStatus();
 }
 
@@ -134,7 +145,8 @@ uint64_t GridEntries(const SegmentGrid& grid,
   return entries;
 }
 
-// SortRows orders every row both ways (SegmentGrid).
+// SortRows orders every row both ways, grouped by loop, and lists its
+// loops' runs (SegmentGrid).
 void SortRows(const std::vector<BoundarySegment>& segments, SegmentGrid& grid) {
   const auto largest_u = [&segments](uint32_t i) {
     return std::max(segments[i].a[0], segments[i].b[0]);
@@ -143,15 +155,35 @@ void SortRows(const std::vector<BoundarySegment>& segments, SegmentGrid& grid) {
     return std::min(segments[i].a[0], segments[i].b[0]);
   };
   grid.leftward = grid.rightward;
+  grid.run_start.assign(1, 0);
+  grid.runs.clear();
   for (int r = 0; r < grid.rows; ++r) {
     const auto from = static_cast<ptrdiff_t>(grid.row_start[r]);
     const auto to = static_cast<ptrdiff_t>(grid.row_start[r + 1]);
-    std::sort(
-        grid.rightward.begin() + from, grid.rightward.begin() + to,
-        [&](uint32_t x, uint32_t y) { return largest_u(x) > largest_u(y); });
-    std::sort(
-        grid.leftward.begin() + from, grid.leftward.begin() + to,
-        [&](uint32_t x, uint32_t y) { return smallest_u(x) < smallest_u(y); });
+    std::sort(grid.rightward.begin() + from, grid.rightward.begin() + to,
+              [&](uint32_t x, uint32_t y) {
+                if (segments[x].loop != segments[y].loop) {
+                  return segments[x].loop < segments[y].loop;
+                }
+                return largest_u(x) > largest_u(y);
+              });
+    std::sort(grid.leftward.begin() + from, grid.leftward.begin() + to,
+              [&](uint32_t x, uint32_t y) {
+                if (segments[x].loop != segments[y].loop) {
+                  return segments[x].loop < segments[y].loop;
+                }
+                return smallest_u(x) < smallest_u(y);
+              });
+    for (auto k = from; k < to; ++k) {
+      const int32_t loop = segments[grid.rightward[k]].loop;
+      if (k == from || grid.runs.back().loop != loop) {
+        grid.runs.push_back({.loop = loop,
+                             .begin = static_cast<uint32_t>(k),
+                             .end = static_cast<uint32_t>(k)});
+      }
+      grid.runs.back().end = static_cast<uint32_t>(k + 1);
+    }
+    grid.run_start.push_back(static_cast<uint32_t>(grid.runs.size()));
   }
 }
 

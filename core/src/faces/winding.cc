@@ -180,20 +180,29 @@ WindingAt FaceWinding(const FaceBoundary& boundary, const Point2& p,
   const int row = grid.Row(p[1]);
   const std::vector<uint32_t>& order =
       rightward ? grid.rightward : grid.leftward;
-  for (uint32_t k = grid.row_start[row]; k < grid.row_start[row + 1]; ++k) {
-    const uint32_t index = order[k];
-    const BoundarySegment& s = boundary.segments[index];
-    // The rest of the row lies wholly behind the ray's start.
-    if (rightward ? std::max(s.a[0], s.b[0]) < p[0]
-                  : std::min(s.a[0], s.b[0]) > p[0]) {
-      break;
-    }
-    if (s.loop == exclude_loop) continue;
-    if (!near.empty() &&
-        std::find(near.begin(), near.end(), index) != near.end()) {
+  for (uint32_t r = grid.run_start[row]; r < grid.run_start[row + 1]; ++r) {
+    const SegmentGrid::Run& run = grid.runs[r];
+    // A loop whose box does not hold p winds 0 times about it.
+    const BoundaryLoop& loop = boundary.loops[run.loop];
+    if (run.loop == exclude_loop || p[0] < loop.lo[0] - tolerance ||
+        p[0] > loop.hi[0] + tolerance || p[1] < loop.lo[1] - tolerance ||
+        p[1] > loop.hi[1] + tolerance) {
       continue;
     }
-    counter.AddChord(s);
+    for (uint32_t k = run.begin; k < run.end; ++k) {
+      const uint32_t index = order[k];
+      const BoundarySegment& s = boundary.segments[index];
+      // The rest of the run lies wholly behind the ray's start.
+      if (rightward ? std::max(s.a[0], s.b[0]) < p[0]
+                    : std::min(s.a[0], s.b[0]) > p[0]) {
+        break;
+      }
+      if (!near.empty() &&
+          std::find(near.begin(), near.end(), index) != near.end()) {
+        continue;
+      }
+      counter.AddChord(s);
+    }
   }
   for (const uint32_t index : near) {
     counter.AddArc(boundary.segments[index]);
