@@ -407,5 +407,37 @@ TEST(TrimmedSurface, ClassificationAgreesWithBruteForceRayCasting) {
   EXPECT_GT(compared, 3000);
 }
 
+TEST(TrimmedSurface, RaysThroughVerticesCountOnce) {
+  // An octagon, and points on the horizontal lines through its vertices
+  // (the winding ray runs through a vertex of the polyline there).
+  const SurfaceData plane = BilinearPlane();
+  const Surface surface = *BezierSurface::Create(plane.bezier_view());
+  const BSplineCurveData octagon =
+      trim_testing::RegularPolygon(8, 0.4, 0.5, 0.5);
+  absl::StatusOr<TrimmedSurface> face = MakeFace(surface, LoopOf(octagon), {});
+  ASSERT_TRUE(face.ok()) << face.status();
+  for (int k = 0; k < 8; ++k) {
+    const double v = trim_testing::PolygonVertex(8, 0.4, 0.5, 0.5, k)[1];
+    for (double u = 0.01; u < 1.0; u += 0.02) {
+      // Inside a convex polygon: left of every edge.
+      double nearest = INFINITY;
+      for (int e = 0; e < 8; ++e) {
+        const std::array<double, 2> a =
+            trim_testing::PolygonVertex(8, 0.4, 0.5, 0.5, e);
+        const std::array<double, 2> b =
+            trim_testing::PolygonVertex(8, 0.4, 0.5, 0.5, e + 1);
+        nearest = std::min(
+            nearest,
+            ((b[0] - a[0]) * (v - a[1]) - (b[1] - a[1]) * (u - a[0])) /
+                std::hypot(b[0] - a[0], b[1] - a[1]));
+      }
+      if (std::abs(nearest) < 1e-9) continue;
+      EXPECT_EQ(Where(*face, u, v, 1e-12),
+                nearest > 0 ? PointLocation::kInside : PointLocation::kOutside)
+          << u << ", " << v;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace freeform
