@@ -39,6 +39,12 @@ absl::Status ValidateSurfaceSamples(const SurfaceSamples& samples,
   }
   for (size_t i = 0; i < samples.uv.size(); ++i) {
     const bool is_u = i % 2 == 0;
+    const double value = samples.uv[i];
+    // The common case without building the field's name.
+    if (value >= (is_u ? u_start : v_start) &&
+        value <= (is_u ? u_end : v_end)) {
+      continue;
+    }
     if (absl::Status status =
             ValidateInRange(samples.uv.subspan(i, 1), is_u ? u_start : v_start,
                             is_u ? u_end : v_end, IndexedField("uv", i));
