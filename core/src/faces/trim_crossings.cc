@@ -301,17 +301,18 @@ absl::StatusOr<std::optional<Point2>> CurveContact(
 
 absl::Status CrossingError(const FaceBoundary& boundary, const Part& a,
                            const Part& b, const Point2& at) {
-  const Part& later = a.piece > b.piece ? a : b;
-  const Part& earlier = a.piece > b.piece ? b : a;
-  const std::string other = CurvePath(boundary, boundary.pieces[earlier.piece]);
-  const std::string what =
-      later.piece == earlier.piece ? "crosses itself" : "crosses or touches";
+  // The later curve in the face's order is named; the message names the
+  // other.
+  const std::string later =
+      CurvePath(boundary, boundary.pieces[std::max(a.piece, b.piece)]);
+  const std::string earlier =
+      CurvePath(boundary, boundary.pieces[std::min(a.piece, b.piece)]);
+  const std::string what = later == earlier
+                               ? std::string("crosses itself")
+                               : absl::StrCat("crosses or touches ", earlier);
   return InvalidFieldError(
-      CurvePath(boundary, boundary.pieces[later.piece]),
-      absl::StrCat(what, later.piece == earlier.piece ? "" : " ",
-                   later.piece == earlier.piece ? "" : other,
-                   " near (u, v) = (", at[0], ", ", at[1],
-                   "): loops must not cross themselves or each other"));
+      later, absl::StrCat(what, " near (u, v) = (", at[0], ", ", at[1],
+                          "): loops must not cross themselves or each other"));
 }
 
 absl::Status CheckPair(const FaceBoundary& boundary, const Part& a,

@@ -73,7 +73,7 @@ inline constexpr uint64_t kMaxFaceBoundarySegments = uint64_t{1} << 24;
 class TrimmedSurface {
  public:
   // Create validates `parts` with `tolerance`, the closure and geometry
-  // tolerance in (u, v) (positive, finite; at least 2^-48 of the trims'
+  // tolerance in (u, v) (positive, finite; at least 2^-46 of the trims'
   // largest coordinate), and precomputes the loops' polylines and grid.
   // Fails with INVALID_ARGUMENT naming:
   //   "tolerance" (not positive and finite, or too small to resolve);
