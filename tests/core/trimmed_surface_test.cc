@@ -428,8 +428,8 @@ TEST(TrimmedSurface, HolesOfHermiteAndLagrangeCurvesAreMeasured) {
   std::vector<double> points, tangents;
   for (int k = 0; k <= 4; ++k) {
     const double theta = -0.5 * kPi * k;
-    points.insert(points.end(), {0.3 + 0.2 * std::cos(theta),
-                                 0.3 + 0.2 * std::sin(theta)});
+    points.insert(points.end(),
+                  {0.3 + 0.2 * std::cos(theta), 0.3 + 0.2 * std::sin(theta)});
     tangents.insert(tangents.end(), {0.1 * kPi * std::sin(theta),
                                      -0.1 * kPi * std::cos(theta)});
   }
@@ -440,18 +440,18 @@ TEST(TrimmedSurface, HolesOfHermiteAndLagrangeCurvesAreMeasured) {
   std::vector<double> upper, lower;
   for (int k = 0; k <= 4; ++k) {
     const double a = kPi - 0.25 * kPi * k;  // pi down to 0: the upper half
-    upper.insert(upper.end(), {0.7 + 0.15 * std::cos(a),
-                               0.7 + 0.1 * std::sin(a)});
+    upper.insert(upper.end(),
+                 {0.7 + 0.15 * std::cos(a), 0.7 + 0.1 * std::sin(a)});
     const double b = -0.25 * kPi * k;  // 0 down to -pi: the lower half
-    lower.insert(lower.end(), {0.7 + 0.15 * std::cos(b),
-                               0.7 + 0.1 * std::sin(b)});
+    lower.insert(lower.end(),
+                 {0.7 + 0.15 * std::cos(b), 0.7 + 0.1 * std::sin(b)});
   }
-  const Curve first = *LagrangeCurve::Create({.points = {2, upper}, .nodes = {}});
+  const Curve first =
+      *LagrangeCurve::Create({.points = {2, upper}, .nodes = {}});
   const Curve second =
       *LagrangeCurve::Create({.points = {2, lower}, .nodes = {}});
-  absl::StatusOr<TrimmedSurface> face =
-      MakeFace(surface, std::nullopt,
-               {TrimLoop{{hermite}}, TrimLoop{{first, second}}});
+  absl::StatusOr<TrimmedSurface> face = MakeFace(
+      surface, std::nullopt, {TrimLoop{{hermite}}, TrimLoop{{first, second}}});
   ASSERT_TRUE(face.ok()) << face.status();
   absl::StatusOr<FaceAreaResult> area = FaceArea(*face, 1e-13);
   ASSERT_TRUE(area.ok()) << area.status();
@@ -464,6 +464,39 @@ TEST(TrimmedSurface, HolesOfHermiteAndLagrangeCurvesAreMeasured) {
   EXPECT_EQ(Where(*face, 0.3, 0.3, 1e-9), PointLocation::kOutside);
   EXPECT_EQ(Where(*face, 0.7, 0.7, 1e-9), PointLocation::kOutside);
   EXPECT_EQ(Where(*face, 0.7, 0.3, 1e-9), PointLocation::kInside);
+}
+
+TEST(TrimmedSurface, ASingleClosedBezierCurveIsALoop) {
+  const SurfaceData plane = BilinearPlane();
+  const Surface surface = *BezierSurface::Create(plane.bezier_view());
+  // A teardrop: a cubic from (0.5, 0.3) back to itself, clockwise.
+  const BezierCurveData drop{
+      .dimension = 2,
+      .coordinates = {0.5, 0.3, 0.1, 0.8, 0.9, 0.8, 0.5, 0.3},
+      .weights = {}};
+  const Curve teardrop = *BezierCurve::Create(drop.view());
+  absl::StatusOr<TrimmedSurface> face =
+      MakeFace(surface, std::nullopt, {TrimLoop{{teardrop}}});
+  ASSERT_TRUE(face.ok()) << face.status();
+  absl::StatusOr<FaceAreaResult> area = FaceArea(*face, 1e-13);
+  ASSERT_TRUE(area.ok()) << area.status();
+  EXPECT_NEAR(area->area, 1.0 + ShoelaceArea(teardrop, 200000), 1e-10);
+  // A cubic whose control polygon crosses itself makes a curve that does
+  // too (the loop of (0.2, 0.2), (1.2, 0.8), (-0.2, 0.8), (0.8, 0.2)),
+  // closed by a segment.
+  const BezierCurveData looped{
+      .dimension = 2,
+      .coordinates = {0.2, 0.2, 1.2, 0.8, -0.2, 0.8, 0.8, 0.2},
+      .weights = {}};
+  const BezierCurveData closing{
+      .dimension = 2, .coordinates = {0.8, 0.2, 0.2, 0.2}, .weights = {}};
+  const TrimLoop figure{{*BezierCurve::Create(looped.view()),
+                         *BezierCurve::Create(closing.view())}};
+  absl::StatusOr<TrimmedSurface> crossing = MakeFace(surface, figure, {});
+  EXPECT_EQ(PathOf(crossing), "outer.curves[0]");
+  EXPECT_NE(crossing.status().message().find("crosses itself"),
+            std::string::npos)
+      << crossing.status();
 }
 
 TEST(TrimmedSurface, RaysThroughVerticesCountOnce) {
@@ -486,9 +519,8 @@ TEST(TrimmedSurface, RaysThroughVerticesCountOnce) {
         const std::array<double, 2> b =
             trim_testing::PolygonVertex(8, 0.4, 0.5, 0.5, e + 1);
         nearest = std::min(
-            nearest,
-            ((b[0] - a[0]) * (v - a[1]) - (b[1] - a[1]) * (u - a[0])) /
-                std::hypot(b[0] - a[0], b[1] - a[1]));
+            nearest, ((b[0] - a[0]) * (v - a[1]) - (b[1] - a[1]) * (u - a[0])) /
+                         std::hypot(b[0] - a[0], b[1] - a[1]));
       }
       if (std::abs(nearest) < 1e-9) continue;
       EXPECT_EQ(Where(*face, u, v, 1e-12),
