@@ -27,18 +27,12 @@ constexpr uint64_t kMaxGridEntries = uint64_t{1} << 27;
 
 // LoopExtent returns the diagonal of the box of a loop's control points.
 double LoopExtent(const FaceBoundary& boundary, const BoundaryLoop& loop) {
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  Box2 box;
   for (int k = 0; k < loop.piece_count; ++k) {
-    const std::vector<double>& c =
-        boundary.pieces[loop.first_piece + k].bezier.coordinates;
-    for (size_t i = 0; i + 1 < c.size(); i += 2) {
-      for (int j = 0; j < 2; ++j) {
-        lo[j] = std::min(lo[j], c[i + j]);
-        hi[j] = std::max(hi[j], c[i + j]);
-      }
-    }
+    box.AddBox(
+        ControlBox(boundary.pieces[loop.first_piece + k].bezier.coordinates));
   }
-  return std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
+  return box.Diagonal();
 }
 
 double LoopEpsilon(const FaceBoundary& boundary, const BoundaryLoop& loop) {
@@ -108,17 +102,15 @@ absl::Status AddLoopSegments(int loop_index, FaceBoundary* boundary,
   }
   loop.segment_count =
       static_cast<uint32_t>(boundary->segments.size()) - loop.first_segment;
-  loop.lo = {INFINITY, INFINITY};
-  loop.hi = {-INFINITY, -INFINITY};
+  loop.box = Box2{};
   for (uint32_t k = 0; k < loop.segment_count; ++k) {
     const BoundarySegment& s = boundary->segments[loop.first_segment + k];
-    for (int j = 0; j < 2; ++j) {
-      loop.lo[j] =
-          std::min({loop.lo[j], s.a[j] - loop.epsilon, s.b[j] - loop.epsilon});
-      loop.hi[j] =
-          std::max({loop.hi[j], s.a[j] + loop.epsilon, s.b[j] + loop.epsilon});
-    }
+    loop.box.Add(s.a);
+    loop.box.Add(s.b);
   }
+  const double e = loop.epsilon;
+  loop.box = {.lo = {loop.box.lo[0] - e, loop.box.lo[1] - e},
+              .hi = {loop.box.hi[0] + e, loop.box.hi[1] + e}};
   return absl::OkStatus();
 }
 

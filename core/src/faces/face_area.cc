@@ -252,7 +252,7 @@ absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
   std::vector<size_t> bases(boundary.loops.size(), 0);
   for (size_t l = 0; l < bases.size(); ++l) {
     while (bases[l] + 2 < u_breaks.size() &&
-           u_breaks[bases[l] + 1] <= boundary.loops[l].lo[0]) {
+           u_breaks[bases[l] + 1] <= boundary.loops[l].box.lo[0]) {
       ++bases[l];
     }
   }

@@ -53,8 +53,7 @@ struct BoundaryLoop {
   double epsilon = 0.0;
   // The box of the polyline widened by epsilon: it holds the loop, whose
   // winding number about a point outside it is 0.
-  Point2 lo{};
-  Point2 hi{};
+  Box2 box;
 };
 
 // A chord of a loop's polyline. A chord of piece `piece` joins its points

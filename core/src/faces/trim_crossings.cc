@@ -52,8 +52,7 @@ struct Part {
   // Its index among its loop's parts, and the loop's part count.
   int index = 0;
   int loop_parts = 0;
-  Point2 lo{};
-  Point2 hi{};
+  Box2 box;
 };
 
 Point2 ControlPoint(const BezierCurveData& b, size_t i) {
@@ -90,14 +89,7 @@ absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
   if (depth >= kMaxMonotoneDepth || IsMonotone(bezier)) {
     Part part = prototype;
     part.bezier = bezier;
-    part.lo = {INFINITY, INFINITY};
-    part.hi = {-INFINITY, -INFINITY};
-    for (size_t i = 0; i < ControlCount(bezier); ++i) {
-      for (int j = 0; j < 2; ++j) {
-        part.lo[j] = std::min(part.lo[j], ControlPoint(bezier, i)[j]);
-        part.hi[j] = std::max(part.hi[j], ControlPoint(bezier, i)[j]);
-      }
-    }
+    part.box = ControlBox(bezier.coordinates);
     parts.push_back(std::move(part));
     return absl::OkStatus();
   }
@@ -342,7 +334,7 @@ absl::Status CheckCrossings(const FaceBoundary& boundary,
   std::vector<size_t> order(parts.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&parts](size_t x, size_t y) {
-    return parts[x].lo[0] < parts[y].lo[0];
+    return parts[x].box.lo[0] < parts[y].box.lo[0];
   });
   const double tolerance = boundary.tolerance;
   CancellationPoll poll(cancel);
@@ -350,8 +342,9 @@ absl::Status CheckCrossings(const FaceBoundary& boundary,
     const Part& a = parts[order[i]];
     for (size_t k = i + 1; k < order.size(); ++k) {
       const Part& b = parts[order[k]];
-      if (b.lo[0] > a.hi[0] + tolerance) break;
-      if (b.lo[1] > a.hi[1] + tolerance || a.lo[1] > b.hi[1] + tolerance) {
+      if (b.box.lo[0] > a.box.hi[0] + tolerance) break;
+      if (b.box.lo[1] > a.box.hi[1] + tolerance ||
+          a.box.lo[1] > b.box.hi[1] + tolerance) {
         continue;
       }
       RETURN_IF_ERROR(CheckPair(boundary, a, b, cancel));

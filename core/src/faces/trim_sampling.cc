@@ -172,10 +172,12 @@ void AddNetBounds(const SurfaceData& net, double du, double dv,
   }
 }
 
-// RegionBounds bounds the surface on the pieces meeting the box
-// [lo, hi] (see the file comment).
-SurfaceBounds RegionBounds(const SurfacePieces& pieces, const double lo[2],
-                           const double hi[2]) {
+// RegionBounds bounds the surface on the pieces meeting `box` (see the
+// file comment).
+SurfaceBounds RegionBounds(const SurfacePieces& pieces,
+                           const internal::Box2& box) {
+  const internal::Point2& lo = box.lo;
+  const internal::Point2& hi = box.hi;
   std::vector<size_t> meeting;
   const size_t count = pieces.decomposition.pieces.patches.size();
   for (size_t index = 0; index < count; ++index) {
@@ -265,14 +267,8 @@ double ChordDeviationBound(const BezierCurveData& part,
                            const SurfacePieces& pieces) {
   const TrimBounds trim = TrimPartBounds(part);
   if (!trim.finite) return INFINITY;
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  for (size_t i = 0; i + 1 < part.coordinates.size(); i += 2) {
-    for (int j = 0; j < 2; ++j) {
-      lo[j] = std::min(lo[j], part.coordinates[i + j]);
-      hi[j] = std::max(hi[j], part.coordinates[i + j]);
-    }
-  }
-  const SurfaceBounds s = RegionBounds(pieces, lo, hi);
+  const SurfaceBounds s =
+      RegionBounds(pieces, internal::ControlBox(part.coordinates));
   if (!s.finite) return INFINITY;
   const std::array<double, 2> h = Along(s.numerator, trim);
   const std::array<double, 2> w = Along(s.weight, trim);

@@ -184,9 +184,10 @@ WindingAt FaceWinding(const FaceBoundary& boundary, const Point2& p,
     const SegmentGrid::Run& run = grid.runs[r];
     // A loop whose box does not hold p winds 0 times about it.
     const BoundaryLoop& loop = boundary.loops[run.loop];
-    if (run.loop == exclude_loop || p[0] < loop.lo[0] - tolerance ||
-        p[0] > loop.hi[0] + tolerance || p[1] < loop.lo[1] - tolerance ||
-        p[1] > loop.hi[1] + tolerance) {
+    if (run.loop == exclude_loop || p[0] < loop.box.lo[0] - tolerance ||
+        p[0] > loop.box.hi[0] + tolerance ||
+        p[1] < loop.box.lo[1] - tolerance ||
+        p[1] > loop.box.hi[1] + tolerance) {
       continue;
     }
     for (uint32_t k = run.begin; k < run.end; ++k) {
