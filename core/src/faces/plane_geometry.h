@@ -53,6 +53,13 @@ inline Box2 ControlBox(absl::Span<const double> coordinates) {
   return box;
 }
 
+// HasHull reports whether a (rational) piece with these weights lies in the
+// hull of its control points: every weight positive (none: polynomial).
+inline bool HasHull(absl::Span<const double> weights) {
+  return std::all_of(weights.begin(), weights.end(),
+                     [](double w) { return w > 0.0; });
+}
+
 // Cross returns (b - a) x (p - a): positive when p lies left of a -> b.
 inline double Cross(const Point2& a, const Point2& b, const Point2& p) {
   return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);

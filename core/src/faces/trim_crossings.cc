@@ -66,9 +66,7 @@ size_t ControlCount(const BezierCurveData& b) {
 // IsMonotone reports whether every control polygon edge has a positive dot
 // product with the chord (a rational part needs positive weights).
 bool IsMonotone(const BezierCurveData& b) {
-  for (const double w : b.weights) {
-    if (!(w > 0.0)) return false;
-  }
+  if (!HasHull(b.weights)) return false;
   const size_t n = ControlCount(b);
   const Point2 first = ControlPoint(b, 0);
   const Point2 last = ControlPoint(b, n - 1);
@@ -148,18 +146,11 @@ bool NearJunction(const Point2& p, const std::vector<Point2>& junctions,
   return false;
 }
 
-bool PositiveWeights(const BezierCurveData& b) {
-  for (const double w : b.weights) {
-    if (!(w > 0.0)) return false;
-  }
-  return true;
-}
-
 // SeparatedAcrossChords reports whether the control points of the two
 // parts (their hulls hold them) project onto the normal of either's chord
 // in intervals more than `tolerance` apart.
 bool SeparatedAcrossChords(const Part& a, const Part& b, double tolerance) {
-  if (!PositiveWeights(a.bezier) || !PositiveWeights(b.bezier)) return false;
+  if (!HasHull(a.bezier.weights) || !HasHull(b.bezier.weights)) return false;
   for (const Part* along : {&a, &b}) {
     const Point2 p0 = ControlPoint(along->bezier, 0);
     const Point2 p1 =
@@ -186,7 +177,7 @@ bool SeparatedAcrossChords(const Part& a, const Part& b, double tolerance) {
 // starts, and `after` lie in the cones of kJunctionCone about the tangent
 // there (so every contact is within kJunctionRadius tolerances of it).
 bool MeetOnlyAtJunction(const Part& before, const Part& after) {
-  if (!PositiveWeights(before.bezier) || !PositiveWeights(after.bezier)) {
+  if (!HasHull(before.bezier.weights) || !HasHull(after.bezier.weights)) {
     return false;
   }
   const size_t n = ControlCount(before.bezier);
