@@ -39,6 +39,7 @@
 #include "freeform/core/cancellation.h"
 #include "freeform/core/curve.h"
 #include "freeform/core/surface.h"
+#include "freeform/core/thread_pool.h"
 
 namespace freeform {
 
@@ -144,12 +145,13 @@ enum class PointLocation : uint8_t { kOutside, kInside, kOnBoundary };
 //
 // Fast for many points: the segments are found through a uniform grid of
 // the parameter rectangle (rows for the winding ray, cells for the
-// distance). Fails with INVALID_ARGUMENT naming "uv" (odd count),
-// "uv[i]" (not finite) or "tolerance" (negative or not finite), and with
-// the token's CANCELLED / DEADLINE_EXCEEDED (polled between chunks).
+// distance). The points run in chunks of at most 1024 on the context's
+// pool. Fails with INVALID_ARGUMENT naming "uv" (odd count), "uv[i]" (not
+// finite) or "tolerance" (negative or not finite), and with the context
+// token's CANCELLED / DEADLINE_EXCEEDED (checked before each chunk).
 absl::StatusOr<std::vector<PointLocation>> ClassifyPoints(
     const TrimmedSurface& face, absl::Span<const double> uv, double tolerance,
-    const CancellationToken* cancel = nullptr);
+    const ExecutionContext& context = {});
 
 // The area of a face and a bound of its error.
 struct FaceAreaResult {
