@@ -85,6 +85,12 @@ bool IsMonotone(const BezierCurveData& b) {
 absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
                               const Part& prototype, std::vector<Part>& parts) {
   if (depth >= kMaxMonotoneDepth || IsMonotone(bezier)) {
+    if (parts.size() >= kMaxFaceBoundarySegments) {
+      return ExhaustedFieldError(
+          "holes", absl::StrCat("the loops need more than ",
+                                kMaxFaceBoundarySegments,
+                                " monotone parts for the crossing check"));
+    }
     Part part = prototype;
     part.bezier = bezier;
     part.box = ControlBox(bezier.coordinates);
