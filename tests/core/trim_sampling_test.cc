@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -95,6 +96,9 @@ TEST(SampleTrimCurve, ACircleOnAPlaneStaysWithinItsSagitta) {
     // bound from control points costs a few times more.
     const double fewest = 2 * kPi / (2 * std::acos(1 - tolerance / r));
     EXPECT_LE(samples->parameters.size(), 8 * fewest + 8) << tolerance;
+    std::cout << "tolerance " << tolerance << ": "
+              << samples->parameters.size() - 1 << " chords, fewest "
+              << std::ceil(fewest) << "\n";
   }
 }
 
