@@ -91,7 +91,10 @@ class TrimmedSurface {
   //   "outer" (signed area not positive: not counter-clockwise), "holes[i]"
   //     (signed area not negative, outside the outer loop or the domain, or
   //     inside another hole).
-  // Curves of zero length are allowed and skipped. Fails with
+  // Curves of zero length (control points within the tolerance of each
+  // other) are allowed and skipped; trims may touch or run along the
+  // parameter rectangle's edges (without an outer loop, a hole may touch
+  // it). Fails with
   // RESOURCE_EXHAUSTED when the loops exceed kMaxFaceTrimPieces or
   // kMaxFaceBoundarySegments, and with the token's CANCELLED /
   // DEADLINE_EXCEEDED.
