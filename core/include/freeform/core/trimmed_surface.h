@@ -94,10 +94,9 @@ class TrimmedSurface {
   // Curves of zero length (control points within the tolerance of each
   // other) are allowed and skipped; trims may touch or run along the
   // parameter rectangle's edges (without an outer loop, a hole may touch
-  // it). Fails with
-  // RESOURCE_EXHAUSTED when the loops exceed kMaxFaceTrimPieces or
-  // kMaxFaceBoundarySegments, and with the token's CANCELLED /
-  // DEADLINE_EXCEEDED.
+  // it). Fails with RESOURCE_EXHAUSTED when the loops exceed
+  // kMaxFaceTrimPieces or kMaxFaceBoundarySegments, and with the token's
+  // CANCELLED / DEADLINE_EXCEEDED.
   static absl::StatusOr<TrimmedSurface> Create(
       TrimmedSurfaceParts parts, double tolerance,
       const CancellationToken* cancel = nullptr);
