@@ -87,9 +87,9 @@ absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
   if (depth >= kMaxMonotoneDepth || IsMonotone(bezier)) {
     if (parts.size() >= kMaxFaceBoundarySegments) {
       return ExhaustedFieldError(
-          "holes", absl::StrCat("the loops need more than ",
-                                kMaxFaceBoundarySegments,
-                                " monotone parts for the crossing check"));
+          "holes",
+          absl::StrCat("the loops need more than ", kMaxFaceBoundarySegments,
+                       " monotone parts for the crossing check"));
     }
     Part part = prototype;
     part.bezier = bezier;

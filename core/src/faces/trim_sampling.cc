@@ -29,6 +29,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "faces/face_boundary.h"
+#include "faces/surface_pieces.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
@@ -40,6 +41,7 @@ namespace freeform {
 namespace {
 
 using internal::FaceBoundary;
+using internal::SurfacePieces;
 using internal::TrimPiece;
 
 // A part is halved at most this often.
@@ -120,19 +122,6 @@ TrimBounds TrimPartBounds(const BezierCurveData& part) {
   }
   return bounds;
 }
-
-// The Bezier pieces of the surface with their span rectangles.
-struct SurfacePieces {
-  SurfaceDecomposition decomposition;
-
-  size_t rows() const { return decomposition.pieces.breakpoints_v.size() - 1; }
-  std::array<double, 4> Rectangle(size_t index) const {
-    const auto& p = decomposition.pieces;
-    const size_t i = index / rows(), j = index % rows();
-    return {p.breakpoints_u[i], p.breakpoints_u[i + 1], p.breakpoints_v[j],
-            p.breakpoints_v[j + 1]};
-  }
-};
 
 // AddNetBounds raises `field` by the difference bounds of the scalar net
 // value(k, l) of a piece of degrees (p, q) over a du x dv rectangle.

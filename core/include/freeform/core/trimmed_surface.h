@@ -36,6 +36,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "freeform/core/bounding_box.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/curve.h"
 #include "freeform/core/surface.h"
@@ -214,6 +215,23 @@ struct TrimSamples {
 absl::StatusOr<TrimSamples> SampleTrimCurve(
     const TrimmedSurface& face, int hole, int curve, double tolerance,
     size_t max_samples = size_t{1} << 20,
+    const CancellationToken* cancel = nullptr);
+
+// FaceBoundingBox returns the tight axis-aligned box of the face's points
+// S(u, v), (u, v) in the trimmed domain: for each side, branch and bound
+// over the surface's Bezier parts (bounding_box.h's hull bounds), parts
+// whose (u, v) rectangle lies outside the face dropped (classified as
+// ClassifyPoints does, with a reach of half the rectangle's diagonal), the
+// values at the trims' polyline vertices and at the corners of parts on the
+// face as lower bounds, until the largest upper bound is within `tolerance`
+// of the best lower bound (or after kMaxBoxHalvings halvings). Every side
+// is widened by 2^-44 of the surface's largest control coordinate for
+// rounding: the box holds every point of the face, and a side is within
+// `tolerance` plus that margin of a point of the face when the search
+// ends within its budget. Fails with INVALID_ARGUMENT "tolerance" (not
+// positive and finite) and with the token's CANCELLED / DEADLINE_EXCEEDED.
+absl::StatusOr<BoundingBox> FaceBoundingBox(
+    const TrimmedSurface& face, double tolerance,
     const CancellationToken* cancel = nullptr);
 
 }  // namespace freeform
