@@ -53,11 +53,16 @@ struct BoxPart {
   bool operator<(const BoxPart& other) const { return upper < other.upper; }
 };
 
-// Locate classifies a rectangle against the face.
+// Locate classifies a rectangle against the face: crossed when a trim may
+// come within half its diagonal (times 1.02, above the classification's
+// certainty of 1 - 1/256) of its centre. Far from every chord the ray
+// alone decides; near one, the arcs are refined (FaceWinding).
 Where Locate(const FaceBoundary& boundary, const std::array<double, 4>& r) {
   const Point2 centre{0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3])};
   const double reach = 0.51 * std::hypot(r[1] - r[0], r[3] - r[2]);
-  const internal::WindingAt at = internal::FaceWinding(boundary, centre, reach);
+  const bool near = internal::TrimMayBeWithin(boundary, centre, reach);
+  const internal::WindingAt at =
+      internal::FaceWinding(boundary, centre, near ? reach : 0.0);
   if (at.on_boundary) return Where::kCrossed;
   return at.winding > 0 ? Where::kInside : Where::kOutside;
 }

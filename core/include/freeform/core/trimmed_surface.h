@@ -220,8 +220,9 @@ absl::StatusOr<TrimSamples> SampleTrimCurve(
 // FaceBoundingBox returns the tight axis-aligned box of the face's points
 // S(u, v), (u, v) in the trimmed domain: for each side, branch and bound
 // over the surface's Bezier parts (bounding_box.h's hull bounds), parts
-// whose (u, v) rectangle lies outside the face dropped (classified as
-// ClassifyPoints does, with a reach of half the rectangle's diagonal), the
+// whose (u, v) rectangle lies outside the face dropped (its centre
+// outside and not on the boundary as ClassifyPoints decides it with a
+// tolerance of 0.51 times the rectangle's diagonal), the
 // values at the trims' polyline vertices and at the corners of parts on the
 // face as lower bounds, until the largest upper bound is within `tolerance`
 // of the best lower bound (or after kMaxBoxHalvings halvings). Every side
