@@ -40,14 +40,9 @@ TEST(FaceBoundingBox, APlaneDiskIsBoxedByItsCircle) {
 }
 
 TEST(FaceBoundingBox, APlaneWithAHoleIsBoxedByTheDomain) {
-  const SurfaceData plane = BilinearPlane();
-  const Surface surface = *BezierSurface::Create(plane.bezier_view());
-  const BSplineCurveData hole = ClockwiseCircle(0.2, 0.5, 0.5);
-  absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
-      {.surface = surface, .outer = std::nullopt, .holes = {LoopOf(hole)}},
-      1e-9);
-  ASSERT_TRUE(face.ok()) << face.status();
-  absl::StatusOr<BoundingBox> box = FaceBoundingBox(*face, 1e-9);
+  const trim_testing::PlaneWithHole shape(0.2, 0.5, 0.5);
+  ASSERT_TRUE(shape.face.ok()) << shape.face.status();
+  absl::StatusOr<BoundingBox> box = FaceBoundingBox(*shape.face, 1e-9);
   ASSERT_TRUE(box.ok()) << box.status();
   for (int j = 0; j < 2; ++j) {
     EXPECT_NEAR(box->lower[j], 0.0, 1e-13);

@@ -1,5 +1,7 @@
 #include "freeform/core/surface_output.h"
 
+#include <cmath>
+
 #include "absl/strings/str_cat.h"
 #include "freeform/core/curve_output.h"
 #include "freeform/core/points.h"
@@ -41,7 +43,7 @@ absl::Status ValidateSurfaceSamples(const SurfaceSamples& samples,
     const bool is_u = i % 2 == 0;
     const double value = samples.uv[i];
     // The common case without building the field's name.
-    if (value >= (is_u ? u_start : v_start) &&
+    if (std::isfinite(value) && value >= (is_u ? u_start : v_start) &&
         value <= (is_u ? u_end : v_end)) {
       continue;
     }
