@@ -8,7 +8,9 @@
 // 10^5-gon of radius 0.4 (one degree-1 B-spline) with a round hole of
 // radius 0.1. Create validates and precomputes the face; Classify puts 10^4
 // uniform random points (seed 3) in or out, classification tolerance 1e-9;
-// Area is FaceArea to 1e-10 (of the 10^4-gon for the polygon).
+// Area is FaceArea to 1e-10 (of the 10^4-gon for the polygon). BoundingBox
+// is FaceBoundingBox to 1e-6 of the plane inside a circle of radius 0.3,
+// every side on the trim.
 #include <benchmark/benchmark.h>
 
 #include <optional>
@@ -115,6 +117,32 @@ void Area(benchmark::State& state, TrimmedSurfaceParts (*parts)()) {
     benchmark::DoNotOptimize(area->area);
   }
 }
+
+// The plane inside the circle of radius 0.3 about (0.5, 0.45): every side
+// of its box lies on the trim.
+const BSplineCurveData& Disk() {
+  static const BSplineCurveData disk =
+      freeform::testing_util::NurbsCircle(0.3, 0.5, 0.45);
+  return disk;
+}
+
+void BM_FaceBoundingBox_Disk(benchmark::State& state) {
+  absl::StatusOr<TrimmedSurface> face =
+      TrimmedSurface::Create({.surface = PlaneSurface(),
+                              .outer = freeform::trim_testing::LoopOf(Disk()),
+                              .holes = {}},
+                             1e-9);
+  if (!face.ok()) {
+    state.SkipWithError(face.status().ToString().c_str());
+    return;
+  }
+  for (auto _ : state) {
+    absl::StatusOr<freeform::BoundingBox> box =
+        freeform::FaceBoundingBox(*face, 1e-6);
+    benchmark::DoNotOptimize(box->upper.data());
+  }
+}
+BENCHMARK(BM_FaceBoundingBox_Disk)->Unit(benchmark::kMillisecond);
 
 TrimmedSurfaceParts LargePolygon() { return PolygonParts(100000); }
 TrimmedSurfaceParts SmallPolygon() { return PolygonParts(10000); }

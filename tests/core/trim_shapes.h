@@ -12,6 +12,7 @@
 
 #include "freeform/core/curve.h"
 #include "freeform/core/geometry_data.h"
+#include "freeform/core/surface.h"
 #include "freeform/core/trimmed_surface.h"
 #include "shapes.h"
 
@@ -184,6 +185,24 @@ inline std::vector<TrimLoop> LoopsOf(
   for (const BSplineCurveData& curve : curves) loops.push_back(LoopOf(curve));
   return loops;
 }
+
+// The unit plane less the disk of radius r about (cu, cv), validated at
+// 1e-9; the data outlives the face.
+struct PlaneWithHole {
+  PlaneWithHole(double r, double cu, double cv)
+      : plane(BilinearPlane()),
+        surface(*BezierSurface::Create(plane.bezier_view())),
+        hole(ClockwiseCircle(r, cu, cv)),
+        face(TrimmedSurface::Create({.surface = surface,
+                                     .outer = std::nullopt,
+                                     .holes = {LoopOf(hole)}},
+                                    1e-9)) {}
+
+  SurfaceData plane;
+  Surface surface;
+  BSplineCurveData hole;
+  absl::StatusOr<TrimmedSurface> face;
+};
 
 }  // namespace freeform::trim_testing
 

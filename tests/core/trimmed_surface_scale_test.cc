@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "freeform/core/cancellation.h"
+#include "freeform/core/thread_pool.h"
 #include "freeform/core/trimmed_surface.h"
 #include "trim_shapes.h"
 
@@ -61,6 +63,18 @@ TEST(TrimmedSurfaceAtScale, TenThousandTinyHoles) {
   }
   // About pi r^2 kSide^2 (28%) of the points fall in holes.
   EXPECT_GT(in_holes, 2000);
+  // On a pool, in chunks, the same answers; a cancelled token stops it.
+  ThreadPool pool(2);
+  absl::StatusOr<std::vector<PointLocation>> pooled =
+      ClassifyPoints(*face, uv, 1e-9, {.pool = &pool, .grain = 256});
+  ASSERT_TRUE(pooled.ok()) << pooled.status();
+  EXPECT_EQ(*pooled, *at);
+  CancellationToken cancel;
+  cancel.Cancel();
+  EXPECT_EQ(ClassifyPoints(*face, uv, 1e-9, {.cancellation = &cancel})
+                .status()
+                .code(),
+            absl::StatusCode::kCancelled);
 }
 
 // ExpectPolygonClassification checks every point against the n-gon of

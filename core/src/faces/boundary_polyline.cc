@@ -31,18 +31,12 @@ uint64_t GridEntryLimit(uint64_t segments) { return 8 * segments + 64; }
 
 // LoopExtent returns the diagonal of the box of a loop's control points.
 double LoopExtent(const FaceBoundary& boundary, const BoundaryLoop& loop) {
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+  Box2 box;
   for (int k = 0; k < loop.piece_count; ++k) {
-    const std::vector<double>& c =
-        boundary.pieces[loop.first_piece + k].bezier.coordinates;
-    for (size_t i = 0; i + 1 < c.size(); i += 2) {
-      for (int j = 0; j < 2; ++j) {
-        lo[j] = std::min(lo[j], c[i + j]);
-        hi[j] = std::max(hi[j], c[i + j]);
-      }
-    }
+    box.AddBox(
+        ControlBox(boundary.pieces[loop.first_piece + k].bezier.coordinates));
   }
-  return std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
+  return box.Diagonal();
 }
 
 double LoopEpsilon(const FaceBoundary& boundary, const BoundaryLoop& loop) {
@@ -119,6 +113,15 @@ absl::Status AddLoopSegments(int loop_index, FaceBoundary* boundary,
   }
   loop.segment_count =
       static_cast<uint32_t>(boundary->segments.size()) - loop.first_segment;
+  loop.box = Box2{};
+  for (uint32_t k = 0; k < loop.segment_count; ++k) {
+    const BoundarySegment& s = boundary->segments[loop.first_segment + k];
+    loop.box.Add(s.a);
+    loop.box.Add(s.b);
+  }
+  const double e = loop.epsilon;
+  loop.box = {.lo = {loop.box.lo[0] - e, loop.box.lo[1] - e},
+              .hi = {loop.box.hi[0] + e, loop.box.hi[1] + e}};
   return absl::OkStatus();
 }
 
@@ -145,7 +148,8 @@ uint64_t GridEntries(const SegmentGrid& grid,
   return entries;
 }
 
-// SortRows orders every row both ways (SegmentGrid).
+// SortRows orders every row both ways, grouped by loop, and lists its
+// loops' runs (SegmentGrid).
 void SortRows(const std::vector<BoundarySegment>& segments, SegmentGrid& grid) {
   const auto largest_u = [&segments](uint32_t i) {
     return std::max(segments[i].a[0], segments[i].b[0]);
@@ -154,15 +158,35 @@ void SortRows(const std::vector<BoundarySegment>& segments, SegmentGrid& grid) {
     return std::min(segments[i].a[0], segments[i].b[0]);
   };
   grid.leftward = grid.rightward;
+  grid.run_start.assign(1, 0);
+  grid.runs.clear();
   for (int r = 0; r < grid.rows; ++r) {
     const auto from = static_cast<ptrdiff_t>(grid.row_start[r]);
     const auto to = static_cast<ptrdiff_t>(grid.row_start[r + 1]);
-    std::sort(
-        grid.rightward.begin() + from, grid.rightward.begin() + to,
-        [&](uint32_t x, uint32_t y) { return largest_u(x) > largest_u(y); });
-    std::sort(
-        grid.leftward.begin() + from, grid.leftward.begin() + to,
-        [&](uint32_t x, uint32_t y) { return smallest_u(x) < smallest_u(y); });
+    std::sort(grid.rightward.begin() + from, grid.rightward.begin() + to,
+              [&](uint32_t x, uint32_t y) {
+                if (segments[x].loop != segments[y].loop) {
+                  return segments[x].loop < segments[y].loop;
+                }
+                return largest_u(x) > largest_u(y);
+              });
+    std::sort(grid.leftward.begin() + from, grid.leftward.begin() + to,
+              [&](uint32_t x, uint32_t y) {
+                if (segments[x].loop != segments[y].loop) {
+                  return segments[x].loop < segments[y].loop;
+                }
+                return smallest_u(x) < smallest_u(y);
+              });
+    for (auto k = from; k < to; ++k) {
+      const int32_t loop = segments[grid.rightward[k]].loop;
+      if (k == from || grid.runs.back().loop != loop) {
+        grid.runs.push_back({.loop = loop,
+                             .begin = static_cast<uint32_t>(k),
+                             .end = static_cast<uint32_t>(k)});
+      }
+      grid.runs.back().end = static_cast<uint32_t>(k + 1);
+    }
+    grid.run_start.push_back(static_cast<uint32_t>(grid.runs.size()));
   }
 }
 

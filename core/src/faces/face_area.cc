@@ -52,14 +52,17 @@ class AreaDensity {
         dimension_(DimensionOf(surface)) {}
 
   // Integrals writes F(u[i], v[i]) for i < kKronrodPoints, u and v clamped
-  // into the domain: one Kronrod rule per knot span for all of them in one
-  // evaluation, then adaptive halving of the spans that need it.
-  absl::Status Integrals(const double* u, const double* v, Estimate* out) {
+  // into the domain, F integrated from the knot u_breaks[base]: one Kronrod
+  // rule per knot span for all of them in one evaluation, then adaptive
+  // halving of the spans that need it.
+  absl::Status Integrals(size_t base, const double* u, const double* v,
+                         Estimate* out) {
     spans_.clear();
     for (int i = 0; i < kKronrodPoints; ++i) {
       out[i] = {};
       const double ui = std::clamp(u[i], domain_.u_start, domain_.u_end);
-      for (size_t k = 0; k + 1 < u_breaks_.size() && u_breaks_[k] < ui; ++k) {
+      for (size_t k = base; k + 1 < u_breaks_.size() && u_breaks_[k] < ui;
+           ++k) {
         spans_.push_back(
             {.node = i,
              .a = u_breaks_[k],
@@ -208,9 +211,10 @@ std::vector<double> KnotsOf(const Surface& surface, bool in_u) {
 }
 
 // BoundaryIntegrand writes F(c(t)) v'(t) at the Kronrod nodes of [a, b]
-// of one piece.
-absl::Status BoundaryIntegrand(const TrimPiece& piece, double a, double b,
-                               AreaDensity& density, Estimate* values) {
+// of one piece, F from the knot u_breaks[base].
+absl::Status BoundaryIntegrand(const TrimPiece& piece, size_t base, double a,
+                               double b, AreaDensity& density,
+                               Estimate* values) {
   const BezierPointEvaluator evaluator(piece.bezier.view(), 1);
   std::vector<double> scratch(evaluator.scratch_size());
   double u[kKronrodPoints], v[kKronrodPoints], dv[kKronrodPoints];
@@ -222,7 +226,7 @@ absl::Status BoundaryIntegrand(const TrimPiece& piece, double a, double b,
     dv[k] = c[3];
   }
   Estimate f[kKronrodPoints];
-  RETURN_IF_ERROR(density.Integrals(u, v, f));
+  RETURN_IF_ERROR(density.Integrals(base, u, v, f));
   for (int k = 0; k < kKronrodPoints; ++k) {
     values[k] = {.value = f[k].value * dv[k],
                  .error = f[k].error * std::abs(dv[k])};
@@ -263,6 +267,16 @@ absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
       Breaks(KnotsOf(face.surface(), true), d.u_start, d.u_end);
   const std::vector<double> v_breaks =
       Breaks(KnotsOf(face.surface(), false), d.v_start, d.v_end);
+  // Each loop integrates F from the last knot at or below its box: a
+  // function G(v) alone integrates to 0 around a closed loop, so moving
+  // F's base changes nothing but the work.
+  std::vector<size_t> bases(boundary.loops.size(), 0);
+  for (size_t l = 0; l < bases.size(); ++l) {
+    while (bases[l] + 2 < u_breaks.size() &&
+           u_breaks[bases[l] + 1] <= boundary.loops[l].box.lo[0]) {
+      ++bases[l];
+    }
+  }
   double variation = 0.0;
   std::vector<internal::PartInterval> parts;
   for (size_t i = 0; i < boundary.pieces.size(); ++i) {
@@ -284,7 +298,8 @@ absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
                       0.25 * tolerance / (variation * (d.u_end - d.u_start)));
   const auto integrand = [&](size_t part, double a, double b,
                              Estimate* values) {
-    return BoundaryIntegrand(boundary.pieces[part], a, b, density, values);
+    const TrimPiece& piece = boundary.pieces[part];
+    return BoundaryIntegrand(piece, bases[piece.loop], a, b, density, values);
   };
   ASSIGN_OR_RETURN(Estimate total,
                    internal::IntegrateAdaptive(

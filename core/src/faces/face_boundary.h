@@ -51,6 +51,9 @@ struct BoundaryLoop {
   uint32_t segment_count = 0;
   // The polyline's Hausdorff distance bound to the loop.
   double epsilon = 0.0;
+  // The box of the polyline widened by epsilon: it holds the loop, whose
+  // winding number about a point outside it is 0.
+  Box2 box;
 };
 
 // A chord of a loop's polyline. A chord of piece `piece` joins its points
@@ -81,13 +84,23 @@ struct SegmentGrid {
   // those whose box, widened by their epsilon, meets the cell.
   std::vector<uint32_t> cell_start;
   std::vector<uint32_t> cell_segments;
-  // The segments whose v-range meets row j, in two orders:
-  // rightward[row_start[j] .. row_start[j + 1]) by their largest u,
-  // descending (a ray along +u from u needs those reaching past u, a
-  // prefix), leftward by their smallest u, ascending (for a ray along -u).
+  // The segments whose v-range meets row j, grouped by loop, in two
+  // orders: rightward[row_start[j] .. row_start[j + 1]) by their largest u,
+  // descending within a loop (a ray along +u from u needs those reaching
+  // past u, a prefix), leftward by their smallest u, ascending (for a ray
+  // along -u).
   std::vector<uint32_t> row_start;
   std::vector<uint32_t> rightward;
   std::vector<uint32_t> leftward;
+  // The loops of row j: runs[run_start[j] .. run_start[j + 1]), each the
+  // positions [begin, end) of one loop's segments in both orders.
+  struct Run {
+    int32_t loop;
+    uint32_t begin;
+    uint32_t end;
+  };
+  std::vector<uint32_t> run_start;
+  std::vector<Run> runs;
 
   int Column(double u) const;
   int Row(double v) const;

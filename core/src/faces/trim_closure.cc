@@ -35,9 +35,7 @@ struct Box {
 // HullInside reports whether every control point lies in the box and, for
 // a rational piece, every weight is positive (the hull property).
 bool HullInside(const BezierCurveData& bezier, const Box& box) {
-  for (const double w : bezier.weights) {
-    if (!(w > 0.0)) return false;
-  }
+  if (!HasHull(bezier.weights)) return false;
   for (size_t i = 0; i + 1 < bezier.coordinates.size(); i += 2) {
     if (box.Excess(&bezier.coordinates[i]) > 0.0) return false;
   }

@@ -52,8 +52,7 @@ struct Part {
   // Its index among its loop's parts, and the loop's part count.
   int index = 0;
   int loop_parts = 0;
-  Point2 lo{};
-  Point2 hi{};
+  Box2 box;
 };
 
 Point2 ControlPoint(const BezierCurveData& b, size_t i) {
@@ -67,9 +66,7 @@ size_t ControlCount(const BezierCurveData& b) {
 // IsMonotone reports whether every control polygon edge has a positive dot
 // product with the chord (a rational part needs positive weights).
 bool IsMonotone(const BezierCurveData& b) {
-  for (const double w : b.weights) {
-    if (!(w > 0.0)) return false;
-  }
+  if (!HasHull(b.weights)) return false;
   const size_t n = ControlCount(b);
   const Point2 first = ControlPoint(b, 0);
   const Point2 last = ControlPoint(b, n - 1);
@@ -97,16 +94,15 @@ absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
                               "have cusps)"));
   }
   if (depth >= kMaxMonotoneDepth || IsMonotone(bezier)) {
+    if (parts.size() >= kMaxFaceBoundarySegments) {
+      return ExhaustedFieldError(
+          "holes",
+          absl::StrCat("the loops need more than ", kMaxFaceBoundarySegments,
+                       " monotone parts for the crossing check"));
+    }
     Part part = prototype;
     part.bezier = bezier;
-    part.lo = {INFINITY, INFINITY};
-    part.hi = {-INFINITY, -INFINITY};
-    for (size_t i = 0; i < ControlCount(bezier); ++i) {
-      for (int j = 0; j < 2; ++j) {
-        part.lo[j] = std::min(part.lo[j], ControlPoint(bezier, i)[j]);
-        part.hi[j] = std::max(part.hi[j], ControlPoint(bezier, i)[j]);
-      }
-    }
+    part.box = ControlBox(bezier.coordinates);
     parts.push_back(std::move(part));
     return absl::OkStatus();
   }
@@ -197,18 +193,11 @@ bool NearJunction(const Point2& p, const std::vector<Point2>& junctions,
   return false;
 }
 
-bool PositiveWeights(const BezierCurveData& b) {
-  for (const double w : b.weights) {
-    if (!(w > 0.0)) return false;
-  }
-  return true;
-}
-
 // SeparatedAcrossChords reports whether the control points of the two
 // parts (their hulls hold them) project onto the normal of either's chord
 // in intervals more than `tolerance` apart.
 bool SeparatedAcrossChords(const Part& a, const Part& b, double tolerance) {
-  if (!PositiveWeights(a.bezier) || !PositiveWeights(b.bezier)) return false;
+  if (!HasHull(a.bezier.weights) || !HasHull(b.bezier.weights)) return false;
   for (const Part* along : {&a, &b}) {
     const Point2 p0 = ControlPoint(along->bezier, 0);
     const Point2 p1 =
@@ -235,7 +224,7 @@ bool SeparatedAcrossChords(const Part& a, const Part& b, double tolerance) {
 // starts, and `after` lie in the cones of kJunctionCone about the tangent
 // there (so every contact is within kJunctionRadius tolerances of it).
 bool MeetOnlyAtJunction(const Part& before, const Part& after) {
-  if (!PositiveWeights(before.bezier) || !PositiveWeights(after.bezier)) {
+  if (!HasHull(before.bezier.weights) || !HasHull(after.bezier.weights)) {
     return false;
   }
   const size_t n = ControlCount(before.bezier);
@@ -342,17 +331,18 @@ absl::StatusOr<std::optional<Point2>> CurveContact(
 
 absl::Status CrossingError(const FaceBoundary& boundary, const Part& a,
                            const Part& b, const Point2& at) {
-  const Part& later = a.piece > b.piece ? a : b;
-  const Part& earlier = a.piece > b.piece ? b : a;
-  const std::string other = CurvePath(boundary, boundary.pieces[earlier.piece]);
-  const std::string what =
-      later.piece == earlier.piece ? "crosses itself" : "crosses or touches";
+  // The later curve in the face's order is named; the message names the
+  // other.
+  const std::string later =
+      CurvePath(boundary, boundary.pieces[std::max(a.piece, b.piece)]);
+  const std::string earlier =
+      CurvePath(boundary, boundary.pieces[std::min(a.piece, b.piece)]);
+  const std::string what = later == earlier
+                               ? std::string("crosses itself")
+                               : absl::StrCat("crosses or touches ", earlier);
   return InvalidFieldError(
-      CurvePath(boundary, boundary.pieces[later.piece]),
-      absl::StrCat(what, later.piece == earlier.piece ? "" : " ",
-                   later.piece == earlier.piece ? "" : other,
-                   " near (u, v) = (", at[0], ", ", at[1],
-                   "): loops must not cross themselves or each other"));
+      later, absl::StrCat(what, " near (u, v) = (", at[0], ", ", at[1],
+                          "): loops must not cross themselves or each other"));
 }
 
 absl::Status CheckPair(const FaceBoundary& boundary, const Part& a,
@@ -382,7 +372,7 @@ absl::Status CheckCrossings(const FaceBoundary& boundary,
   std::vector<size_t> order(parts.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&parts](size_t x, size_t y) {
-    return parts[x].lo[0] < parts[y].lo[0];
+    return parts[x].box.lo[0] < parts[y].box.lo[0];
   });
   const double tolerance = boundary.tolerance;
   CancellationPoll poll(cancel);
@@ -390,8 +380,9 @@ absl::Status CheckCrossings(const FaceBoundary& boundary,
     const Part& a = parts[order[i]];
     for (size_t k = i + 1; k < order.size(); ++k) {
       const Part& b = parts[order[k]];
-      if (b.lo[0] > a.hi[0] + tolerance) break;
-      if (b.lo[1] > a.hi[1] + tolerance || a.lo[1] > b.hi[1] + tolerance) {
+      if (b.box.lo[0] > a.box.hi[0] + tolerance) break;
+      if (b.box.lo[1] > a.box.hi[1] + tolerance ||
+          a.box.lo[1] > b.box.hi[1] + tolerance) {
         continue;
       }
       RETURN_IF_ERROR(CheckPair(boundary, a, b, cancel));

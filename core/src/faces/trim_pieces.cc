@@ -33,20 +33,6 @@ std::vector<BezierCurveData> DomainEdges(const SurfaceDomain& d) {
   return edges;
 }
 
-// ControlExtent returns the diagonal of the box of a piece's control
-// points.
-double ControlExtent(const BezierCurveData& bezier) {
-  double lo[2] = {INFINITY, INFINITY};
-  double hi[2] = {-INFINITY, -INFINITY};
-  for (size_t i = 0; i + 1 < bezier.coordinates.size(); i += 2) {
-    for (int j = 0; j < 2; ++j) {
-      lo[j] = std::min(lo[j], bezier.coordinates[i + j]);
-      hi[j] = std::max(hi[j], bezier.coordinates[i + j]);
-    }
-  }
-  return std::hypot(hi[0] - lo[0], hi[1] - lo[1]);
-}
-
 // MakePiece completes a piece's end points and degeneracy; fails when an
 // end weight is 0 (a point at infinity cannot lie in the domain).
 absl::StatusOr<TrimPiece> MakePiece(BezierCurveData bezier, int loop, int curve,
@@ -65,7 +51,8 @@ absl::StatusOr<TrimPiece> MakePiece(BezierCurveData bezier, int loop, int curve,
   const std::vector<double>& c = piece.bezier.coordinates;
   piece.first = {c[0], c[1]};
   piece.last = {c[c.size() - 2], c[c.size() - 1]};
-  piece.degenerate = ControlExtent(piece.bezier) <= tolerance;
+  piece.degenerate =
+      ControlBox(piece.bezier.coordinates).Diagonal() <= tolerance;
   return piece;
 }
 

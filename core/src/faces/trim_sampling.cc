@@ -29,6 +29,7 @@
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
 #include "faces/face_boundary.h"
+#include "faces/surface_pieces.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
@@ -40,6 +41,7 @@ namespace freeform {
 namespace {
 
 using internal::FaceBoundary;
+using internal::SurfacePieces;
 using internal::TrimPiece;
 
 // A part is halved at most this often.
@@ -121,19 +123,6 @@ TrimBounds TrimPartBounds(const BezierCurveData& part) {
   return bounds;
 }
 
-// The Bezier pieces of the surface with their span rectangles.
-struct SurfacePieces {
-  SurfaceDecomposition decomposition;
-
-  size_t rows() const { return decomposition.pieces.breakpoints_v.size() - 1; }
-  std::array<double, 4> Rectangle(size_t index) const {
-    const auto& p = decomposition.pieces;
-    const size_t i = index / rows(), j = index % rows();
-    return {p.breakpoints_u[i], p.breakpoints_u[i + 1], p.breakpoints_v[j],
-            p.breakpoints_v[j + 1]};
-  }
-};
-
 // AddNetBounds raises `field` by the difference bounds of the scalar net
 // value(k, l) of a piece of degrees (p, q) over a du x dv rectangle.
 template <typename Value>
@@ -172,10 +161,12 @@ void AddNetBounds(const SurfaceData& net, double du, double dv,
   }
 }
 
-// RegionBounds bounds the surface on the pieces meeting the box
-// [lo, hi] (see the file comment).
-SurfaceBounds RegionBounds(const SurfacePieces& pieces, const double lo[2],
-                           const double hi[2]) {
+// RegionBounds bounds the surface on the pieces meeting `box` (see the
+// file comment).
+SurfaceBounds RegionBounds(const SurfacePieces& pieces,
+                           const internal::Box2& box) {
+  const internal::Point2& lo = box.lo;
+  const internal::Point2& hi = box.hi;
   std::vector<size_t> meeting;
   const size_t count = pieces.decomposition.pieces.patches.size();
   for (size_t index = 0; index < count; ++index) {
@@ -265,14 +256,8 @@ double ChordDeviationBound(const BezierCurveData& part,
                            const SurfacePieces& pieces) {
   const TrimBounds trim = TrimPartBounds(part);
   if (!trim.finite) return INFINITY;
-  double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-  for (size_t i = 0; i + 1 < part.coordinates.size(); i += 2) {
-    for (int j = 0; j < 2; ++j) {
-      lo[j] = std::min(lo[j], part.coordinates[i + j]);
-      hi[j] = std::max(hi[j], part.coordinates[i + j]);
-    }
-  }
-  const SurfaceBounds s = RegionBounds(pieces, lo, hi);
+  const SurfaceBounds s =
+      RegionBounds(pieces, internal::ControlBox(part.coordinates));
   if (!s.finite) return INFINITY;
   const std::array<double, 2> h = Along(s.numerator, trim);
   const std::array<double, 2> w = Along(s.weight, trim);

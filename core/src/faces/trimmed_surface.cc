@@ -1,5 +1,6 @@
 #include "freeform/core/trimmed_surface.h"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <utility>
@@ -19,8 +20,8 @@ namespace {
 using internal::FaceBoundary;
 using internal::Point2;
 
-// Points classified between two polls of the token.
-constexpr size_t kPointsPerPoll = 1024;
+// The most points of a chunk (the token is checked before each).
+constexpr size_t kPointsPerChunk = 1024;
 
 absl::StatusOr<std::shared_ptr<const FaceBoundary>> BuildBoundary(
     const TrimmedSurfaceParts& parts, double tolerance,
@@ -98,20 +99,13 @@ absl::StatusOr<TrimmedSurfaceWork> TrimmedSurfaceWorkBytes(
 
 absl::StatusOr<std::vector<PointLocation>> ClassifyPoints(
     const TrimmedSurface& face, absl::Span<const double> uv, double tolerance,
-    const CancellationToken* cancel) {
+    const ExecutionContext& context) {
   if (uv.size() % 2 != 0) {
     return InvalidFieldError("uv", "must hold (u, v) pairs");
   }
-  RETURN_IF_ERROR(ValidateFinite(uv, "uv"));
-  if (!(std::isfinite(tolerance) && tolerance >= 0.0)) {
-    return InvalidFieldError("tolerance", "must be finite and not negative");
-  }
   std::vector<PointLocation> locations(uv.size() / 2);
-  for (size_t i = 0; i < locations.size(); ++i) {
-    if (i % kPointsPerPoll == 0) RETURN_IF_ERROR(CheckCancelled(cancel));
-    locations[i] =
-        Classify(face.boundary(), {uv[2 * i], uv[2 * i + 1]}, tolerance);
-  }
+  RETURN_IF_ERROR(ClassifySamples(face, SurfaceSamples::Pairs(uv), tolerance,
+                                  absl::MakeSpan(locations), context));
   return locations;
 }
 
@@ -133,8 +127,10 @@ absl::Status ClassifySamples(const TrimmedSurface& face,
   }
   const FaceBoundary& boundary = face.boundary();
   const size_t v_count = samples.v.size();
+  ExecutionContext chunks = context;
+  chunks.grain = std::min(chunks.grain, kPointsPerChunk);
   return ParallelFor(
-      locations.size(), context, [&](size_t begin, size_t end) {
+      locations.size(), chunks, [&](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
           const Point2 p =
               samples.grid

@@ -148,7 +148,41 @@ class WindingCounter {
   WindingAt result_;
 };
 
+// VisitCellSegments calls visit(index, segment) for every segment listed
+// in the grid's cells that meet the box p +- reach (a segment listed in
+// several cells comes several times) until visit returns false.
+template <typename Visit>
+void VisitCellSegments(const FaceBoundary& boundary, const Point2& p,
+                       double reach, Visit&& visit) {
+  const SegmentGrid& grid = boundary.grid;
+  const int c0 = grid.Column(p[0] - reach);
+  const int c1 = grid.Column(p[0] + reach);
+  const int r0 = grid.Row(p[1] - reach);
+  const int r1 = grid.Row(p[1] + reach);
+  for (int r = r0; r <= r1; ++r) {
+    for (int c = c0; c <= c1; ++c) {
+      const size_t cell = static_cast<size_t>(r) * grid.columns + c;
+      for (uint32_t k = grid.cell_start[cell]; k < grid.cell_start[cell + 1];
+           ++k) {
+        const uint32_t index = grid.cell_segments[k];
+        if (!visit(index, boundary.segments[index])) return;
+      }
+    }
+  }
+}
+
 }  // namespace
+
+bool TrimMayBeWithin(const FaceBoundary& boundary, const Point2& p,
+                     double reach) {
+  bool found = false;
+  VisitCellSegments(
+      boundary, p, reach, [&](uint32_t, const BoundarySegment& s) {
+        found = DistanceToSegment(p, s.a, s.b) <= s.epsilon + reach;
+        return !found;
+      });
+  return found;
+}
 
 WindingAt FaceWinding(const FaceBoundary& boundary, const Point2& p,
                       double tolerance, int exclude_loop) {
@@ -158,42 +192,44 @@ WindingAt FaceWinding(const FaceBoundary& boundary, const Point2& p,
       p[0] >= 0.5 * (boundary.domain.u_start + boundary.domain.u_end);
   WindingCounter counter(boundary, p, tolerance, rightward);
   absl::InlinedVector<uint32_t, 16> near;
-  const int c0 = grid.Column(p[0] - tolerance);
-  const int c1 = grid.Column(p[0] + tolerance);
-  const int r0 = grid.Row(p[1] - tolerance);
-  const int r1 = grid.Row(p[1] + tolerance);
-  for (int r = r0; r <= r1; ++r) {
-    for (int c = c0; c <= c1; ++c) {
-      const size_t cell = static_cast<size_t>(r) * grid.columns + c;
-      for (uint32_t k = grid.cell_start[cell]; k < grid.cell_start[cell + 1];
-           ++k) {
-        const uint32_t index = grid.cell_segments[k];
-        const BoundarySegment& s = boundary.segments[index];
-        if (s.loop == exclude_loop) continue;
-        if (std::find(near.begin(), near.end(), index) != near.end()) continue;
-        if (!counter.IsNear(s)) continue;
-        if (counter.on_boundary()) return counter.result();
+  VisitCellSegments(
+      boundary, p, tolerance, [&](uint32_t index, const BoundarySegment& s) {
+        if (s.loop == exclude_loop ||
+            std::find(near.begin(), near.end(), index) != near.end() ||
+            !counter.IsNear(s)) {
+          return true;
+        }
         near.push_back(index);
-      }
-    }
-  }
+        return !counter.on_boundary();
+      });
+  if (counter.on_boundary()) return counter.result();
   const int row = grid.Row(p[1]);
   const std::vector<uint32_t>& order =
       rightward ? grid.rightward : grid.leftward;
-  for (uint32_t k = grid.row_start[row]; k < grid.row_start[row + 1]; ++k) {
-    const uint32_t index = order[k];
-    const BoundarySegment& s = boundary.segments[index];
-    // The rest of the row lies wholly behind the ray's start.
-    if (rightward ? std::max(s.a[0], s.b[0]) < p[0]
-                  : std::min(s.a[0], s.b[0]) > p[0]) {
-      break;
-    }
-    if (s.loop == exclude_loop) continue;
-    if (!near.empty() &&
-        std::find(near.begin(), near.end(), index) != near.end()) {
+  for (uint32_t r = grid.run_start[row]; r < grid.run_start[row + 1]; ++r) {
+    const SegmentGrid::Run& run = grid.runs[r];
+    // A loop whose box does not hold p winds 0 times about it.
+    const BoundaryLoop& loop = boundary.loops[run.loop];
+    if (run.loop == exclude_loop || p[0] < loop.box.lo[0] - tolerance ||
+        p[0] > loop.box.hi[0] + tolerance ||
+        p[1] < loop.box.lo[1] - tolerance ||
+        p[1] > loop.box.hi[1] + tolerance) {
       continue;
     }
-    counter.AddChord(s);
+    for (uint32_t k = run.begin; k < run.end; ++k) {
+      const uint32_t index = order[k];
+      const BoundarySegment& s = boundary.segments[index];
+      // The rest of the run lies wholly behind the ray's start.
+      if (rightward ? std::max(s.a[0], s.b[0]) < p[0]
+                    : std::min(s.a[0], s.b[0]) > p[0]) {
+        break;
+      }
+      if (!near.empty() &&
+          std::find(near.begin(), near.end(), index) != near.end()) {
+        continue;
+      }
+      counter.AddChord(s);
+    }
   }
   for (const uint32_t index : near) {
     counter.AddArc(boundary.segments[index]);

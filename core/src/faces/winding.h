@@ -22,6 +22,12 @@ struct WindingAt {
 WindingAt FaceWinding(const FaceBoundary& boundary, const Point2& p,
                       double tolerance, int exclude_loop = -1);
 
+// TrimMayBeWithin reports whether a chord of a loop comes within its
+// bound plus `reach` of p: false certifies that no trim comes within
+// `reach` of p.
+bool TrimMayBeWithin(const FaceBoundary& boundary, const Point2& p,
+                     double reach);
+
 // LoopWinding returns the winding number of one loop about `p`, from all
 // its segments.
 WindingAt LoopWinding(const FaceBoundary& boundary, int loop, const Point2& p,

@@ -36,6 +36,7 @@
 
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
+#include "freeform/core/bounding_box.h"
 #include "freeform/core/cancellation.h"
 #include "freeform/core/curve.h"
 #include "freeform/core/surface.h"
@@ -75,7 +76,7 @@ inline constexpr uint64_t kMaxFaceBoundarySegments = uint64_t{1} << 24;
 class TrimmedSurface {
  public:
   // Create validates `parts` with `tolerance`, the closure and geometry
-  // tolerance in (u, v) (positive, finite; at least 2^-48 of the trims'
+  // tolerance in (u, v) (positive, finite; at least 2^-46 of the trims'
   // largest coordinate), and precomputes the loops' polylines and grid.
   // Fails with INVALID_ARGUMENT naming:
   //   "tolerance" (not positive and finite, or too small to resolve);
@@ -92,10 +93,12 @@ class TrimmedSurface {
   //   "outer" (signed area not positive: not counter-clockwise), "holes[i]"
   //     (signed area not negative, outside the outer loop or the domain, or
   //     inside another hole).
-  // Curves of zero length are allowed and skipped. Fails with
-  // RESOURCE_EXHAUSTED when the loops exceed kMaxFaceTrimPieces or
-  // kMaxFaceBoundarySegments, and with the token's CANCELLED /
-  // DEADLINE_EXCEEDED.
+  // Curves of zero length (control points within the tolerance of each
+  // other) are allowed and skipped; trims may touch or run along the
+  // parameter rectangle's edges (without an outer loop, a hole may touch
+  // it). Fails with RESOURCE_EXHAUSTED when the loops exceed
+  // kMaxFaceTrimPieces or kMaxFaceBoundarySegments, and with the token's
+  // CANCELLED / DEADLINE_EXCEEDED.
   static absl::StatusOr<TrimmedSurface> Create(
       TrimmedSurfaceParts parts, double tolerance,
       const CancellationToken* cancel = nullptr);
@@ -166,12 +169,13 @@ enum class PointLocation : uint8_t { kOutside, kInside, kOnBoundary };
 //
 // Fast for many points: the segments are found through a uniform grid of
 // the parameter rectangle (rows for the winding ray, cells for the
-// distance). Fails with INVALID_ARGUMENT naming "uv" (odd count),
-// "uv[i]" (not finite) or "tolerance" (negative or not finite), and with
-// the token's CANCELLED / DEADLINE_EXCEEDED (polled between chunks).
+// distance). The points run in chunks of at most 1024 on the context's
+// pool. Fails with INVALID_ARGUMENT naming "uv" (odd count), "uv[i]" (not
+// finite) or "tolerance" (negative or not finite), and with the context
+// token's CANCELLED / DEADLINE_EXCEEDED (checked before each chunk).
 absl::StatusOr<std::vector<PointLocation>> ClassifyPoints(
     const TrimmedSurface& face, absl::Span<const double> uv, double tolerance,
-    const CancellationToken* cancel = nullptr);
+    const ExecutionContext& context = {});
 
 // ClassifySamples is ClassifyPoints for surface samples (pairs or a grid,
 // u-major), writing one location per sample into `locations`, the samples
@@ -251,6 +255,24 @@ struct TrimSamples {
 absl::StatusOr<TrimSamples> SampleTrimCurve(
     const TrimmedSurface& face, int hole, int curve, double tolerance,
     size_t max_samples = size_t{1} << 20,
+    const CancellationToken* cancel = nullptr);
+
+// FaceBoundingBox returns the tight axis-aligned box of the face's points
+// S(u, v), (u, v) in the trimmed domain: for each side, branch and bound
+// over the surface's Bezier parts (bounding_box.h's hull bounds), parts
+// whose (u, v) rectangle lies outside the face dropped (its centre
+// outside and not on the boundary as ClassifyPoints decides it with a
+// tolerance of 0.51 times the rectangle's diagonal), the
+// values at the trims' polyline vertices and at the corners of parts on the
+// face as lower bounds, until the largest upper bound is within `tolerance`
+// of the best lower bound (or after kMaxBoxHalvings halvings). Every side
+// is widened by 2^-44 of the surface's largest control coordinate for
+// rounding: the box holds every point of the face, and a side is within
+// `tolerance` plus that margin of a point of the face when the search
+// ends within its budget. Fails with INVALID_ARGUMENT "tolerance" (not
+// positive and finite) and with the token's CANCELLED / DEADLINE_EXCEEDED.
+absl::StatusOr<BoundingBox> FaceBoundingBox(
+    const TrimmedSurface& face, double tolerance,
     const CancellationToken* cancel = nullptr);
 
 }  // namespace freeform
