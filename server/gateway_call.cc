@@ -9,8 +9,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/synchronization/notification.h"
-#include "freeform/v1/curve_service.grpc.pb.h"
-#include "freeform/v1/surface_service.grpc.pb.h"
+#include "freeform_services.h"
 #include "transport.h"
 
 namespace freeform::server {
@@ -18,8 +17,10 @@ namespace {
 
 // The services the gateway serves, by full name.
 bool IsGatewayService(absl::string_view service) {
-  return service == v1::CurveService::service_full_name() ||
-         service == v1::SurfaceService::service_full_name();
+  for (const char* name : FreeformServiceNames()) {
+    if (service == name) return true;
+  }
+  return false;
 }
 
 const google::protobuf::Message* PrototypeOf(

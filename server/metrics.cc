@@ -21,8 +21,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
-#include "freeform/v1/curve_service.grpc.pb.h"
-#include "freeform/v1/surface_service.grpc.pb.h"
+#include "freeform_services.h"
 
 namespace freeform::server {
 namespace {
@@ -108,8 +107,7 @@ int AnswerOnlyTheMetricsPath(mg_connection* connection) {
 
 std::vector<std::string> FreeformMethodNames() {
   std::vector<std::string> names;
-  for (const char* service_name : {v1::CurveService::service_full_name(),
-                                   v1::SurfaceService::service_full_name()}) {
+  for (const char* service_name : FreeformServiceNames()) {
     const google::protobuf::ServiceDescriptor* service =
         google::protobuf::DescriptorPool::generated_pool()->FindServiceByName(
             service_name);

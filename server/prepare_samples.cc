@@ -328,16 +328,35 @@ absl::StatusOr<SurfacePlan> PrepareSurfaceEvaluation(
     const v1::EvaluateSurfaceRequest& request, const ServiceLimits& limits) {
   RETURN_IF_ERROR(CheckDerivativeOrder(request.derivative_order(), limits));
   ASSIGN_OR_RETURN(Surface surface, PrepareSurface(request.surface(), limits));
+  return PrepareEvaluationOf(std::move(surface), request.parameters(),
+                             request.derivative_order(), request.normals(),
+                             0, limits);
+}
+
+absl::StatusOr<SurfacePlan> PrepareEvaluationOf(
+    Surface surface, const v1::SurfaceParameters& parameters,
+    uint32_t derivative_order, bool normals, uint64_t extra_values_per_point,
+    const ServiceLimits& limits) {
+  RETURN_IF_ERROR(CheckDerivativeOrder(derivative_order, limits));
   SurfacePlan plan = PlanOf(std::move(surface));
-  if (request.normals() && plan.dimension != 3) {
+  if (normals && plan.dimension != 3) {
     return InvalidFieldError(
         "normals", absl::StrCat("normals need a 3D surface, this one is ",
                                 plan.dimension, "D"));
   }
-  plan.order = static_cast<int>(request.derivative_order());
-  plan.normals = request.normals();
-  RETURN_IF_ERROR(ResolveSamples(request.parameters(), limits,
-                                 plan.ValuesPerPoint(), plan));
+  plan.order = static_cast<int>(derivative_order);
+  plan.normals = normals;
+  RETURN_IF_ERROR(ResolveSamples(parameters, limits,
+                                 plan.ValuesPerPoint() + extra_values_per_point,
+                                 plan));
+  return plan;
+}
+
+absl::StatusOr<SurfacePlan> PrepareSamplesOn(
+    Surface surface, const v1::SurfaceParameters& parameters,
+    uint64_t values_per_point, const ServiceLimits& limits) {
+  SurfacePlan plan = PlanOf(std::move(surface));
+  RETURN_IF_ERROR(ResolveSamples(parameters, limits, values_per_point, plan));
   return plan;
 }
 

@@ -177,6 +177,21 @@ struct SurfacePlan {
 absl::StatusOr<SurfacePlan> PrepareSurfaceEvaluation(
     const v1::EvaluateSurfaceRequest& request, const ServiceLimits& limits);
 
+// PrepareEvaluationOf is PrepareSurfaceEvaluation for a surface already
+// prepared (a face's), from the request's parameters, derivative order and
+// normals flag, the samples checked for answers of
+// `extra_values_per_point` numbers per point besides the evaluation's.
+absl::StatusOr<SurfacePlan> PrepareEvaluationOf(
+    Surface surface, const v1::SurfaceParameters& parameters,
+    uint32_t derivative_order, bool normals, uint64_t extra_values_per_point,
+    const ServiceLimits& limits);
+
+// PrepareSamplesOn resolves `parameters` against a surface already
+// prepared, for answers of `values_per_point` numbers per point.
+absl::StatusOr<SurfacePlan> PrepareSamplesOn(
+    Surface surface, const v1::SurfaceParameters& parameters,
+    uint64_t values_per_point, const ServiceLimits& limits);
+
 // PrepareSurfaceCurvature prepares the surface of a Curvature request
 // (PrepareSurface, "surface"; curvatures need it 3D) and resolves its
 // samples for answers of `values_per_point` numbers each (the planner's,

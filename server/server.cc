@@ -17,6 +17,8 @@
 #include "metrics.h"
 #include "parse_errors.h"
 #include "surface_service.h"
+#include "face_service.h"
+#include "freeform_services.h"
 
 namespace freeform::server {
 namespace {
@@ -51,9 +53,9 @@ class ReflectionOption final : public grpc::ServerBuilderOption {
 // ServedServices returns the full names of the services of the server
 // `options` describe.
 std::vector<std::string> ServedServices(const ServerOptions& options) {
-  std::vector<std::string> services = {v1::CurveService::service_full_name(),
-                                       v1::SurfaceService::service_full_name(),
-                                       "grpc.health.v1.Health"};
+  const auto names = FreeformServiceNames();
+  std::vector<std::string> services(names.begin(), names.end());
+  services.push_back("grpc.health.v1.Health");
   if (options.reflection) {
     services.push_back("grpc.reflection.v1alpha.ServerReflection");
   }
@@ -110,6 +112,8 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
       std::make_unique<CurveServiceImpl>(server->frame_.get());
   server->surface_service_ =
       std::make_unique<SurfaceServiceImpl>(server->frame_.get());
+  server->face_service_ =
+      std::make_unique<FaceServiceImpl>(server->frame_.get());
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::ServerBuilder builder;
@@ -131,6 +135,7 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   builder.experimental().SetInterceptorCreators(std::move(interceptors));
   builder.RegisterService(server->curve_service_.get());
   builder.RegisterService(server->surface_service_.get());
+  builder.RegisterService(server->face_service_.get());
   server->server_ = builder.BuildAndStart();
   if (server->server_ == nullptr || server->port_ == 0) {
     return absl::UnavailableError(

@@ -33,6 +33,7 @@
 namespace freeform::server {
 
 class CurveServiceImpl;
+class FaceServiceImpl;
 class MetricsEndpoint;
 class ServerMetrics;
 class SurfaceServiceImpl;
@@ -114,6 +115,7 @@ class FreeformServer {
   std::unique_ptr<MetricsEndpoint> metrics_endpoint_;
   std::unique_ptr<CurveServiceImpl> curve_service_;
   std::unique_ptr<SurfaceServiceImpl> surface_service_;
+  std::unique_ptr<FaceServiceImpl> face_service_;
   std::unique_ptr<grpc::Server> server_;
   // Calls the gRPC server in-process: destroyed (stopped) before it.
   std::unique_ptr<HttpGateway> http_gateway_;

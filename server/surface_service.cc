@@ -17,19 +17,16 @@
 #include "freeform/core/triangular.h"
 #include "plan.h"
 #include "prepare_samples.h"
+#include "surface_evaluation.h"
 
 namespace freeform::server {
-namespace {
 
-// Memory of evaluating `points` points of the plan: the answer, and the
-// partials the normals need besides.
 CallPlan EvaluationMemory(const SurfacePlan& plan, uint64_t points,
                           const ServiceLimits& limits) {
   const uint64_t scratch = plan.normals ? 8 * points * 3 * PartialCount(2) : 0;
   return AnswerPlan(points * plan.ValuesPerPoint(), scratch, limits);
 }
 
-// Evaluates points [first, last) of the plan into `response`.
 absl::Status EvaluateChunk(const SurfacePlan& plan, size_t first, size_t last,
                            const ExecutionContext& execution,
                            v1::EvaluateSurfaceResponse& response) {
@@ -74,6 +71,8 @@ absl::Status EvaluateChunk(const SurfacePlan& plan, size_t first, size_t last,
   }
   return absl::OkStatus();
 }
+
+namespace {
 
 absl::StatusOr<UnaryWork> PlanTensorBasis(
     const v1::EvaluateSurfaceBasisRequest& request, const ServiceLimits& limits,

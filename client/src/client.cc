@@ -229,7 +229,8 @@ Client::Client(std::shared_ptr<grpc::Channel> channel,
     : options_(options),
       channel_(std::move(channel)),
       curves_(v1::CurveService::NewStub(channel_)),
-      surfaces_(v1::SurfaceService::NewStub(channel_)) {}
+      surfaces_(v1::SurfaceService::NewStub(channel_)),
+      faces_(v1::FaceService::NewStub(channel_)) {}
 
 std::unique_ptr<grpc::ClientContext> Client::NewContext() const {
   auto context = std::make_unique<grpc::ClientContext>();

@@ -33,6 +33,7 @@
 
 #include "allocation_counter.h"
 #include "freeform/v1/curve_service.grpc.pb.h"
+#include "freeform/v1/face_service.grpc.pb.h"
 #include "freeform/v1/surface_service.grpc.pb.h"
 #include "server.h"
 
@@ -970,9 +971,95 @@ std::vector<RpcCase> SurfaceCases() {
   };
 }
 
+// A face of the unit plane with `holes` circular holes (NURBS circles,
+// clockwise) on a square lattice, and an outer loop of `segments` straight
+// segments (a degree-1 B-spline along the square [0.01, 0.99]^2).
+v1::TrimmedSurface LatticeFace(int holes, int segments) {
+  v1::TrimmedSurface face;
+  v1::ControlNet& net = *face.mutable_surface()->mutable_bezier()
+                             ->mutable_control_net();
+  net.set_dimension(3);
+  net.set_count_u(2);
+  net.set_count_v(2);
+  for (double x : {0., 0., 0., 0., 1., 0., 1., 0., 0., 1., 1., 0.}) {
+    net.add_coordinates(x);
+  }
+  v1::BSplineCurve& outer =
+      *face.mutable_outer()->add_curves()->mutable_bspline();
+  outer.set_degree(1);
+  outer.mutable_control_points()->set_dimension(2);
+  const int side = segments / 4;
+  const double corners[5][2] = {
+      {0.01, 0.01}, {0.99, 0.01}, {0.99, 0.99}, {0.01, 0.99}, {0.01, 0.01}};
+  for (int c = 0; c < 4; ++c) {
+    for (int k = 0; k < side; ++k) {
+      const double t = static_cast<double>(k) / side;
+      for (int j = 0; j < 2; ++j) {
+        outer.mutable_control_points()->add_coordinates(
+            corners[c][j] + t * (corners[c + 1][j] - corners[c][j]));
+      }
+    }
+  }
+  outer.mutable_control_points()->add_coordinates(0.01);
+  outer.mutable_control_points()->add_coordinates(0.01);
+  const std::vector<double> knots = UniformKnots(4 * side + 1, 1);
+  outer.mutable_knots()->Add(knots.begin(), knots.end());
+  const int per_row = static_cast<int>(std::ceil(std::sqrt(holes)));
+  const double pitch = 0.9 / per_row, radius = 0.3 * pitch;
+  const double s = std::sqrt(0.5);
+  const double unit[9][3] = {{1, 0, 1},  {1, -1, s}, {0, -1, 1},
+                             {-1, -1, s}, {-1, 0, 1}, {-1, 1, s},
+                             {0, 1, 1},  {1, 1, s},  {1, 0, 1}};
+  for (int h = 0; h < holes; ++h) {
+    const double cu = 0.05 + pitch * (h % per_row + 0.5);
+    const double cv = 0.05 + pitch * (h / per_row + 0.5);
+    v1::BSplineCurve& circle =
+        *face.add_holes()->add_curves()->mutable_bspline();
+    circle.set_degree(2);
+    circle.mutable_control_points()->set_dimension(2);
+    for (const auto& p : unit) {
+      circle.mutable_control_points()->add_coordinates(cu + radius * p[0]);
+      circle.mutable_control_points()->add_coordinates(cv + radius * p[1]);
+      circle.add_weights(p[2]);
+    }
+    for (double k : {0., 0., 0., .25, .25, .5, .5, .75, .75, 1., 1., 1.}) {
+      circle.add_knots(k);
+    }
+  }
+  return face;
+}
+
+// FaceService: many holes and a long outer loop (the face's pieces,
+// polylines and grid), with a large answer where there is one.
+std::vector<RpcCase> FaceCases() {
+  return {
+      Case<v1::ClassifyFacePointsRequest>(
+          "FaceService.Classify",
+          [](v1::ClassifyFacePointsRequest& request) {
+            *request.mutable_face() = LatticeFace(2500, 100'000);
+            SetGrid(*request.mutable_parameters(), 1000, 1000);
+          }),
+      Case<v1::EvaluateFaceRequest>(
+          "FaceService.Evaluate",
+          [](v1::EvaluateFaceRequest& request) {
+            *request.mutable_face() = LatticeFace(400, 4000);
+            SetGrid(*request.mutable_parameters(), 600, 600);
+            request.set_derivative_order(1);
+            request.set_normals(true);
+          }),
+      Case<v1::FaceAreaRequest>("FaceService.Area",
+                                [](v1::FaceAreaRequest& request) {
+                                  *request.mutable_face() =
+                                      LatticeFace(2500, 100'000);
+                                  request.set_tolerance(1e-9);
+                                }),
+  };
+}
+
 std::vector<RpcCase> AllCases() {
   std::vector<RpcCase> cases = CurveCases();
-  for (std::vector<RpcCase> more : {SurfaceCases(), LargeGeometryCases()}) {
+  for (std::vector<RpcCase> more :
+       {SurfaceCases(), LargeGeometryCases(), FaceCases()}) {
     for (RpcCase& rpc : more) cases.push_back(std::move(rpc));
   }
   return cases;

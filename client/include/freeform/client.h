@@ -34,6 +34,7 @@
 #include "absl/status/statusor.h"
 #include "absl/types/span.h"
 #include "freeform/v1/curve_service.grpc.pb.h"
+#include "freeform/v1/face_service.grpc.pb.h"
 #include "freeform/v1/surface_service.grpc.pb.h"
 
 namespace freeform {
@@ -298,6 +299,20 @@ class Client {
     return Unary(*surfaces_, &v1::SurfaceService::Stub::Tessellate, request);
   }
 
+  // The trimmed faces' RPCs.
+  absl::StatusOr<v1::ClassifyFacePointsResponse> ClassifyFacePoints(
+      const v1::ClassifyFacePointsRequest& request) {
+    return Unary(*faces_, &v1::FaceService::Stub::Classify, request);
+  }
+  absl::StatusOr<v1::EvaluateFaceResponse> EvaluateFace(
+      const v1::EvaluateFaceRequest& request) {
+    return Unary(*faces_, &v1::FaceService::Stub::Evaluate, request);
+  }
+  absl::StatusOr<v1::FaceAreaResponse> FaceArea(
+      const v1::FaceAreaRequest& request) {
+    return Unary(*faces_, &v1::FaceService::Stub::Area, request);
+  }
+
   // CheckHealth asks grpc.health.v1.Health; OK means SERVING, UNAVAILABLE
   // means NOT_SERVING; other codes are transport errors.
   absl::Status CheckHealth(const std::string& service = "");
@@ -307,6 +322,7 @@ class Client {
 
   v1::CurveService::Stub& curves() { return *curves_; }
   v1::SurfaceService::Stub& surfaces() { return *surfaces_; }
+  v1::FaceService::Stub& faces() { return *faces_; }
   const std::shared_ptr<grpc::Channel>& channel() const { return channel_; }
 
  private:
@@ -315,9 +331,11 @@ class Client {
   Stub& StubOf() {
     if constexpr (std::is_same_v<Stub, v1::CurveService::Stub>) {
       return *curves_;
+    } else if constexpr (std::is_same_v<Stub, v1::FaceService::Stub>) {
+      return *faces_;
     } else {
       static_assert(std::is_same_v<Stub, v1::SurfaceService::Stub>,
-                    "a stub of CurveService or SurfaceService");
+                    "a stub of CurveService, SurfaceService or FaceService");
       return *surfaces_;
     }
   }
@@ -326,6 +344,7 @@ class Client {
   std::shared_ptr<grpc::Channel> channel_;
   std::unique_ptr<v1::CurveService::Stub> curves_;
   std::unique_ptr<v1::SurfaceService::Stub> surfaces_;
+  std::unique_ptr<v1::FaceService::Stub> faces_;
 };
 
 }  // namespace freeform

@@ -1,5 +1,7 @@
 #include "freeform/core/surface_output.h"
 
+#include <cmath>
+
 #include "absl/strings/str_cat.h"
 #include "freeform/core/curve_output.h"
 #include "freeform/core/points.h"
@@ -39,6 +41,12 @@ absl::Status ValidateSurfaceSamples(const SurfaceSamples& samples,
   }
   for (size_t i = 0; i < samples.uv.size(); ++i) {
     const bool is_u = i % 2 == 0;
+    const double value = samples.uv[i];
+    // The common case without building the field's name.
+    if (std::isfinite(value) && value >= (is_u ? u_start : v_start) &&
+        value <= (is_u ? u_end : v_end)) {
+      continue;
+    }
     if (absl::Status status =
             ValidateInRange(samples.uv.subspan(i, 1), is_u ? u_start : v_start,
                             is_u ? u_end : v_end, IndexedField("uv", i));

@@ -2,6 +2,7 @@
 // and a public header of every subject below it and of its own.
 #include "base/homogeneous.h"
 #include "construct/interpolation_result.h"
+#include "faces/face_boundary.h"
 #include "freeform/core/bezier.h"
 #include "freeform/core/closest_point.h"
 #include "freeform/core/constrained_delaunay.h"
@@ -10,6 +11,7 @@
 #include "freeform/core/mesh.h"
 #include "freeform/core/points.h"
 #include "freeform/core/subdivision.h"
+#include "freeform/core/trimmed_surface.h"
 #include "geometry/variant_dispatch.h"
 #include "kinds/validated_bezier.h"
 #include "linalg/banded_lu.h"
