@@ -34,11 +34,12 @@ ServerMetrics::Readings FixedReadings() {
           .memory_capacity_bytes = 3000};
 }
 
-TEST(MetricsModule, NamesEveryRpcOfBothServices) {
+TEST(MetricsModule, NamesEveryRpcOfEveryService) {
   const std::vector<std::string> names = FreeformMethodNames();
-  EXPECT_THAT(names, SizeIs(38));  // 21 curve and 17 surface RPCs
+  EXPECT_THAT(names, SizeIs(41));  // 21 curve, 17 surface and 3 face RPCs
   EXPECT_THAT(names, Contains("CurveService.Evaluate"));
   EXPECT_THAT(names, Contains("SurfaceService.TessellateStream"));
+  EXPECT_THAT(names, Contains("FaceService.Area"));
 }
 
 TEST(MetricsModule, CountsCallsByMethodAndCode) {
