@@ -157,8 +157,8 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   if (grpc::HealthCheckServiceInterface* health =
           server->server_->GetHealthCheckService();
       health != nullptr) {
-    for (const char* name :
-         {"", "freeform.v1.CurveService", "freeform.v1.SurfaceService"}) {
+    health->SetServingStatus("", true);
+    for (const char* name : FreeformServiceNames()) {
       health->SetServingStatus(name, true);
     }
   }
