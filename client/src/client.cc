@@ -210,6 +210,11 @@ absl::StatusOr<std::unique_ptr<Client>> Client::Create(
     arguments.SetInt(GRPC_ARG_HTTP2_STREAM_LOOKAHEAD_BYTES,
                      options.stream_window_bytes);
   }
+  if (options.min_time_between_resolutions.count() > 0) {
+    arguments.SetInt(
+        GRPC_ARG_DNS_MIN_TIME_BETWEEN_RESOLUTIONS_MS,
+        static_cast<int>(options.min_time_between_resolutions.count()));
+  }
   const bool balance = options.round_robin || !options.replicas.empty();
   const std::string policy = balance ? "round_robin" : "pick_first";
   std::string config =
