@@ -67,10 +67,11 @@ inline std::string AQuery(absl::string_view name, uint16_t id) {
   std::string query;
   AppendUint16(query, id);
   AppendUint16(query, 0x0100);  // a standard query, recursion desired
-  for (const uint16_t count : {1, 0, 0, 0}) AppendUint16(query, count);
+  AppendUint16(query, 1);  // one question; no answer or other record
+  for (int section = 0; section < 3; ++section) AppendUint16(query, 0);
   for (absl::string_view label : absl::StrSplit(name, '.')) {
     query.push_back(static_cast<char>(label.size()));
-    query.append(label);
+    query.append(label.data(), label.size());
   }
   query.push_back('\0');
   AppendUint16(query, kTypeA);
