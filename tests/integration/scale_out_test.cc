@@ -22,6 +22,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -54,6 +55,8 @@ constexpr std::chrono::milliseconds kCallerPause{1};
 constexpr char kServedSeries[] =
     R"(freeform_calls_total{code="OK",method="CurveService.Evaluate",)"
     R"(transport="grpc"})";
+constexpr char kRefusedWhileDrainingSeries[] =
+    R"(freeform_admission_refusals_total{reason="draining"})";
 // The most replicas a test runs: 127.0.0.1 to 127.0.0.4.
 constexpr int kMostReplicas = 4;
 
@@ -175,18 +178,32 @@ class ScaleOutTest : public ::testing::Test {
     ASSERT_GT(replicas_[index]->metrics_port(), 0);
   }
 
-  // Served returns the calls replica `index` has answered OK, as its
-  // metrics count them (its last count once it has stopped).
-  double Served(int index) {
+  // What a replica's metrics count.
+  struct Counts {
+    // Calls answered OK.
+    double served = 0;
+    // Calls answered UNAVAILABLE because it was draining.
+    double refused_while_draining = 0;
+  };
+
+  // Scrape returns replica `index`'s counts now, or the last ones read
+  // once it no longer answers.
+  const Counts& Scrape(int index) {
     if (replicas_[index] != nullptr) {
       absl::StatusOr<std::string> metrics =
           HttpGet(replicas_[index]->metrics_port(), "/metrics");
       if (metrics.ok()) {
-        served_[index] = MetricValue(*metrics, kServedSeries).value_or(0);
+        counts_[index] = {
+            .served = MetricValue(*metrics, kServedSeries).value_or(0),
+            .refused_while_draining =
+                MetricValue(*metrics, kRefusedWhileDrainingSeries)
+                    .value_or(0)};
       }
     }
-    return served_[index];
+    return counts_[index];
   }
+
+  double Served(int index) { return Scrape(index).served; }
 
   // WaitUntilServing polls replica `index` until it has answered a call;
   // false after `limit`.
@@ -245,7 +262,7 @@ class ScaleOutTest : public ::testing::Test {
 
   int port_ = 0;
   std::unique_ptr<ServerProcess> replicas_[kMostReplicas];
-  double served_[kMostReplicas] = {};
+  Counts counts_[kMostReplicas];
   std::unique_ptr<Dnsmasq> dns_;
   std::unique_ptr<Client> client_;
   std::unique_ptr<CallLoad> load_;
@@ -290,11 +307,21 @@ TEST_F(ScaleOutTest, AReplicaRemovedMidLoadCostsNoFailedCall) {
   ASSERT_TRUE(dns_->SetAddresses(ReplicaHosts({0, 1})).ok());
   const Clock::time_point removed = Clock::now();
   replicas_[2]->Signal(SIGTERM);
-  EXPECT_EQ(replicas_[2]->WaitForExit(std::chrono::seconds(10)), 0);
+  // Scraped until it exits: the calls it refused while draining, each
+  // retried on another replica.
+  std::optional<int> exit_status;
+  while (!(exit_status = replicas_[2]->WaitForExit(
+               std::chrono::milliseconds(20))) &&
+         Clock::now() - removed < std::chrono::seconds(10)) {
+    Scrape(2);
+  }
+  EXPECT_EQ(exit_status, 0);
   const Clock::duration drain = Clock::now() - removed;
   replicas_[2].reset();
-  std::fprintf(stderr, "scale-out: the removed replica drained in %.2f s\n",
-               Seconds(drain));
+  std::fprintf(stderr,
+               "scale-out: the removed replica drained in %.2f s, refusing "
+               "%g calls (UNAVAILABLE, retried elsewhere)\n",
+               Seconds(drain), counts_[2].refused_while_draining);
   ExpectEvenShares(
       SharesOver({0, 1}, std::chrono::seconds(2), "after one was removed"));
   load_->Stop();
