@@ -54,8 +54,7 @@ absl::Status CheckConnectionAge(const ConnectionAgeOptions& options) {
   if (HasAge(options) && options.max_age < kMinConnectionAge) {
     return absl::InvalidArgumentError(absl::StrCat(
         "--max_connection_age=", absl::FormatDuration(options.max_age),
-        " is under the shortest age, ",
-        absl::FormatDuration(kMinConnectionAge),
+        " is under the shortest age, ", absl::FormatDuration(kMinConnectionAge),
         " (every client would reconnect more often than that); 0 keeps "
         "connections open"));
   }

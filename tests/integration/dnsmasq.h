@@ -56,9 +56,8 @@ inline void AppendUint16(std::string& message, uint16_t value) {
 }
 
 inline uint16_t ReadUint16(absl::string_view message, size_t offset) {
-  return static_cast<uint16_t>(
-      (static_cast<uint8_t>(message[offset]) << 8) |
-      static_cast<uint8_t>(message[offset + 1]));
+  return static_cast<uint16_t>((static_cast<uint8_t>(message[offset]) << 8) |
+                               static_cast<uint8_t>(message[offset + 1]));
 }
 
 // AQuery returns a DNS query (RFC 1035 4.1) for the A records of `name`,
@@ -67,7 +66,7 @@ inline std::string AQuery(absl::string_view name, uint16_t id) {
   std::string query;
   AppendUint16(query, id);
   AppendUint16(query, 0x0100);  // a standard query, recursion desired
-  AppendUint16(query, 1);  // one question; no answer or other record
+  AppendUint16(query, 1);       // one question; no answer or other record
   for (int section = 0; section < 3; ++section) AppendUint16(query, 0);
   for (absl::string_view label : absl::StrSplit(name, '.')) {
     query.push_back(static_cast<char>(label.size()));
@@ -252,22 +251,31 @@ class Dnsmasq {
   // Spawn starts dnsmasq on 127.0.0.1:`port`, its stderr to the log.
   void Spawn(int port) {
     port_ = port;
-    std::vector<std::string> arguments = {
-        Binary(), "--keep-in-foreground", "--conf-file=/dev/null",
-        absl::StrCat("--port=", port), "--listen-address=127.0.0.1",
-        "--bind-interfaces", "--no-resolv", "--no-hosts",
-        "--addn-hosts=" + HostsPath(), absl::StrCat("--local=/", name_, "/"),
-        "--pid-file=", "--log-facility=" + LogPath()};
+    std::vector<std::string> arguments = {Binary(),
+                                          "--keep-in-foreground",
+                                          "--conf-file=/dev/null",
+                                          absl::StrCat("--port=", port),
+                                          "--listen-address=127.0.0.1",
+                                          "--bind-interfaces",
+                                          "--no-resolv",
+                                          "--no-hosts",
+                                          "--addn-hosts=" + HostsPath(),
+                                          absl::StrCat("--local=/", name_, "/"),
+                                          "--pid-file=",
+                                          "--log-facility=" + LogPath()};
     // As root it would run as the user `dnsmasq`, which may not exist.
     if (geteuid() == 0) arguments.push_back("--user=root");
+    // Everything the child needs is made before fork: between fork and
+    // exec it may only make system calls (the test has other threads).
+    std::vector<char*> argv;
+    for (std::string& argument : arguments) argv.push_back(argument.data());
+    argv.push_back(nullptr);
+    const std::string log_path = LogPath();
     pid_ = fork();
     if (pid_ == 0) {
-      const int log = open(LogPath().c_str(), O_WRONLY | O_CREAT | O_APPEND,
-                           0644);
+      const int log =
+          open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
       if (log >= 0) dup2(log, STDERR_FILENO);
-      std::vector<char*> argv;
-      for (std::string& argument : arguments) argv.push_back(argument.data());
-      argv.push_back(nullptr);
       execv(argv[0], argv.data());
       _exit(127);
     }

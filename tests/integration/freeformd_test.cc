@@ -375,8 +375,7 @@ TEST(FreeformdFlags, BadConnectionAgesRefuseToStart) {
        .message = "--max_connection_age_grace=5s needs --max_connection_age"},
       {.flags = "--max_connection_age=30s --max_connection_age_grace=-1s",
        .message = "--max_connection_age_grace=-1s is negative"},
-      {.flags = "--max_connection_age=thirty",
-       .message = "max_connection_age"},
+      {.flags = "--max_connection_age=thirty", .message = "max_connection_age"},
   };
   for (const Refusal& refusal : refusals) {
     const CommandResult result = RunCommand(

@@ -48,8 +48,8 @@ inline int BindSocket(const std::string& host, int port, int type) {
 // pair; the others are tried on it). The sockets are closed again before
 // it returns, so a busy machine may take the port in between: callers
 // retry. UNAVAILABLE after 50 picks.
-inline absl::StatusOr<int> FreePortOnEvery(const std::vector<std::string>& hosts,
-                                           const std::vector<int>& types) {
+inline absl::StatusOr<int> FreePortOnEvery(
+    const std::vector<std::string>& hosts, const std::vector<int>& types) {
   for (int pick = 0; pick < 50; ++pick) {
     const int first = BindSocket(hosts.front(), 0, types.front());
     if (first < 0) break;
@@ -70,9 +70,8 @@ inline absl::StatusOr<int> FreePortOnEvery(const std::vector<std::string>& hosts
     for (const int socket_fd : sockets) close(socket_fd);
     if (free_everywhere) return port;
   }
-  return absl::UnavailableError(
-      absl::StrCat("no port is free on every one of ",
-                   absl::StrJoin(hosts, ", ")));
+  return absl::UnavailableError(absl::StrCat("no port is free on every one of ",
+                                             absl::StrJoin(hosts, ", ")));
 }
 
 }  // namespace freeform

@@ -136,8 +136,8 @@ class ScaleOutTest : public ::testing::Test {
       GTEST_SKIP() << "dnsmasq is not installed (scripts/setup.sh installs "
                       "dnsmasq-base)";
     }
-    absl::StatusOr<int> port = FreePortOnEvery(
-        ReplicaHosts({0, 1, 2, 3}), {SOCK_STREAM});
+    absl::StatusOr<int> port =
+        FreePortOnEvery(ReplicaHosts({0, 1, 2, 3}), {SOCK_STREAM});
     ASSERT_TRUE(port.ok()) << port.status();
     port_ = *port;
     for (int r = 0; r < 3; ++r) ASSERT_NO_FATAL_FAILURE(StartReplica(r));
@@ -145,12 +145,12 @@ class ScaleOutTest : public ::testing::Test {
         Dnsmasq::Start(kName, ReplicaHosts({0, 1, 2}));
     ASSERT_TRUE(dns.ok()) << dns.status();
     dns_ = *std::move(dns);
-    absl::StatusOr<std::unique_ptr<Client>> client = Client::Create(
-        {.target = absl::StrCat("dns://127.0.0.1:", dns_->port(), "/", kName,
-                                ":", port_),
-         .round_robin = true,
-         .min_time_between_resolutions = kResolutionInterval,
-         .timeout = std::chrono::seconds(20)});
+    absl::StatusOr<std::unique_ptr<Client>> client =
+        Client::Create({.target = absl::StrCat("dns://127.0.0.1:", dns_->port(),
+                                               "/", kName, ":", port_),
+                        .round_robin = true,
+                        .min_time_between_resolutions = kResolutionInterval,
+                        .timeout = std::chrono::seconds(20)});
     ASSERT_TRUE(client.ok()) << client.status();
     client_ = *std::move(client);
     load_ = std::make_unique<CallLoad>(client_.get(), kCallers);
@@ -196,8 +196,7 @@ class ScaleOutTest : public ::testing::Test {
         counts_[index] = {
             .served = MetricValue(*metrics, kServedSeries).value_or(0),
             .refused_while_draining =
-                MetricValue(*metrics, kRefusedWhileDrainingSeries)
-                    .value_or(0)};
+                MetricValue(*metrics, kRefusedWhileDrainingSeries).value_or(0)};
       }
     }
     return counts_[index];
@@ -310,8 +309,8 @@ TEST_F(ScaleOutTest, AReplicaRemovedMidLoadCostsNoFailedCall) {
   // Scraped until it exits: the calls it refused while draining, each
   // retried on another replica.
   std::optional<int> exit_status;
-  while (!(exit_status = replicas_[2]->WaitForExit(
-               std::chrono::milliseconds(20))) &&
+  while (!(exit_status =
+               replicas_[2]->WaitForExit(std::chrono::milliseconds(20))) &&
          Clock::now() - removed < std::chrono::seconds(10)) {
     Scrape(2);
   }

@@ -52,10 +52,9 @@ TEST(ConnectionAgeTest, TheLongestAgeGrpcHoldsIsAccepted) {
       .max_age = absl::Milliseconds(2'147'483'646),
       .grace = absl::ZeroDuration()};
   ASSERT_TRUE(CheckConnectionAge(options).ok());
-  EXPECT_THAT(
-      ConnectionAgeArguments(options),
-      ElementsAre(Pair(GRPC_ARG_MAX_CONNECTION_AGE_MS, 2'147'483'646),
-                  Pair(GRPC_ARG_MAX_CONNECTION_AGE_GRACE_MS, 0)));
+  EXPECT_THAT(ConnectionAgeArguments(options),
+              ElementsAre(Pair(GRPC_ARG_MAX_CONNECTION_AGE_MS, 2'147'483'646),
+                          Pair(GRPC_ARG_MAX_CONNECTION_AGE_GRACE_MS, 0)));
 }
 
 TEST(ConnectionAgeTest, BadValuesAreRefusedNamingTheFlag) {
