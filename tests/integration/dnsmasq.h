@@ -17,6 +17,7 @@
 #include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/time.h>
@@ -273,6 +274,8 @@ class Dnsmasq {
     const std::string log_path = LogPath();
     pid_ = fork();
     if (pid_ == 0) {
+      // dnsmasq ends with the test even when the test crashes.
+      prctl(PR_SET_PDEATHSIG, SIGKILL);
       const int log =
           open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
       if (log >= 0) dup2(log, STDERR_FILENO);
