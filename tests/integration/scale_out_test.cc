@@ -18,8 +18,10 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -145,6 +147,12 @@ class ScaleOutTest : public ::testing::Test {
         Dnsmasq::Start(kName, ReplicaHosts({0, 1, 2}));
     ASSERT_TRUE(dns.ok()) << dns.status();
     dns_ = *std::move(dns);
+    ASSERT_NO_FATAL_FAILURE(StartLoad());
+  }
+
+  // StartLoad starts the client and its callers, and returns once every
+  // replica of the name has answered a call.
+  void StartLoad() {
     absl::StatusOr<std::unique_ptr<Client>> client =
         Client::Create({.target = absl::StrCat("dns://127.0.0.1:", dns_->port(),
                                                "/", kName, ":", port_),
@@ -234,8 +242,8 @@ class ScaleOutTest : public ::testing::Test {
     for (size_t i = 0; i < indices.size(); ++i) {
       shares.push_back(total > 0 ? calls[i] / total : 0);
       report.push_back(absl::StrCat(ReplicaHost(indices[i]), " ",
-                                    static_cast<int>(100 * shares.back() + 0.5),
-                                    "% (", calls[i], ")"));
+                                    std::lround(100 * shares.back()), "% (",
+                                    calls[i], ")"));
     }
     std::fprintf(stderr, "scale-out: %s, %g calls in %.1f s: %s\n",
                  label.c_str(), total, Seconds(window),
@@ -260,8 +268,8 @@ class ScaleOutTest : public ::testing::Test {
   }
 
   int port_ = 0;
-  std::unique_ptr<ServerProcess> replicas_[kMostReplicas];
-  Counts counts_[kMostReplicas];
+  std::array<std::unique_ptr<ServerProcess>, kMostReplicas> replicas_;
+  std::array<Counts, kMostReplicas> counts_;
   std::unique_ptr<Dnsmasq> dns_;
   std::unique_ptr<Client> client_;
   std::unique_ptr<CallLoad> load_;
