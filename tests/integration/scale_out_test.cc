@@ -36,6 +36,7 @@
 #include "freeform/client.h"
 #include "loopback_ports.h"
 #include "metrics_scrape.h"
+#include "sanitizers.h"
 #include "server_process.h"
 
 namespace freeform {
@@ -163,7 +164,7 @@ class ScaleOutTest : public ::testing::Test {
     client_ = *std::move(client);
     load_ = std::make_unique<CallLoad>(client_.get(), kCallers);
     for (int r = 0; r < 3; ++r) {
-      ASSERT_TRUE(WaitUntilServing(r, std::chrono::seconds(10)))
+      ASSERT_TRUE(WaitUntilServing(r, Scaled(std::chrono::seconds(10))))
           << ReplicaHost(r) << " got no call";
     }
   }
@@ -284,13 +285,14 @@ TEST_F(ScaleOutTest, CallsSpreadEvenlyOverThreeReplicas) {
 // The client learns of the new address only when it resolves the name
 // again: after the first connection to reach its age (at most 1.1 times
 // kConnectionAge after it opened) and at least kResolutionInterval after
-// the last resolution. Two seconds more absorb a loaded machine.
+// the last resolution. Two seconds more (times FREEFORM_TEST_TIME_SCALE)
+// absorb a loaded machine.
 TEST_F(ScaleOutTest, AReplicaAddedMidLoadGetsItsShareWithinTheConnectionAge) {
   ASSERT_NO_FATAL_FAILURE(StartReplica(3));
   ASSERT_TRUE(dns_->SetAddresses(ReplicaHosts({0, 1, 2, 3})).ok());
   const Clock::time_point added = Clock::now();
-  const Clock::duration limit =
-      kConnectionAge * 11 / 10 + kResolutionInterval + std::chrono::seconds(2);
+  const Clock::duration limit = kConnectionAge * 11 / 10 + kResolutionInterval +
+                                Scaled(std::chrono::seconds(2));
   ASSERT_TRUE(WaitUntilServing(3, limit + std::chrono::seconds(10)))
       << "the new replica got no call";
   const Clock::duration to_traffic = Clock::now() - added;
@@ -319,7 +321,7 @@ TEST_F(ScaleOutTest, AReplicaRemovedMidLoadCostsNoFailedCall) {
   std::optional<int> exit_status;
   while (!(exit_status =
                replicas_[2]->WaitForExit(std::chrono::milliseconds(20))) &&
-         Clock::now() - removed < std::chrono::seconds(10)) {
+         Clock::now() - removed < Scaled(std::chrono::seconds(10))) {
     Scrape(2);
   }
   EXPECT_EQ(exit_status, 0);
