@@ -10,7 +10,7 @@
 //   - a fourth replica added to the name mid-load gets its share within
 //     about one connection age (plus one resolution);
 //   - a replica removed from the name and drained with SIGTERM costs no
-//     failed call.
+//     failed call (the client health-checks each replica, and retries).
 // Calls per replica come from each replica's Prometheus metrics. Each test
 // prints its figures (shares, failed calls, time to traffic) on stderr.
 // Skipped only when dnsmasq is not installed (scripts/setup.sh installs
@@ -308,9 +308,10 @@ TEST_F(ScaleOutTest, AReplicaAddedMidLoadGetsItsShareWithinTheConnectionAge) {
 }
 
 // The replica's address leaves the name and SIGTERM reaches it at the same
-// moment, as when Kubernetes ends a pod: calls it refuses while it drains
-// (UNAVAILABLE) are retried on the others by the client's retry policy, and
-// its GOAWAY sends the client to resolve the name again.
+// moment, as when Kubernetes ends a pod (without preStop's pause). Its
+// health turns NOT_SERVING, which the client's health check sees, so it
+// stops picking the replica; a call that reaches it still is refused
+// UNAVAILABLE and retried on another by the client's retry policy.
 TEST_F(ScaleOutTest, AReplicaRemovedMidLoadCostsNoFailedCall) {
   const int64_t answered_before = load_->answered();
   ASSERT_TRUE(dns_->SetAddresses(ReplicaHosts({0, 1})).ok());
