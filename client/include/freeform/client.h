@@ -47,7 +47,10 @@ struct ClientOptions {
   // Use round_robin over every address `target` resolves to (for a DNS
   // name with several records, such as a Kubernetes headless Service:
   // "dns:///freeformd.NAMESPACE.svc.cluster.local:50051", or with the DNS
-  // server named, "dns://10.0.0.10:53/NAME:PORT").
+  // server named, "dns://10.0.0.10:53/NAME:PORT"). A balanced channel
+  // (this or `replicas`) health-checks every replica (grpc.health.v1
+  // Watch): one that reports NOT_SERVING, as a draining freeformd does,
+  // gets no new call.
   bool round_robin = false;
   // The shortest time between two DNS resolutions of `target`; 0 keeps
   // gRPC's 30 s. gRPC resolves again when a connection closes (a replica
