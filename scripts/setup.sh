@@ -57,6 +57,11 @@ test_packages=(
   # The HTTP gateway's test and benchmark talk HTTP with libcurl; the
   # README's HTTP example runs curl.
   libcurl4-openssl-dev curl
+  # The scale-out test (tests/integration/scale_out_test.cc) serves its
+  # replicas' name with dnsmasq on a loopback port. dnsmasq-base is the
+  # binary alone: unlike the dnsmasq package it installs no service, so
+  # nothing takes port 53 or changes the machine's resolver.
+  dnsmasq-base
   # The fuzz preset: clang with libFuzzer, ASan and UBSan, linked by lld
   # (docs/fuzzing.md).
   clang-14 libfuzzer-14-dev lld-14

@@ -62,6 +62,16 @@ ABSL_FLAG(std::string, log_level, "info",
 ABSL_FLAG(std::string, log_format, "text", "text or json");
 ABSL_FLAG(absl::Duration, grace_period, absl::Seconds(10),
           "Time in-flight RPCs get to finish on SIGTERM/SIGINT");
+ABSL_FLAG(absl::Duration, max_connection_age, absl::ZeroDuration(),
+          "Age after which a client connection is sent GOAWAY (+-10% "
+          "jitter), so that clients reconnect and re-resolve the server's "
+          "name, and new replicas behind it get traffic (e.g. 30s; at least "
+          "1s; 0 = connections live as long as clients keep them; "
+          "docs/operations.md)");
+ABSL_FLAG(absl::Duration, max_connection_age_grace, absl::InfiniteDuration(),
+          "Time calls in flight on a connection past --max_connection_age "
+          "get to finish before it is closed (inf = as long as they take; "
+          "needs --max_connection_age)");
 ABSL_FLAG(std::string, tls_cert, "",
           "PEM certificate chain (enables TLS; needs --tls_key)");
 ABSL_FLAG(std::string, tls_key, "",
@@ -137,6 +147,9 @@ freeform::server::ServerOptions OptionsFromFlags() {
                  .client_ca_file = absl::GetFlag(FLAGS_tls_client_ca),
                  .allowed_clients = absl::GetFlag(FLAGS_tls_allowed_clients)};
   options.reflection = absl::GetFlag(FLAGS_reflection);
+  options.connection_age = {
+      .max_age = absl::GetFlag(FLAGS_max_connection_age),
+      .grace = absl::GetFlag(FLAGS_max_connection_age_grace)};
   const uint64_t http_max_request_bytes =
       absl::GetFlag(FLAGS_http_max_request_bytes);
   options.http = {.listen_address = absl::GetFlag(FLAGS_http_listen),

@@ -87,6 +87,10 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
       !status.ok()) {
     return status;
   }
+  if (absl::Status status = CheckConnectionAge(options.connection_age);
+      !status.ok()) {
+    return status;
+  }
   absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> credentials =
       ListenerCredentials(options.tls);
   if (!credentials.ok()) return credentials.status();
@@ -122,6 +126,10 @@ absl::StatusOr<std::unique_ptr<FreeformServer>> FreeformServer::Start(
   server->max_message_bytes_ = max_message;
   builder.SetMaxReceiveMessageSize(max_message);
   builder.SetMaxSendMessageSize(max_message);
+  for (const auto& [name, value] :
+       ConnectionAgeArguments(options.connection_age)) {
+    builder.AddChannelArgument(name, value);
+  }
   builder.AddListeningPort(options.listen_address, *credentials,
                            &server->port_);
   std::vector<

@@ -23,6 +23,7 @@
 
 #include "absl/status/statusor.h"
 #include "admission.h"
+#include "connection_age.h"
 #include "freeform/core/thread_pool.h"
 #include "http_gateway.h"
 #include "memory_trimmer.h"
@@ -54,6 +55,9 @@ struct ServerOptions {
   // It refuses to start beside TLS options it would bypass
   // (CheckHttpListener).
   HttpGatewayOptions http;
+  // --max_connection_age and its grace (connection_age.h): clients
+  // reconnect, and so re-resolve, at least that often.
+  ConnectionAgeOptions connection_age;
 };
 
 class FreeformServer {

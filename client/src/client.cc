@@ -3,10 +3,12 @@
 #include <grpcpp/create_channel.h>
 #include <grpcpp/security/credentials.h>
 
+#include <string>
+#include <vector>
+
 #include "absl/strings/cord.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
-#include "absl/strings/str_replace.h"
 #include "freeform/io/file.h"
 #include "google/rpc/error_details.pb.h"
 #include "google/rpc/status.pb.h"
@@ -19,9 +21,7 @@ constexpr absl::string_view kStatusDetailsPayload =
     "type.googleapis.com/google.rpc.Status";
 
 // Retries UNAVAILABLE with exponential backoff on every freeform method.
-constexpr char kRetryServiceConfig[] = R"({
-  "loadBalancingConfig": [{"%s": {}}],
-  "methodConfig": [{
+constexpr char kRetryMethodConfig[] = R"("methodConfig": [{
     "name": [{"service": "freeform.v1.CurveService"},
              {"service": "freeform.v1.SurfaceService"}],
     "retryPolicy": {
@@ -31,8 +31,23 @@ constexpr char kRetryServiceConfig[] = R"({
       "backoffMultiplier": 2,
       "retryableStatusCodes": ["UNAVAILABLE"]
     }
-  }]
-})";
+  }])";
+
+// ServiceConfig returns the channel's service config: pick_first, or
+// round_robin over several addresses with client-side health checking
+// (gRPC proposal A17: each connection watches grpc.health.v1.Health, and
+// a replica that reports NOT_SERVING, as a draining freeformd does at
+// once, gets no new call), and the retry policy unless it is off.
+std::string ServiceConfig(const ClientOptions& options) {
+  const bool balance = options.round_robin || !options.replicas.empty();
+  std::vector<std::string> parts = {
+      absl::StrCat(R"("loadBalancingConfig": [{")",
+                   balance ? "round_robin" : "pick_first", R"(": {}}])")};
+  if (balance)
+    parts.emplace_back(R"("healthCheckConfig": {"serviceName": ""})");
+  if (options.retry_unavailable) parts.emplace_back(kRetryMethodConfig);
+  return absl::StrCat("{", absl::StrJoin(parts, ", "), "}");
+}
 
 // ReadCredentialFile reads a certificate, key or CA file of at most
 // kMaxCredentialFileBytes (freeform/io/file.h).
@@ -210,15 +225,12 @@ absl::StatusOr<std::unique_ptr<Client>> Client::Create(
     arguments.SetInt(GRPC_ARG_HTTP2_STREAM_LOOKAHEAD_BYTES,
                      options.stream_window_bytes);
   }
-  const bool balance = options.round_robin || !options.replicas.empty();
-  const std::string policy = balance ? "round_robin" : "pick_first";
-  std::string config =
-      absl::StrReplaceAll(kRetryServiceConfig, {{"%s", policy}});
-  if (!options.retry_unavailable) {
-    config =
-        absl::StrCat(R"({"loadBalancingConfig": [{")", policy, R"(": {}}]})");
+  if (options.min_time_between_resolutions.count() > 0) {
+    arguments.SetInt(
+        GRPC_ARG_DNS_MIN_TIME_BETWEEN_RESOLUTIONS_MS,
+        static_cast<int>(options.min_time_between_resolutions.count()));
   }
-  arguments.SetServiceConfigJSON(config);
+  arguments.SetServiceConfigJSON(ServiceConfig(options));
   auto channel = grpc::CreateCustomChannel(ChannelTarget(options), *credentials,
                                            arguments);
   return std::make_unique<Client>(std::move(channel), options);

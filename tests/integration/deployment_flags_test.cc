@@ -118,6 +118,19 @@ TEST(DeploymentManifests, KubernetesMetricsListenOnThePodAddress) {
             std::string::npos);
 }
 
+// The pods age their connections, so that clients of the headless Service
+// re-resolve its name and find new pods, and the age's grace covers the
+// longest call (--max_call_time's default, 60 s). docs/operations.md says
+// why.
+TEST(DeploymentManifests, KubernetesConnectionsAgeSoClientsFindNewPods) {
+  const std::vector<std::string> flags = FlagsBetween(
+      ReadSourceFile("docker/k8s/deployment.yaml"), "args:", "env:");
+  EXPECT_THAT(flags, ::testing::Contains("--max_connection_age=30s"));
+  EXPECT_THAT(flags, ::testing::Contains("--max_connection_age_grace=60s"));
+  EXPECT_THAT(ReadSourceFile("docker/k8s/service.yaml"),
+              ::testing::HasSubstr("clusterIP: None"));
+}
+
 // The ingress rules of networkpolicy.yaml, each from its "- ports:" line to
 // the next.
 std::vector<std::string> IngressRules(const std::string& policy) {

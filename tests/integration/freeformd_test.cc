@@ -54,6 +54,11 @@ TEST(FreeformdFlags, HelpAndVersionExitZero) {
                                      "client identities"));
   EXPECT_THAT(help.output,
               HasSubstr("--metrics_listen  Address of the Prometheus metrics"));
+  EXPECT_THAT(help.output,
+              HasSubstr("--max_connection_age  Age after which a client "
+                        "connection is sent GOAWAY"));
+  EXPECT_THAT(help.output, HasSubstr("--max_connection_age_grace  Time calls "
+                                     "in flight"));
   EXPECT_THAT(help.output, ::testing::Not(HasSubstr("No flags matched")));
   const CommandResult version =
       RunCommand(absl::StrCat(FREEFORMD_PATH, " --version"));
@@ -347,6 +352,38 @@ TEST(FreeformdLogFormat, JsonLogLinesAllParse) {
   }
   EXPECT_GE(lines, 3);  // serving, the refused call, stopped
   std::remove(log_path.c_str());
+}
+
+// A connection age or grace gRPC would misread: freeformd exits 1 naming
+// the flag, before it listens. A duration that does not parse is Abseil's
+// to refuse, also with exit 1.
+TEST(FreeformdFlags, BadConnectionAgesRefuseToStart) {
+  struct Refusal {
+    std::string flags;
+    std::string message;
+  };
+  const Refusal refusals[] = {
+      {.flags = "--max_connection_age=-30s",
+       .message = "cannot start: INVALID_ARGUMENT: --max_connection_age=-30s "
+                  "is negative"},
+      {.flags = "--max_connection_age=100ms",
+       .message = "--max_connection_age=100ms is under the shortest age, 1s"},
+      {.flags = "--max_connection_age=1000h",
+       .message = "--max_connection_age=1000h is over the longest gRPC "
+                  "accepts"},
+      {.flags = "--max_connection_age_grace=5s",
+       .message = "--max_connection_age_grace=5s needs --max_connection_age"},
+      {.flags = "--max_connection_age=30s --max_connection_age_grace=-1s",
+       .message = "--max_connection_age_grace=-1s is negative"},
+      {.flags = "--max_connection_age=thirty", .message = "max_connection_age"},
+  };
+  for (const Refusal& refusal : refusals) {
+    const CommandResult result = RunCommand(
+        absl::StrCat(FREEFORMD_PATH, " --listen=127.0.0.1:0 ", refusal.flags));
+    EXPECT_EQ(result.exit_code, 1) << refusal.flags << "\n" << result.output;
+    EXPECT_THAT(result.output, HasSubstr(refusal.message)) << refusal.flags;
+    EXPECT_THAT(result.output, ::testing::Not(HasSubstr("listening on")));
+  }
 }
 
 TEST(FreeformdLogFormat, UnknownFormatIsRefused) {

@@ -277,6 +277,18 @@ TEST(FreeformdTlsAllowList, ServesTheListedClientsOnly) {
                 absl::StatusCode::kPermissionDenied)
           << refused;
     }
+    // A round_robin client health-checks each replica (client.cc's
+    // ServiceConfig): its health Watch is refused too, so the one replica
+    // counts as unhealthy and the call ends UNAVAILABLE, not
+    // PERMISSION_DENIED (docs/operations.md, "Scale-out").
+    ClientOptions balanced =
+        TlsClientOptions(certificates, server.port(), "stranger");
+    balanced.round_robin = true;
+    auto balanced_client = Client::Create(balanced);
+    ASSERT_TRUE(balanced_client.ok());
+    EXPECT_EQ(
+        (*balanced_client)->EvaluateBezier(1, {0, 2}, {0.5}).status().code(),
+        absl::StatusCode::kUnavailable);
     EXPECT_EQ(server.StopWith(SIGTERM, std::chrono::seconds(10)), 0);
   }
   const std::string log = ReadLog(log_path);

@@ -34,26 +34,6 @@ inline constexpr bool kThreadSanitizer = true;
 inline constexpr bool kThreadSanitizer = false;
 #endif
 
-// TimeScale is the factor by which the tests stretch the allowances of
-// their timing checks (a call's deadline, the time a cancelled call may take
-// to stop): FREEFORM_TEST_TIME_SCALE, default 1. The sanitizer presets set
-// it (CMakePresets.json): their builds run several times slower, more so on
-// a loaded machine. The checks stay the same checks; only their clocks are
-// slower.
-inline double TimeScale() {
-  const char* scale = std::getenv("FREEFORM_TEST_TIME_SCALE");
-  const double value = scale == nullptr ? 1.0 : std::atof(scale);
-  return value >= 1.0 ? value : 1.0;
-}
-
-// Scaled returns `duration` times TimeScale().
-template <typename Rep, typename Period>
-std::chrono::milliseconds Scaled(std::chrono::duration<Rep, Period> duration) {
-  return std::chrono::milliseconds(static_cast<int64_t>(
-      std::chrono::duration<double, std::milli>(duration).count() *
-      TimeScale()));
-}
-
 class InProcessServerTest : public ::testing::Test {
  protected:
   void SetUp() override { StartServer(ServiceLimits{}); }

@@ -46,8 +46,19 @@ struct ClientOptions {
   // Several "host:port" replicas balanced client-side with round_robin.
   std::vector<std::string> replicas;
   // Use round_robin over every address `target` resolves to (for a DNS
-  // name with several records, such as a Kubernetes headless Service).
+  // name with several records, such as a Kubernetes headless Service:
+  // "dns:///freeformd.NAMESPACE.svc.cluster.local:50051", or with the DNS
+  // server named, "dns://10.0.0.10:53/NAME:PORT"). A balanced channel
+  // (this or `replicas`) health-checks every replica (grpc.health.v1
+  // Watch): one that reports NOT_SERVING, as a draining freeformd does,
+  // gets no new call.
   bool round_robin = false;
+  // The shortest time between two DNS resolutions of `target`; 0 keeps
+  // gRPC's 30 s. gRPC resolves again when a connection closes (a replica
+  // drains, or sends GOAWAY at its --max_connection_age), but never sooner
+  // than this after the last resolution: a new replica gets calls only
+  // after both.
+  std::chrono::milliseconds min_time_between_resolutions{0};
   // Deadline of each call.
   std::chrono::milliseconds timeout{30'000};
   // Largest message the client accepts.
