@@ -23,7 +23,8 @@ constexpr absl::string_view kStatusDetailsPayload =
 // Retries UNAVAILABLE with exponential backoff on every freeform method.
 constexpr char kRetryMethodConfig[] = R"("methodConfig": [{
     "name": [{"service": "freeform.v1.CurveService"},
-             {"service": "freeform.v1.SurfaceService"}],
+             {"service": "freeform.v1.SurfaceService"},
+             {"service": "freeform.v1.FaceService"}],
     "retryPolicy": {
       "maxAttempts": 4,
       "initialBackoff": "0.05s",

@@ -1,4 +1,4 @@
-// AllCases: every method of both services.
+// AllCases: every method of every service.
 #include "cases.h"
 
 namespace freeform::reliability {
@@ -9,7 +9,7 @@ std::vector<RpcCase> AllCases(StreamSize stream) {
        {CurveEvaluationCases(stream), CurveRefinementCases(),
         CurveConstructionCases(), SurfaceEvaluationCases(stream),
         SurfaceRefinementCases(), SurfaceTessellationCases(), QueryCases(),
-        ApproximationCases()}) {
+        ApproximationCases(), FaceCases()}) {
     for (RpcCase& c : group) cases.push_back(std::move(c));
   }
   return cases;

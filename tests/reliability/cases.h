@@ -1,10 +1,10 @@
-// The reliability calls: one RpcCase per method of CurveService and
-// SurfaceService (proto/freeform/v1/*.proto), streams included. Each call
-// draws a fresh request from the caller's random generator, sends it
-// through freeform::Client and checks the answer against the mathematics
-// (reference.h): worked values from docs/references.md, geometry that every
-// representation must reproduce (a line, a plane), shape preserved at
-// sample parameters by splitting, knot insertion and degree elevation,
+// The reliability calls: one RpcCase per method of CurveService,
+// SurfaceService and FaceService (proto/freeform/v1/*.proto), streams
+// included. Each call draws a fresh request from the caller's random generator,
+// sends it through freeform::Client and checks the answer against the
+// mathematics (reference.h): worked values from docs/references.md, geometry
+// that every representation must reproduce (a line, a plane), shape preserved
+// at sample parameters by splitting, knot insertion and degree elevation,
 // interpolants through their data, partition of unity, tolerances met.
 #ifndef FREEFORM_TESTS_RELIABILITY_CASES_H_
 #define FREEFORM_TESTS_RELIABILITY_CASES_H_
@@ -45,8 +45,10 @@ std::vector<RpcCase> SurfaceTessellationCases();
 std::vector<RpcCase> QueryCases();
 // Knot removal and fitting of both services, one case per method.
 std::vector<RpcCase> ApproximationCases();
+// FaceService, one case per method.
+std::vector<RpcCase> FaceCases();
 
-// Every method of both services (38 cases).
+// Every method of every service (41 cases).
 std::vector<RpcCase> AllCases(StreamSize stream = {});
 
 // A random set of curve blending functions (Bernstein, B-spline, either
