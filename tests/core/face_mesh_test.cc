@@ -34,24 +34,6 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kRadius = 1.5;  // of the cylinder
 constexpr double kHeight = 2.0;
 
-// The quarter cylinder of radius kRadius about the z axis, u around it
-// from +x to +y (the rational quadratic arc), v along it to kHeight.
-SurfaceData QuarterCylinder() {
-  const double w = std::sqrt(0.5);
-  const double arc[3][2] = {{1, 0}, {1, 1}, {0, 1}};
-  SurfaceData cylinder{
-      .degree_u = 2, .degree_v = 1, .dimension = 3, .count_u = 3, .count_v = 2};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 2; ++j) {
-      cylinder.coordinates.insert(
-          cylinder.coordinates.end(),
-          {kRadius * arc[i][0], kRadius * arc[i][1], kHeight * j});
-      cylinder.weights.push_back(i == 1 ? w : 1.0);
-    }
-  }
-  return cylinder;
-}
-
 // ArcParameter returns the u of the quarter arc at angle theta in
 // [0, pi / 2] (its angle grows with u: bisection).
 double ArcParameter(double theta) {
@@ -198,7 +180,7 @@ TEST(TessellateFace, PlaneSquareWithHoleHasTheAreaTrimsAndTopology) {
 // A quarter cylinder trimmed to a window with a round hole.
 struct CylinderFace {
   explicit CylinderFace(bool reversed = false)
-      : data(QuarterCylinder()),
+      : data(trim_testing::QuarterCylinder(kRadius, kHeight)),
         surface(*BezierSurface::Create(data.bezier_view())),
         window(Square(0.1, 0.05, 0.9, 0.95)),
         hole(ClockwiseCircle(0.15, 0.5, 0.5)),

@@ -43,6 +43,25 @@ inline SurfaceData KnottedPlane() {
   return plane;
 }
 
+// The quarter cylinder of `radius` about the z axis as a rational Bezier
+// patch: u around it from +x to +y (the rational quadratic arc), v along it
+// from z = 0 to `height`.
+inline SurfaceData QuarterCylinder(double radius, double height) {
+  const double w = std::sqrt(0.5);
+  const double arc[3][2] = {{1, 0}, {1, 1}, {0, 1}};
+  SurfaceData cylinder{
+      .degree_u = 2, .degree_v = 1, .dimension = 3, .count_u = 3, .count_v = 2};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      cylinder.coordinates.insert(
+          cylinder.coordinates.end(),
+          {radius * arc[i][0], radius * arc[i][1], height * j});
+      cylinder.weights.push_back(i == 1 ? w : 1.0);
+    }
+  }
+  return cylinder;
+}
+
 // Reversed returns the curve run backwards (its knots mirrored).
 inline BSplineCurveData Reversed(const BSplineCurveData& curve) {
   BSplineCurveData reversed = curve;
