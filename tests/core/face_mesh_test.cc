@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "freeform/core/cancellation.h"
 #include "freeform/core/status.h"
 #include "freeform/core/surface.h"
 #include "freeform/core/trimmed_surface.h"
@@ -315,6 +316,31 @@ TEST(TessellateFace, BadOptionsAreNamed) {
           .status();
   EXPECT_EQ(status.code(), absl::StatusCode::kResourceExhausted);
   EXPECT_EQ(FieldPathOf(status), "max_vertices");
+}
+
+TEST(TessellateFace, CancelledTokenStopsTheWork) {
+  const CylinderFace shape;
+  ASSERT_TRUE(shape.face.ok());
+  CancellationToken token;
+  token.Cancel();
+  EXPECT_EQ(
+      TessellateFace(*shape.face, {.tolerance = 1e-3}, &token).status().code(),
+      absl::StatusCode::kCancelled);
+}
+
+TEST(TessellateFace, RefusesASurfaceThatIsOnlyC0InsideItsDomain) {
+  // The full cylinder of the 9-point NURBS circle: its homogeneous form has
+  // double knots (C0) at the quarters, where the bound does not hold.
+  const SurfaceData cylinder = testing_util::Revolve(
+      {{kRadius, 0, 1}, {kRadius, 1, 1}, {kRadius, 2, 1}}, {0, 0, 0, 1, 1, 1});
+  const Surface surface = *BSplineSurface::Create(cylinder.bspline_view());
+  absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
+      {.surface = surface, .outer = std::nullopt, .holes = {}}, 1e-9);
+  ASSERT_TRUE(face.ok()) << face.status();
+  const absl::Status status =
+      TessellateFace(*face, {.tolerance = 1e-3}).status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(FieldPathOf(status), "surface");
 }
 
 }  // namespace
