@@ -122,9 +122,10 @@ absl::StatusOr<PlanarTriangulation> Refine(const TrimmedSurface& face,
       }
     }
     if (cdt.point_count() == before) {
-      return absl::FailedPreconditionError(
-          "tolerance: the face's refinement found no Steiner point inside "
-          "the face for its remaining triangles");
+      return InvalidFieldError(
+          "tolerance",
+          "cannot be met: a triangle over the bound has no Steiner point "
+          "inside the face");
     }
   }
 }

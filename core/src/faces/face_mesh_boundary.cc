@@ -30,8 +30,11 @@ using PointAt = absl::FunctionRef<absl::StatusOr<freeform::Point2>(double)>;
 class LoopBuilder {
  public:
   LoopBuilder(const FaceMetric& metric, double chord_bound,
-              const SurfaceDomain& domain)
-      : metric_(metric), chord_bound_(chord_bound), domain_(domain) {}
+              const SurfaceDomain& domain, size_t max_points)
+      : metric_(metric),
+        chord_bound_(chord_bound),
+        domain_(domain),
+        max_points_(max_points) {}
 
   // AddChord appends the start of the chord from (t0, p0) to (t1, p1) and
   // the points that halve it until every part meets the bound.
@@ -42,6 +45,7 @@ class LoopBuilder {
         metric_.SegmentBound(p0, p1) <= chord_bound_) {
       return absl::OkStatus();
     }
+    if (points_.size() >= max_points_) return TooManyVertices(max_points_);
     const double tm = 0.5 * (t0 + t1);
     ASSIGN_OR_RETURN(const freeform::Point2 pm, point_at(tm));
     RETURN_IF_ERROR(AddChord(point_at, t0, p0, tm, pm, depth + 1));
@@ -67,6 +71,7 @@ class LoopBuilder {
   const FaceMetric& metric_;
   double chord_bound_;
   SurfaceDomain domain_;
+  size_t max_points_;
   std::vector<freeform::Point2> points_;
 };
 
@@ -138,7 +143,7 @@ absl::StatusOr<SampledBoundary> SampleFaceBoundary(
   const int holes = static_cast<int>(face.holes().size());
   for (int hole = -1; hole < holes; ++hole) {
     RETURN_IF_ERROR(CheckCancelled(cancel));
-    LoopBuilder loop(metric, tolerance / 2, domain);
+    LoopBuilder loop(metric, tolerance / 2, domain, max_vertices);
     if (hole < 0 && !face.outer().has_value()) {
       RETURN_IF_ERROR(SampleDomain(domain, loop));
     } else {

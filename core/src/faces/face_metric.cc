@@ -99,6 +99,13 @@ absl::StatusOr<FaceMetric> FaceMetric::Create(const Surface& surface) {
       const double dv = metric.breaks_v_[j + 1] - metric.breaks_v_[j];
       const PieceBounds bounds =
           BoundPieceIn(view, spans_u[i], spans_v[j], frame);
+      if (!(std::isfinite(bounds.uu) && std::isfinite(bounds.uv) &&
+            std::isfinite(bounds.vv))) {
+        return InvalidFieldError(
+            "surface",
+            "its second partials have no finite bound from the "
+            "control points");
+      }
       metric.second_.push_back({bounds.uu / (du * du), bounds.uv / (du * dv),
                                 bounds.vv / (dv * dv)});
     }

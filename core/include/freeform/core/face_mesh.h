@@ -88,8 +88,10 @@ struct FaceMesh {
 // face.reversed() (the winding too).
 //
 // Fails with INVALID_ARGUMENT naming "tolerance" (not positive and finite,
-// or a trim that cannot be sampled to it) or "surface" (not 3D, a weight
-// not positive, or a C^0 knot line), RESOURCE_EXHAUSTED naming
+// a trim that cannot be sampled to it, or a triangle over the bound with
+// no Steiner point inside the face) or "surface" (not 3D, a weight not
+// positive, a C^0 knot line, or second partials without a finite bound),
+// RESOURCE_EXHAUSTED naming
 // "max_vertices" when the boundary and the grid (counted before any work)
 // or the refinement (checked before each round) need more vertices, and
 // with the token's CANCELLED / DEADLINE_EXCEEDED (polled per piece and per
