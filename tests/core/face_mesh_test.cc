@@ -256,6 +256,13 @@ TEST(TessellateFace, CylinderWindowWithHoleStaysWithinTolerance) {
     for (size_t t = 0; t < mesh->triangles.size(); t += 3) {
       EXPECT_GT(UvCross(*mesh, t), 0.0) << t;
     }
+    // A disk with one hole: each edge at most twice, V - E + F = 0.
+    const std::map<std::pair<uint32_t, uint32_t>, int> edges = Edges(*mesh);
+    for (const auto& [edge, uses] : edges) EXPECT_LE(uses, 2);
+    EXPECT_EQ(static_cast<int64_t>(vertex_count) -
+                  static_cast<int64_t>(edges.size()) +
+                  static_cast<int64_t>(mesh->triangles.size() / 3),
+              0);
     const double deviation = LargestDeviation(*shape.face, *mesh, tolerance);
     EXPECT_LE(deviation, tolerance);
     EXPECT_LE(mesh->deviation_bound, tolerance);
