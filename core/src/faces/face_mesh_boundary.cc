@@ -195,11 +195,14 @@ absl::StatusOr<std::vector<freeform::Point2>> InteriorGrid(
       const auto [cells_u, cells_v] = cells[i * (bv.size() - 1) + j];
       const double hu = (bu[i + 1] - bu[i]) / cells_u;
       const double hv = (bv[j + 1] - bv[j]) / cells_v;
+      // The counts fit: their product is at most max_vertices.
+      const size_t count_u = static_cast<size_t>(cells_u);
+      const size_t count_v = static_cast<size_t>(cells_v);
       uv.clear();
-      for (double a = 0; a < cells_u; ++a) {
-        for (double b = 0; b < cells_v; ++b) {
-          uv.push_back(bu[i] + a * hu);
-          uv.push_back(bv[j] + b * hv);
+      for (size_t a = 0; a < count_u; ++a) {
+        for (size_t b = 0; b < count_v; ++b) {
+          uv.push_back(bu[i] + static_cast<double>(a) * hu);
+          uv.push_back(bv[j] + static_cast<double>(b) * hv);
         }
       }
       ASSIGN_OR_RETURN(
