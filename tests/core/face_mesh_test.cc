@@ -325,6 +325,64 @@ TEST(TessellateFace, BadOptionsAreNamed) {
   EXPECT_EQ(FieldPathOf(status), "max_vertices");
 }
 
+// The paraboloid S(u, v) = (u, v, u^2 + v^2) as a biquadratic B-spline
+// with knots at 1/2 (four pieces, C1 across them): the control points of u
+// are the Greville abscissae and those of u^2 the products t_{i+1} t_{i+2}.
+SurfaceData Paraboloid() {
+  const double greville[4] = {0, 0.25, 0.75, 1};
+  const double square[4] = {0, 0, 0.5, 1};
+  SurfaceData paraboloid{.degree_u = 2,
+                         .degree_v = 2,
+                         .dimension = 3,
+                         .count_u = 4,
+                         .count_v = 4,
+                         .knots_u = {0, 0, 0, 0.5, 1, 1, 1},
+                         .knots_v = {0, 0, 0, 0.5, 1, 1, 1}};
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      paraboloid.coordinates.insert(
+          paraboloid.coordinates.end(),
+          {greville[i], greville[j], square[i] + square[j]});
+    }
+  }
+  return paraboloid;
+}
+
+TEST(TessellateFace, ParaboloidAcrossKnotLinesStaysWithinTolerance) {
+  // The vertical gap z - (x^2 + y^2) of a point over the surface bounds its
+  // distance; linear interpolation's gap is sum_i lambda_i |x_i - x|^2, at
+  // most the squared circumradius: the bound is exact here (A = B = 2).
+  const SurfaceData data = Paraboloid();
+  const Surface surface = *BSplineSurface::Create(data.bspline_view());
+  const BSplineCurveData hole = ClockwiseCircle(0.2, 0.5, 0.5);
+  absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
+      {.surface = surface, .outer = std::nullopt, .holes = {LoopOf(hole)}},
+      1e-9);
+  ASSERT_TRUE(face.ok()) << face.status();
+  for (const double tolerance : {1e-3, 1e-4}) {
+    absl::StatusOr<FaceMesh> mesh =
+        TessellateFace(*face, {.tolerance = tolerance});
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    double largest = 0.0;
+    for (size_t t = 0; t < mesh->triangles.size(); t += 3) {
+      const double* p[3];
+      for (int k = 0; k < 3; ++k) p[k] = Vertex(*mesh, mesh->triangles[t + k]);
+      for (const std::array<double, 3>& q : TriangleSamples(p)) {
+        largest = std::max(largest, q[2] - (q[0] * q[0] + q[1] * q[1]));
+      }
+    }
+    for (size_t v = 0; v < mesh->uv.size() / 2; ++v) {
+      const double* p = Vertex(*mesh, static_cast<uint32_t>(v));
+      EXPECT_NEAR(p[2], p[0] * p[0] + p[1] * p[1], 1e-14);
+    }
+    EXPECT_LE(largest, tolerance);
+    EXPECT_LE(mesh->deviation_bound, tolerance);
+    std::cout << "paraboloid, tolerance " << tolerance << ": "
+              << mesh->uv.size() / 2 << " vertices, largest gap " << largest
+              << ", min angle " << mesh->min_angle_degrees << " degrees\n";
+  }
+}
+
 TEST(TessellateFace, CancelledTokenStopsTheWork) {
   const CylinderFace shape;
   ASSERT_TRUE(shape.face.ok());
