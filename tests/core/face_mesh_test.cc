@@ -200,8 +200,15 @@ struct CylinderFace {
 // LargestDeviation returns the largest distance to the cylinder of the
 // triangles' samples, checking that each sample's nearest cylinder point
 // and each centroid are in the face.
+using NearestUv = std::array<double, 2> (*)(const std::array<double, 3>&);
+
+// QuarterUv returns the (u, v) of the quarter cylinder's point nearest q.
+std::array<double, 2> QuarterUv(const std::array<double, 3>& q) {
+  return {ArcParameter(std::atan2(q[1], q[0])), q[2] / kHeight};
+}
+
 double LargestDeviation(const TrimmedSurface& face, const FaceMesh& mesh,
-                        double tolerance) {
+                        double tolerance, NearestUv nearest = QuarterUv) {
   double largest = 0.0;
   std::vector<double> nearest_uv;
   std::vector<double> centroids;
@@ -210,8 +217,8 @@ double LargestDeviation(const TrimmedSurface& face, const FaceMesh& mesh,
     for (int k = 0; k < 3; ++k) p[k] = Vertex(mesh, mesh.triangles[t + k]);
     for (const std::array<double, 3>& q : TriangleSamples(p)) {
       largest = std::max(largest, std::abs(std::hypot(q[0], q[1]) - kRadius));
-      nearest_uv.push_back(ArcParameter(std::atan2(q[1], q[0])));
-      nearest_uv.push_back(q[2] / kHeight);
+      const std::array<double, 2> uv = nearest(q);
+      nearest_uv.insert(nearest_uv.end(), {uv[0], uv[1]});
     }
     double u = 0, v = 0;
     for (int k = 0; k < 3; ++k) {
@@ -393,19 +400,57 @@ TEST(TessellateFace, CancelledTokenStopsTheWork) {
       absl::StatusCode::kCancelled);
 }
 
-TEST(TessellateFace, RefusesASurfaceThatIsOnlyC0InsideItsDomain) {
-  // The full cylinder of the 9-point NURBS circle: its homogeneous form has
-  // double knots (C0) at the quarters, where the bound does not hold.
+// FullCylinderUv returns the (u, v) of the point of testing_util::Revolve's
+// cylinder (u along the axis to kHeight, v around it in four quarter arcs)
+// nearest q.
+std::array<double, 2> FullCylinderUv(const std::array<double, 3>& q) {
+  double theta = std::atan2(q[1], q[0]);
+  if (theta < 0) theta += 2 * kPi;
+  const double quarter = std::min(3.0, std::floor(theta / (kPi / 2)));
+  return {q[2] / kHeight,
+          (quarter + ArcParameter(theta - quarter * kPi / 2)) / 4};
+}
+
+TEST(TessellateFace, FullCylinderAcrossItsC0KnotLinesStaysWithinTolerance) {
+  // The 9-point NURBS circle's homogeneous form is only C0 at its double
+  // knots v = 1/4, 1/2, 3/4: no triangle may lie across them.
   const SurfaceData cylinder = testing_util::Revolve(
       {{kRadius, 0, 1}, {kRadius, 1, 1}, {kRadius, 2, 1}}, {0, 0, 0, 1, 1, 1});
   const Surface surface = *BSplineSurface::Create(cylinder.bspline_view());
+  const std::vector<BezierCurveData> window = Square(0.1, 0.02, 0.9, 0.6);
+  const BSplineCurveData hole = ClockwiseCircle(0.15, 0.45, 0.3);
   absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
-      {.surface = surface, .outer = std::nullopt, .holes = {}}, 1e-9);
+      {.surface = surface, .outer = LoopOf(window), .holes = {LoopOf(hole)}},
+      1e-9);
   ASSERT_TRUE(face.ok()) << face.status();
-  const absl::Status status =
-      TessellateFace(*face, {.tolerance = 1e-3}).status();
-  EXPECT_EQ(status.code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_EQ(FieldPathOf(status), "surface");
+  for (const double tolerance : {1e-2, 1e-3}) {
+    absl::StatusOr<FaceMesh> mesh =
+        TessellateFace(*face, {.tolerance = tolerance});
+    ASSERT_TRUE(mesh.ok()) << mesh.status();
+    for (size_t v = 0; v < mesh->uv.size() / 2; ++v) {
+      const double* p = Vertex(*mesh, static_cast<uint32_t>(v));
+      EXPECT_NEAR(std::hypot(p[0], p[1]), kRadius, 1e-12) << v;
+    }
+    for (size_t t = 0; t < mesh->triangles.size(); t += 3) {
+      double lo = 1, hi = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double v = mesh->uv[2 * mesh->triangles[t + k] + 1];
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+      for (const double line : {0.25, 0.5, 0.75}) {
+        EXPECT_FALSE(lo < line && line < hi) << t;
+      }
+    }
+    const double deviation =
+        LargestDeviation(*face, *mesh, tolerance, FullCylinderUv);
+    EXPECT_LE(deviation, tolerance);
+    EXPECT_LE(mesh->deviation_bound, tolerance);
+    std::cout << "full cylinder, tolerance " << tolerance << ": "
+              << mesh->uv.size() / 2 << " vertices, measured deviation "
+              << deviation << ", min angle " << mesh->min_angle_degrees
+              << " degrees\n";
+  }
 }
 
 }  // namespace

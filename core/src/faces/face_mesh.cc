@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -60,6 +61,9 @@ std::array<double, 3> Circumcentre(const std::array<Point2, 3>& p,
   return weights;
 }
 
+// The candidates of a Steiner point per triangle.
+constexpr size_t kCandidates = 5;
+
 // SteinerCandidates appends the points to try for a triangle, best first:
 // its metric circumcentre when well inside, its centroid, and the points
 // halfway from the centroid to each corner.
@@ -69,9 +73,31 @@ void SteinerCandidates(const FaceMetric& metric, const std::array<Point2, 3>& p,
     uv.push_back(q.x);
     uv.push_back(q.y);
   };
-  const internal::MetricWeights w = metric.WeightsOver(
-      std::min({p[0].x, p[1].x, p[2].x}), std::max({p[0].x, p[1].x, p[2].x}),
-      std::min({p[0].y, p[1].y, p[2].y}), std::max({p[0].y, p[1].y, p[2].y}));
+  const double u0 = std::min({p[0].x, p[1].x, p[2].x});
+  const double u1 = std::max({p[0].x, p[1].x, p[2].x});
+  const double v0 = std::min({p[0].y, p[1].y, p[2].y});
+  const double v1 = std::max({p[0].y, p[1].y, p[2].y});
+  if (const std::optional<internal::KnotLine> line =
+          metric.StraddledLine(u0, u1, v0, v1)) {
+    // Across a C0 line: the points where the edges cross it.
+    std::vector<Point2> crossings;
+    for (int k = 0; k < 3; ++k) {
+      const Point2 a = p[k], b = p[(k + 1) % 3];
+      const double da = (line->in_u ? a.x : a.y) - line->value;
+      const double db = (line->in_u ? b.x : b.y) - line->value;
+      if ((da < 0.0) == (db < 0.0) || da == 0.0 || db == 0.0) continue;
+      const double s = da / (da - db);
+      Point2 q = {a.x + s * (b.x - a.x), a.y + s * (b.y - a.y)};
+      (line->in_u ? q.x : q.y) = line->value;
+      crossings.push_back(q);
+    }
+    for (size_t c = 0; c < kCandidates; ++c) {
+      add(crossings.empty() ? Combination(p, {1.0 / 3, 1.0 / 3, 1.0 / 3})
+                            : crossings[c % crossings.size()]);
+    }
+    return;
+  }
+  const internal::MetricWeights w = metric.WeightsOver(u0, u1, v0, v1);
   const std::array<double, 3> centre = Circumcentre(p, w);
   const bool inside =
       std::isfinite(centre[0]) &&
@@ -83,7 +109,6 @@ void SteinerCandidates(const FaceMetric& metric, const std::array<Point2, 3>& p,
     add({0.5 * (centroid.x + p[k].x), 0.5 * (centroid.y + p[k].y)});
   }
 }
-constexpr size_t kCandidates = 5;
 
 // Refine inserts Steiner points until every triangle of the face meets the
 // tolerance, and returns the final triangulation.

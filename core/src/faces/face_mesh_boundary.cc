@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "absl/functional/function_ref.h"
@@ -26,6 +27,37 @@ constexpr double kBoundaryGap = 0.3;
 
 using PointAt = absl::FunctionRef<absl::StatusOr<freeform::Point2>(double)>;
 
+// Bisection steps for a chord's crossing of a C0 line.
+constexpr int kCrossingSteps = 64;
+
+struct Crossing {
+  double t = 0.0;
+  freeform::Point2 point;
+};
+
+double Across(const freeform::Point2& p, const KnotLine& line) {
+  return (line.in_u ? p.x : p.y) - line.value;
+}
+
+// CrossingOf returns a point of the curve between t0 and t1 (whose ends
+// lie strictly on either side of the line) on the line, by bisection, its
+// coordinate set to the line's.
+absl::StatusOr<Crossing> CrossingOf(PointAt point_at, double t0,
+                                    freeform::Point2 p0, double t1,
+                                    const KnotLine& line) {
+  const bool below = Across(p0, line) < 0.0;
+  double lo = t0, hi = t1;
+  for (int step = 0; step < kCrossingSteps; ++step) {
+    const double mid = 0.5 * (lo + hi);
+    ASSIGN_OR_RETURN(const freeform::Point2 p, point_at(mid));
+    ((Across(p, line) < 0.0) == below ? lo : hi) = mid;
+  }
+  Crossing crossing{.t = 0.5 * (lo + hi)};
+  ASSIGN_OR_RETURN(crossing.point, point_at(crossing.t));
+  (line.in_u ? crossing.point.x : crossing.point.y) = line.value;
+  return crossing;
+}
+
 // LoopBuilder collects one closed chain of points.
 class LoopBuilder {
  public:
@@ -41,6 +73,18 @@ class LoopBuilder {
   absl::Status AddChord(PointAt point_at, double t0, freeform::Point2 p0,
                         double t1, freeform::Point2 p1, int depth = 0) {
     if (depth == 0) Append(p0);
+    if (const std::optional<KnotLine> line =
+            metric_.StraddledLine(std::min(p0.x, p1.x), std::max(p0.x, p1.x),
+                                  std::min(p0.y, p1.y), std::max(p0.y, p1.y))) {
+      // Split at a crossing of the C0 line, so no chord (and no triangle
+      // on it) lies across the line.
+      ASSIGN_OR_RETURN(const Crossing crossing,
+                       CrossingOf(point_at, t0, p0, t1, *line));
+      RETURN_IF_ERROR(
+          AddChord(point_at, t0, p0, crossing.t, crossing.point, depth + 1));
+      Append(crossing.point);
+      return AddChord(point_at, crossing.t, crossing.point, t1, p1, depth + 1);
+    }
     if (depth >= kMaxChordDepth ||
         metric_.SegmentBound(p0, p1) <= chord_bound_) {
       return absl::OkStatus();

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "absl/status/status.h"
@@ -20,22 +21,26 @@ namespace {
 // A and B are raised to this fraction of the larger (face_mesh.h).
 constexpr double kMetricFloor = 0.01;
 
-// CheckC1 refuses an interior knot of multiplicity at least `degree`.
-absl::Status CheckC1(absl::Span<const double> knots, int degree,
-                     const std::vector<int>& spans, const char* direction) {
+// C0Lines returns the interior knots of multiplicity at least `degree`,
+// where the homogeneous surface may be only C0.
+std::vector<double> C0Lines(absl::Span<const double> knots, int degree,
+                            const std::vector<int>& spans) {
+  std::vector<double> lines;
   for (size_t k = 1; k < spans.size(); ++k) {
     const double knot = knots[static_cast<size_t>(spans[k])];
-    const auto multiplicity = std::count(knots.begin(), knots.end(), knot);
-    if (multiplicity >= degree) {
-      return InvalidFieldError(
-          "surface", absl::StrCat("the knot ", knot, " in ", direction,
-                                  " has multiplicity ", multiplicity,
-                                  " >= degree ", degree,
-                                  ": the surface is only C0 there, which the "
-                                  "face mesher's bound does not cover yet"));
+    if (std::count(knots.begin(), knots.end(), knot) >= degree) {
+      lines.push_back(knot);
     }
   }
-  return absl::OkStatus();
+  return lines;
+}
+
+// FirstInside returns the first line strictly inside (lo, hi).
+std::optional<double> FirstInside(const std::vector<double>& lines, double lo,
+                                  double hi) {
+  const auto it = std::upper_bound(lines.begin(), lines.end(), lo);
+  if (it != lines.end() && *it < hi) return *it;
+  return std::nullopt;
 }
 
 absl::Status CheckMeshableNet(const BSplineSurfaceView& view) {
@@ -75,6 +80,12 @@ std::array<size_t, 2> SpanRange(const std::vector<double>& breaks, double lo,
 
 double Squared(double x) { return x * x; }
 
+// Floored raises A and B to kMetricFloor of the larger.
+MetricWeights Floored(MetricWeights weights) {
+  const double floor = kMetricFloor * std::max(weights.a, weights.b);
+  return {std::max(weights.a, floor), std::max(weights.b, floor)};
+}
+
 }  // namespace
 
 absl::StatusOr<FaceMetric> FaceMetric::Create(const Surface& surface) {
@@ -86,9 +97,9 @@ absl::StatusOr<FaceMetric> FaceMetric::Create(const Surface& surface) {
       NonEmptySpans(view.knots_u, view.degree_u, view.control_net.count_u);
   const std::vector<int> spans_v =
       NonEmptySpans(view.knots_v, view.degree_v, view.control_net.count_v);
-  RETURN_IF_ERROR(CheckC1(view.knots_u, view.degree_u, spans_u, "u"));
-  RETURN_IF_ERROR(CheckC1(view.knots_v, view.degree_v, spans_v, "v"));
   FaceMetric metric;
+  metric.c0_u_ = C0Lines(view.knots_u, view.degree_u, spans_u);
+  metric.c0_v_ = C0Lines(view.knots_v, view.degree_v, spans_v);
   metric.rational_ = view.rational();
   metric.breaks_u_ = Breakpoints(view.knots_u, spans_u);
   metric.breaks_v_ = Breakpoints(view.knots_v, spans_v);
@@ -108,6 +119,10 @@ absl::StatusOr<FaceMetric> FaceMetric::Create(const Surface& surface) {
       }
       metric.second_.push_back({bounds.uu / (du * du), bounds.uv / (du * dv),
                                 bounds.vv / (dv * dv)});
+      // One rectangle alone: the planner's frame of its active points.
+      const PieceBounds own = BoundPiece(view, spans_u[i], spans_v[j]);
+      metric.own_second_.push_back(
+          {own.uu / (du * du), own.uv / (du * dv), own.vv / (dv * dv)});
     }
   }
   return metric;
@@ -118,6 +133,11 @@ MetricWeights FaceMetric::WeightsOver(double u0, double u1, double v0,
   const std::array<size_t, 2> range_u = SpanRange(breaks_u_, u0, u1);
   const std::array<size_t, 2> range_v = SpanRange(breaks_v_, v0, v1);
   MetricWeights weights;
+  if (range_u[0] == range_u[1] && range_v[0] == range_v[1]) {
+    const std::array<double, 3>& m =
+        own_second_[range_u[0] * (breaks_v_.size() - 1) + range_v[0]];
+    return Floored({m[0] + m[1], m[2] + m[1]});
+  }
   for (size_t i = range_u[0]; i <= range_u[1]; ++i) {
     for (size_t j = range_v[0]; j <= range_v[1]; ++j) {
       const std::array<double, 3>& m = second(i, j);
@@ -131,10 +151,18 @@ MetricWeights FaceMetric::WeightsOver(double u0, double u1, double v0,
       }
     }
   }
-  const double floor = kMetricFloor * std::max(weights.a, weights.b);
-  weights.a = std::max(weights.a, floor);
-  weights.b = std::max(weights.b, floor);
-  return weights;
+  return Floored(weights);
+}
+
+std::optional<KnotLine> FaceMetric::StraddledLine(double u0, double u1,
+                                                  double v0, double v1) const {
+  if (const std::optional<double> u = FirstInside(c0_u_, u0, u1)) {
+    return KnotLine{.in_u = true, .value = *u};
+  }
+  if (const std::optional<double> v = FirstInside(c0_v_, v0, v1)) {
+    return KnotLine{.in_u = false, .value = *v};
+  }
+  return std::nullopt;
 }
 
 double FaceMetric::TriangleBound(
@@ -146,6 +174,8 @@ double FaceMetric::TriangleBound(
     v0 = std::min(v0, p.y);
     v1 = std::max(v1, p.y);
   }
+  // Across a C0 line the Taylor argument fails: no bound.
+  if (StraddledLine(u0, u1, v0, v1).has_value()) return INFINITY;
   const MetricWeights w = WeightsOver(u0, u1, v0, v1);
   const double su = std::sqrt(w.a), sv = std::sqrt(w.b);
   std::array<std::array<double, 2>, 3> p;

@@ -6,6 +6,7 @@
 #define FREEFORM_CORE_SRC_FACES_FACE_METRIC_H_
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -20,22 +21,34 @@ struct MetricWeights {
   double b = 0.0;
 };
 
+// A knot line u = value (in_u) or v = value.
+struct KnotLine {
+  bool in_u = true;
+  double value = 0.0;
+};
+
 class FaceMetric {
  public:
-  // Create bounds every span rectangle of `surface`. Fails with
+  // Create bounds every span rectangle of `surface` and notes its C0 lines
+  // (interior knots of multiplicity at least the degree). Fails with
   // INVALID_ARGUMENT naming "surface" for a surface that is not 3D, has a
-  // weight that is not positive or an interior knot line where it is only
-  // C^0 (multiplicity at least the degree).
+  // weight that is not positive, or bounds that are not finite.
   static absl::StatusOr<FaceMetric> Create(const Surface& surface);
 
   // WeightsOver returns A and B over the span rectangles that the box
-  // [u0, u1] x [v0, v1] meets (the largest for a polynomial surface, the
-  // sum for a rational one, whose bounds share one frame), each at least
-  // 1/100 of the larger.
+  // [u0, u1] x [v0, v1] meets: for a box inside one rectangle its bounds in
+  // the rectangle's own frame (the planner's), else the largest over the
+  // rectangles for a polynomial surface and the sum for a rational one (in
+  // one frame for the whole net); each at least 1/100 of the larger.
   MetricWeights WeightsOver(double u0, double u1, double v0, double v1) const;
 
+  // StraddledLine returns a C0 line strictly inside the box, if any.
+  std::optional<KnotLine> StraddledLine(double u0, double u1, double v0,
+                                        double v1) const;
+
   // TriangleBound returns R^2 / 2, R the radius of the smallest circle
-  // enclosing the triangle in the metric over its box.
+  // enclosing the triangle in the metric over its box; infinity for a
+  // triangle across a C0 line.
   double TriangleBound(const std::array<freeform::Point2, 3>& corners) const;
   // SegmentBound returns (A e_u^2 + B e_v^2) / 8 over the segment's box.
   double SegmentBound(freeform::Point2 a, freeform::Point2 b) const;
@@ -55,6 +68,11 @@ class FaceMetric {
   std::vector<double> breaks_u_;
   std::vector<double> breaks_v_;
   std::vector<std::array<double, 3>> second_;
+  // The same in each rectangle's own frame (its active points), for boxes
+  // inside one rectangle.
+  std::vector<std::array<double, 3>> own_second_;
+  std::vector<double> c0_u_;
+  std::vector<double> c0_v_;
   bool rational_ = false;
 };
 
