@@ -27,9 +27,14 @@
 // within an aspect ratio of about 10 where the surface is flat in one
 // direction (a cylinder along its axis).
 //
-// The bound needs the homogeneous surface to be C^1 across the knot lines
-// inside the face: a surface with an interior knot of multiplicity at least
-// its degree (a C^0 line, as in the 9-point NURBS circle) is refused.
+// The bound needs the homogeneous surface to be C^1 inside the triangle:
+// across a knot line of multiplicity at least the degree (a C^0 line, as at
+// the double knots of the 9-point NURBS circle) a triangle has no bound, so
+// boundary chords are split where their curve crosses such a line (by
+// bisection, the point put on the line) and a triangle across one gets its
+// edges' crossings as Steiner points: every triangle lies in a closed span
+// strip on either side. A box inside one span rectangle uses the
+// rectangle's own frame (the planner's bound).
 //
 // Thread-safe: TessellateFace allocates per call and only reads the face.
 #ifndef FREEFORM_CORE_FACE_MESH_H_
@@ -90,7 +95,7 @@ struct FaceMesh {
 // Fails with INVALID_ARGUMENT naming "tolerance" (not positive and finite,
 // a trim that cannot be sampled to it, or a triangle over the bound with
 // no Steiner point inside the face) or "surface" (not 3D, a weight not
-// positive, a C^0 knot line, or second partials without a finite bound),
+// positive, or second partials without a finite bound),
 // RESOURCE_EXHAUSTED naming
 // "max_vertices" when the boundary and the grid (counted before any work)
 // or the refinement (checked before each round) need more vertices, and
