@@ -417,11 +417,8 @@ TEST(TessellateFace, FullCylinderAcrossItsC0KnotLinesStaysWithinTolerance) {
   const SurfaceData cylinder = testing_util::Revolve(
       {{kRadius, 0, 1}, {kRadius, 1, 1}, {kRadius, 2, 1}}, {0, 0, 0, 1, 1, 1});
   const Surface surface = *BSplineSurface::Create(cylinder.bspline_view());
-  const std::vector<BezierCurveData> window = Square(0.1, 0.02, 0.9, 0.6);
-  const BSplineCurveData hole = ClockwiseCircle(0.15, 0.45, 0.3);
-  absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
-      {.surface = surface, .outer = LoopOf(window), .holes = {LoopOf(hole)}},
-      1e-9);
+  const trim_testing::WindowWithHole shape(surface);
+  const absl::StatusOr<TrimmedSurface>& face = shape.face;
   ASSERT_TRUE(face.ok()) << face.status();
   for (const double tolerance : {1e-2, 1e-3}) {
     absl::StatusOr<FaceMesh> mesh =

@@ -223,6 +223,23 @@ struct PlaneWithHole {
   absl::StatusOr<TrimmedSurface> face;
 };
 
+// `surface` trimmed to the window [0.1, 0.9] x [0.02, 0.6] less the disk
+// of radius 0.15 about (0.45, 0.3), validated at 1e-9; the surface's data
+// must outlive it.
+struct WindowWithHole {
+  explicit WindowWithHole(const Surface& surface)
+      : window(Square(0.1, 0.02, 0.9, 0.6)),
+        hole(ClockwiseCircle(0.15, 0.45, 0.3)),
+        face(TrimmedSurface::Create({.surface = surface,
+                                     .outer = LoopOf(window),
+                                     .holes = {LoopOf(hole)}},
+                                    1e-9)) {}
+
+  std::vector<BezierCurveData> window;
+  BSplineCurveData hole;
+  absl::StatusOr<TrimmedSurface> face;
+};
+
 }  // namespace freeform::trim_testing
 
 #endif  // FREEFORM_TESTS_CORE_TRIM_SHAPES_H_
