@@ -14,7 +14,7 @@
 // cylinder of radius 1.5 and height 2 inside the window [0.1, 0.9] x
 // [0.05, 0.95] with a round hole of radius 0.15 about (0.5, 0.5) in
 // (u, v), at a 3D tolerance of 1e-3 and 1e-4 (vertices and triangles as
-// counters).
+// counters); FullCylinder the full NURBS cylinder's window with a hole.
 #include <benchmark/benchmark.h>
 
 #include <optional>
@@ -182,6 +182,33 @@ void BM_FaceMesh_Cylinder(benchmark::State& state) {
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 BENCHMARK(BM_FaceMesh_Cylinder)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// The full NURBS cylinder (9-point circle, C0 homogeneous lines at its
+// double knots) inside trim_testing::WindowWithHole, at 1e-3.
+void BM_FaceMesh_FullCylinder(benchmark::State& state) {
+  const freeform::SurfaceData data = freeform::testing_util::Revolve(
+      {{1.5, 0, 1}, {1.5, 1, 1}, {1.5, 2, 1}}, {0, 0, 0, 1, 1, 1});
+  const freeform::Surface surface =
+      *freeform::BSplineSurface::Create(data.bspline_view());
+  const freeform::trim_testing::WindowWithHole shape(surface);
+  if (!shape.face.ok()) {
+    state.SkipWithError(shape.face.status().ToString().c_str());
+    return;
+  }
+  size_t vertices = 0;
+  for (auto _ : state) {
+    absl::StatusOr<freeform::FaceMesh> mesh =
+        freeform::TessellateFace(*shape.face, {.tolerance = 1e-3});
+    if (!mesh.ok()) {
+      state.SkipWithError(mesh.status().ToString().c_str());
+      return;
+    }
+    vertices = mesh->uv.size() / 2;
+    benchmark::DoNotOptimize(mesh->vertices.data());
+  }
+  state.counters["vertices"] = static_cast<double>(vertices);
+}
+BENCHMARK(BM_FaceMesh_FullCylinder)->Unit(benchmark::kMillisecond);
 
 TrimmedSurfaceParts LargePolygon() { return PolygonParts(100000); }
 TrimmedSurfaceParts SmallPolygon() { return PolygonParts(10000); }
