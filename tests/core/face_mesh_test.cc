@@ -1,7 +1,9 @@
 // TessellateFace (face_mesh.h) against the mathematics: a plane square with
-// a round hole (area, trims, topology) and a quarter cylinder with a
-// window and a round hole (every sampled mesh point within the tolerance of
-// the exact cylinder, inside the trimmed region).
+// a round hole (area, trims, topology), a quarter cylinder with a window
+// and a round hole (every sampled mesh point within the tolerance of the
+// exact cylinder, inside the trimmed region), a paraboloid across knot
+// lines (where the bound is exact) and the full NURBS cylinder across its
+// C0 knot lines.
 #include "freeform/core/face_mesh.h"
 
 #include <gtest/gtest.h>
