@@ -10,13 +10,18 @@
 // uniform random points (seed 3) in or out, classification tolerance 1e-9;
 // Area is FaceArea to 1e-10 (of the 10^4-gon for the polygon). BoundingBox
 // is FaceBoundingBox to 1e-6 of the plane inside a circle of radius 0.3,
-// every side on the trim.
+// every side on the trim. FaceMesh is TessellateFace of the quarter
+// cylinder of radius 1.5 and height 2 inside the window [0.1, 0.9] x
+// [0.05, 0.95] with a round hole of radius 0.15 about (0.5, 0.5) in
+// (u, v), at a 3D tolerance of 1e-3 and 1e-4 (vertices and triangles as
+// counters); FullCylinder the full NURBS cylinder's window with a hole.
 #include <benchmark/benchmark.h>
 
 #include <optional>
 #include <random>
 #include <vector>
 
+#include "freeform/core/face_mesh.h"
 #include "freeform/core/surface.h"
 #include "freeform/core/trimmed_surface.h"
 #include "trim_shapes.h"
@@ -143,6 +148,67 @@ void BM_FaceBoundingBox_Disk(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_FaceBoundingBox_Disk)->Unit(benchmark::kMillisecond);
+
+void BM_FaceMesh_Cylinder(benchmark::State& state) {
+  const freeform::SurfaceData data =
+      freeform::trim_testing::QuarterCylinder(1.5, 2.0);
+  const std::vector<freeform::BezierCurveData> window =
+      freeform::trim_testing::Square(0.1, 0.05, 0.9, 0.95);
+  const BSplineCurveData hole =
+      freeform::trim_testing::ClockwiseCircle(0.15, 0.5, 0.5);
+  absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
+      {.surface = *freeform::BezierSurface::Create(data.bezier_view()),
+       .outer = freeform::trim_testing::LoopOf(window),
+       .holes = {freeform::trim_testing::LoopOf(hole)}},
+      1e-9);
+  if (!face.ok()) {
+    state.SkipWithError(face.status().ToString().c_str());
+    return;
+  }
+  const double tolerance = state.range(0) == 3 ? 1e-3 : 1e-4;
+  size_t vertices = 0, triangles = 0;
+  for (auto _ : state) {
+    absl::StatusOr<freeform::FaceMesh> mesh =
+        freeform::TessellateFace(*face, {.tolerance = tolerance});
+    if (!mesh.ok()) {
+      state.SkipWithError(mesh.status().ToString().c_str());
+      return;
+    }
+    vertices = mesh->uv.size() / 2;
+    triangles = mesh->triangles.size() / 3;
+    benchmark::DoNotOptimize(mesh->vertices.data());
+  }
+  state.counters["vertices"] = static_cast<double>(vertices);
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+BENCHMARK(BM_FaceMesh_Cylinder)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// The full NURBS cylinder (9-point circle, C0 homogeneous lines at its
+// double knots) inside trim_testing::WindowWithHole, at 1e-3.
+void BM_FaceMesh_FullCylinder(benchmark::State& state) {
+  const freeform::SurfaceData data = freeform::testing_util::Revolve(
+      {{1.5, 0, 1}, {1.5, 1, 1}, {1.5, 2, 1}}, {0, 0, 0, 1, 1, 1});
+  const freeform::Surface surface =
+      *freeform::BSplineSurface::Create(data.bspline_view());
+  const freeform::trim_testing::WindowWithHole shape(surface);
+  if (!shape.face.ok()) {
+    state.SkipWithError(shape.face.status().ToString().c_str());
+    return;
+  }
+  size_t vertices = 0;
+  for (auto _ : state) {
+    absl::StatusOr<freeform::FaceMesh> mesh =
+        freeform::TessellateFace(*shape.face, {.tolerance = 1e-3});
+    if (!mesh.ok()) {
+      state.SkipWithError(mesh.status().ToString().c_str());
+      return;
+    }
+    vertices = mesh->uv.size() / 2;
+    benchmark::DoNotOptimize(mesh->vertices.data());
+  }
+  state.counters["vertices"] = static_cast<double>(vertices);
+}
+BENCHMARK(BM_FaceMesh_FullCylinder)->Unit(benchmark::kMillisecond);
 
 TrimmedSurfaceParts LargePolygon() { return PolygonParts(100000); }
 TrimmedSurfaceParts SmallPolygon() { return PolygonParts(10000); }

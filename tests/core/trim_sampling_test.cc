@@ -21,7 +21,6 @@ namespace {
 using trim_testing::BilinearPlane;
 using trim_testing::ClockwiseCircle;
 using trim_testing::LoopOf;
-using trim_testing::Square;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -108,11 +107,8 @@ TEST(SampleTrimCurve, TrimsOnARationalCylinderAndSphereStayWithinTolerance) {
   const SurfaceData sphere_data = testing_util::NurbsSphere(2.0);
   for (const SurfaceData* data : {&cylinder_data, &sphere_data}) {
     const Surface surface = *BSplineSurface::Create(data->bspline_view());
-    const std::vector<BezierCurveData> window = Square(0.1, 0.02, 0.9, 0.6);
-    const BSplineCurveData hole = ClockwiseCircle(0.15, 0.45, 0.3);
-    absl::StatusOr<TrimmedSurface> face = TrimmedSurface::Create(
-        {.surface = surface, .outer = LoopOf(window), .holes = {LoopOf(hole)}},
-        1e-9);
+    const trim_testing::WindowWithHole shape(surface);
+    const absl::StatusOr<TrimmedSurface>& face = shape.face;
     ASSERT_TRUE(face.ok()) << face.status();
     for (const double tolerance : {1e-3, 1e-5}) {
       for (const auto& [hole_index, curve_index] :

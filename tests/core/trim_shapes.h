@@ -43,6 +43,25 @@ inline SurfaceData KnottedPlane() {
   return plane;
 }
 
+// The quarter cylinder of `radius` about the z axis as a rational Bezier
+// patch: u around it from +x to +y (the rational quadratic arc), v along it
+// from z = 0 to `height`.
+inline SurfaceData QuarterCylinder(double radius, double height) {
+  const double w = std::sqrt(0.5);
+  const double arc[3][2] = {{1, 0}, {1, 1}, {0, 1}};
+  SurfaceData cylinder{
+      .degree_u = 2, .degree_v = 1, .dimension = 3, .count_u = 3, .count_v = 2};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 2; ++j) {
+      cylinder.coordinates.insert(
+          cylinder.coordinates.end(),
+          {radius * arc[i][0], radius * arc[i][1], height * j});
+      cylinder.weights.push_back(i == 1 ? w : 1.0);
+    }
+  }
+  return cylinder;
+}
+
 // Reversed returns the curve run backwards (its knots mirrored).
 inline BSplineCurveData Reversed(const BSplineCurveData& curve) {
   BSplineCurveData reversed = curve;
@@ -200,6 +219,23 @@ struct PlaneWithHole {
 
   SurfaceData plane;
   Surface surface;
+  BSplineCurveData hole;
+  absl::StatusOr<TrimmedSurface> face;
+};
+
+// `surface` trimmed to the window [0.1, 0.9] x [0.02, 0.6] less the disk
+// of radius 0.15 about (0.45, 0.3), validated at 1e-9; the surface's data
+// must outlive it.
+struct WindowWithHole {
+  explicit WindowWithHole(const Surface& surface)
+      : window(Square(0.1, 0.02, 0.9, 0.6)),
+        hole(ClockwiseCircle(0.15, 0.45, 0.3)),
+        face(TrimmedSurface::Create({.surface = surface,
+                                     .outer = LoopOf(window),
+                                     .holes = {LoopOf(hole)}},
+                                    1e-9)) {}
+
+  std::vector<BezierCurveData> window;
   BSplineCurveData hole;
   absl::StatusOr<TrimmedSurface> face;
 };
