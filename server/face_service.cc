@@ -1,11 +1,14 @@
 // FaceService: Classify, Evaluate and Area of trimmed faces.
 #include "face_service.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "freeform/core/constrained_delaunay.h"
+#include "freeform/core/face_mesh.h"
 #include "freeform/core/status_macros.h"
 #include "freeform/core/trimmed_surface.h"
 #include "plan.h"
@@ -45,10 +48,10 @@ absl::StatusOr<double> BoundaryTolerance(const Request& request,
 
 // Classifies every sample of `samples` against the face and appends the
 // locations to `out`.
-absl::Status ClassifyInto(
-    const TrimmedSurface& face, const SurfacePlan& samples, double tolerance,
-    const ExecutionContext& execution,
-    google::protobuf::RepeatedField<int>& out) {
+absl::Status ClassifyInto(const TrimmedSurface& face,
+                          const SurfacePlan& samples, double tolerance,
+                          const ExecutionContext& execution,
+                          google::protobuf::RepeatedField<int>& out) {
   std::vector<PointLocation> locations(samples.size());
   RETURN_IF_ERROR(ClassifySamples(face, samples.All(), tolerance,
                                   absl::MakeSpan(locations), execution));
@@ -75,8 +78,8 @@ absl::StatusOr<UnaryWork> PlanClassify(
                        .memory_bytes,
                .heavy = true},
       .run = [face = std::move(face), samples = std::move(samples), tolerance,
-              &response](const ExecutionContext& execution) mutable
-      -> absl::Status {
+              &response](
+                 const ExecutionContext& execution) mutable -> absl::Status {
         ASSIGN_OR_RETURN(const TrimmedSurface trimmed,
                          CreateFace(std::move(face), execution.cancellation));
         return ClassifyInto(trimmed, samples, tolerance, execution,
@@ -100,14 +103,14 @@ absl::StatusOr<UnaryWork> PlanEvaluate(const v1::EvaluateFaceRequest& request,
   ASSIGN_OR_RETURN(const uint64_t work_bytes,
                    CheckWorkBytes(work.bytes + points, limits, "face"));
   return UnaryWork{
-      .plan = {.memory_bytes = evaluation.memory_bytes +
-                               AnswerPlan(points * kLocationValues, work_bytes,
-                                          limits)
-                                   .memory_bytes,
+      .plan = {.memory_bytes =
+                   evaluation.memory_bytes +
+                   AnswerPlan(points * kLocationValues, work_bytes, limits)
+                       .memory_bytes,
                .heavy = true},
       .run = [face = std::move(face), plan = std::move(plan), tolerance,
-              &response](const ExecutionContext& execution) mutable
-      -> absl::Status {
+              &response](
+                 const ExecutionContext& execution) mutable -> absl::Status {
         ASSIGN_OR_RETURN(const TrimmedSurface trimmed,
                          CreateFace(std::move(face), execution.cancellation));
         v1::EvaluateSurfaceResponse& values = *response.mutable_values();
@@ -115,8 +118,8 @@ absl::StatusOr<UnaryWork> PlanEvaluate(const v1::EvaluateFaceRequest& request,
         if (plan.normals) {
           google::protobuf::RepeatedField<double>& normals =
               *values.mutable_normals()->mutable_coordinates();
-          OrientFaceNormals(trimmed, absl::MakeSpan(normals.mutable_data(),
-                                                    normals.size()));
+          OrientFaceNormals(
+              trimmed, absl::MakeSpan(normals.mutable_data(), normals.size()));
         }
         return ClassifyInto(trimmed, plan, tolerance, execution,
                             *response.mutable_locations());
@@ -138,9 +141,8 @@ absl::StatusOr<UnaryWork> PlanArea(const v1::FaceAreaRequest& request,
   return UnaryWork{
       .plan = {.memory_bytes = AnswerPlan(3, work_bytes, limits).memory_bytes,
                .heavy = true},
-      .run = [face = std::move(face), tolerance,
-              &response](const ExecutionContext& execution) mutable
-      -> absl::Status {
+      .run = [face = std::move(face), tolerance, &response](
+                 const ExecutionContext& execution) mutable -> absl::Status {
         ASSIGN_OR_RETURN(const TrimmedSurface trimmed,
                          CreateFace(std::move(face), execution.cancellation));
         ASSIGN_OR_RETURN(const FaceAreaResult area,
@@ -152,7 +154,81 @@ absl::StatusOr<UnaryWork> PlanArea(const v1::FaceAreaRequest& request,
       }};
 }
 
+// The vertices of a face's mesh when a request sets no cap.
+constexpr uint64_t kDefaultFaceMeshVertices = uint64_t{1} << 16;
+// An answer's doubles per vertex: position, normal and (u, v), and its
+// triangles' indices (about two triangles per vertex, three 4-byte indices
+// each: 3 doubles).
+constexpr uint64_t kFaceMeshValuesPerVertex = 3 + 3 + 2 + 3;
+// The mesher's own bytes per vertex besides the triangulation: the
+// boundary and grid points, the mesh's arrays while it is written, and the
+// Steiner candidates of a round (two triangles per vertex, three candidate
+// points each).
+constexpr uint64_t kFaceMeshWorkBytesPerVertex = 16 + 88 + 2 * 3 * 16 + 16;
+
+void WritePoints(int dimension, const std::vector<double>& values,
+                 v1::Points& out) {
+  out.set_dimension(static_cast<uint32_t>(dimension));
+  out.mutable_coordinates()->Add(values.begin(), values.end());
+}
+
+absl::StatusOr<UnaryWork> PlanTessellate(
+    const v1::TessellateFaceRequest& request, const ServiceLimits& limits,
+    v1::TessellateFaceResponse& response) {
+  ASSIGN_OR_RETURN(FaceRequest face, PrepareFace(request.face(), limits));
+  ASSIGN_OR_RETURN(const double tolerance,
+                   GivenTolerance(request.tolerance(), "tolerance"));
+  const uint64_t requested = request.max_vertices() > 0
+                                 ? uint64_t{request.max_vertices()}
+                                 : kDefaultFaceMeshVertices;
+  const uint64_t cap =
+      std::min(requested, limits.max_output_values / kFaceMeshValuesPerVertex);
+  RETURN_IF_ERROR(
+      UnaryAnswerCheck(cap * kFaceMeshValuesPerVertex, limits, "max_vertices"));
+  ASSIGN_OR_RETURN(const TrimmedSurfaceWork work, FaceWork(face, nullptr));
+  const uint64_t mesh_bytes = ConstrainedTriangulationMemoryBound(cap, cap) +
+                              cap * kFaceMeshWorkBytesPerVertex;
+  ASSIGN_OR_RETURN(
+      const uint64_t work_bytes,
+      CheckWorkBytes(work.bytes + mesh_bytes, limits, "max_vertices"));
+  return UnaryWork{
+      .plan = {.memory_bytes = AnswerPlan(cap * kFaceMeshValuesPerVertex,
+                                          work_bytes, limits)
+                                   .memory_bytes,
+               .heavy = true},
+      .run = [face = std::move(face), tolerance, cap, &response](
+                 const ExecutionContext& execution) mutable -> absl::Status {
+        ASSIGN_OR_RETURN(const TrimmedSurface trimmed,
+                         CreateFace(std::move(face), execution.cancellation));
+        ASSIGN_OR_RETURN(
+            const FaceMesh mesh,
+            TessellateFace(trimmed,
+                           {.tolerance = tolerance,
+                            .max_vertices = static_cast<size_t>(cap)},
+                           execution.cancellation));
+        WritePoints(3, mesh.vertices, *response.mutable_vertices());
+        WritePoints(3, mesh.normals, *response.mutable_normals());
+        WritePoints(2, mesh.uv, *response.mutable_uv());
+        response.mutable_triangles()->Add(mesh.triangles.begin(),
+                                          mesh.triangles.end());
+        response.set_min_angle_degrees(mesh.min_angle_degrees);
+        response.set_deviation_bound(mesh.deviation_bound);
+        return absl::OkStatus();
+      }};
+}
+
 }  // namespace
+
+grpc::ServerUnaryReactor* FaceServiceImpl::Tessellate(
+    grpc::CallbackServerContext* context,
+    const v1::TessellateFaceRequest* request,
+    v1::TessellateFaceResponse* response) {
+  return frame_->Unary("FaceService.Tessellate", context, request, response,
+                       [this, request, response] {
+                         return PlanTessellate(*request, frame_->limits(),
+                                               *response);
+                       });
+}
 
 grpc::ServerUnaryReactor* FaceServiceImpl::Classify(
     grpc::CallbackServerContext* context,

@@ -48,7 +48,7 @@ std::vector<RpcCase> ApproximationCases();
 // FaceService, one case per method.
 std::vector<RpcCase> FaceCases();
 
-// Every method of every service (41 cases).
+// Every method of every service (42 cases).
 std::vector<RpcCase> AllCases(StreamSize stream = {});
 
 // A random set of curve blending functions (Bernstein, B-spline, either

@@ -153,12 +153,46 @@ CallResult FaceArea(Client& client, Rng& rng) {
   return check.Result(answer.status());
 }
 
+// The mesh of the holed square: every vertex S(u, v) = (s u, s v, 0) and
+// outside the hole's disk, within the tolerance bound.
+CallResult FaceTessellate(Client& client, Rng& rng) {
+  const HoledSquare square = RandomHoledSquare(rng);
+  v1::TessellateFaceRequest request;
+  *request.mutable_face() = square.ToFace();
+  request.set_tolerance(1e-3 * square.side);
+  // The call reserves memory for its cap: a few hundred vertices suffice.
+  request.set_max_vertices(20'000);
+  auto answer =
+      client.Unary(client.faces(), &v1::FaceService::Stub::Tessellate, request);
+  Checker check(request, square.side);
+  if (answer.ok()) {
+    const auto& xyz = answer->vertices().coordinates();
+    const auto& uv = answer->uv().coordinates();
+    if (check.True(xyz.size() > 0 && uv.size() / 2 == xyz.size() / 3,
+                   "one (u, v) per vertex")) {
+      for (int k = 0; k < uv.size() / 2; ++k) {
+        const double u = uv[2 * k], v = uv[2 * k + 1];
+        check.NearPoint(Values(xyz.begin() + 3 * k, xyz.begin() + 3 * k + 3),
+                        Values{square.side * u, square.side * v, 0}, kTight,
+                        "vertex", k);
+        check.True(
+            std::hypot(u - square.cu, v - square.cv) >= square.radius - 1e-12,
+            absl::StrCat("vertex ", k, " outside the hole"));
+      }
+    }
+    check.True(answer->deviation_bound() <= request.tolerance(),
+               "deviation bound within the tolerance");
+  }
+  return check.Result(answer.status());
+}
+
 }  // namespace
 
 std::vector<RpcCase> FaceCases() {
   return {{"FaceService.Classify", false, FaceClassify},
           {"FaceService.Evaluate", false, FaceEvaluate},
-          {"FaceService.Area", false, FaceArea}};
+          {"FaceService.Area", false, FaceArea},
+          {"FaceService.Tessellate", false, FaceTessellate}};
 }
 
 }  // namespace freeform::reliability

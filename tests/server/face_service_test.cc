@@ -5,8 +5,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "freeform/v1/face_service.grpc.pb.h"
@@ -34,9 +38,9 @@ void SetPlane(v1::Surface* surface) {
 void SetCircle(v1::Curve* curve, double cu, double cv, double r,
                bool clockwise) {
   const double s = std::numbers::sqrt2 / 2;
-  const double unit[9][3] = {{1, 0, 1},  {1, 1, s},   {0, 1, 1},
-                             {-1, 1, s}, {-1, 0, 1},  {-1, -1, s},
-                             {0, -1, 1}, {1, -1, s},  {1, 0, 1}};
+  const double unit[9][3] = {{1, 0, 1},  {1, 1, s},  {0, 1, 1},
+                             {-1, 1, s}, {-1, 0, 1}, {-1, -1, s},
+                             {0, -1, 1}, {1, -1, s}, {1, 0, 1}};
   v1::BSplineCurve* spline = curve->mutable_bspline();
   spline->set_degree(2);
   spline->mutable_control_points()->set_dimension(2);
@@ -51,8 +55,7 @@ void SetCircle(v1::Curve* curve, double cu, double cv, double r,
 }
 
 // A straight 2D segment as a linear Bezier curve.
-void SetSegment(v1::Curve* curve, double u0, double v0, double u1,
-                double v1_) {
+void SetSegment(v1::Curve* curve, double u0, double v0, double u1, double v1_) {
   v1::Points* points = curve->mutable_bezier()->mutable_control_points();
   points->set_dimension(2);
   Append(points->mutable_coordinates(), {u0, v0, u1, v1_});
@@ -98,12 +101,12 @@ TEST_F(FaceServiceTest, ClassifiesPointsAtKnownDistancesFromTheHole) {
   request.set_boundary_tolerance(1e-9);
   const double rim = kCentre + kRadius;
   AddPoints(request.mutable_parameters(),
-            {kCentre, kCentre,          // the hole's centre
-             0.1, 0.1,                  // far inside the face
-             rim, kCentre,              // on the circle
-             rim + 1e-6, kCentre,       // just outside the hole
-             rim - 1e-6, kCentre,       // just inside the hole
-             kCentre, rim + 1e-10});    // within the boundary tolerance
+            {kCentre, kCentre,        // the hole's centre
+             0.1, 0.1,                // far inside the face
+             rim, kCentre,            // on the circle
+             rim + 1e-6, kCentre,     // just outside the hole
+             rim - 1e-6, kCentre,     // just inside the hole
+             kCentre, rim + 1e-10});  // within the boundary tolerance
   absl::StatusOr<v1::ClassifyFacePointsResponse> answer =
       client_->ClassifyFacePoints(request);
   ASSERT_TRUE(answer.ok()) << answer.status();
@@ -135,12 +138,11 @@ TEST_F(FaceServiceTest, AGridIsClassifiedUMajorByTheCirclesEquation) {
       // on the parameter rectangle's edge, the boundary of a face without
       // an outer loop.
       ASSERT_GT(std::abs(distance - kRadius), 1e-4);
-      const bool on_edge =
-          i == 0 || j == 0 || i == count - 1 || j == count - 1;
+      const bool on_edge = i == 0 || j == 0 || i == count - 1 || j == count - 1;
       EXPECT_EQ(answer->locations(i * count + j),
-                on_edge               ? v1::FACE_POINT_ON_BOUNDARY
+                on_edge              ? v1::FACE_POINT_ON_BOUNDARY
                 : distance < kRadius ? v1::FACE_POINT_OUTSIDE
-                                      : v1::FACE_POINT_INSIDE)
+                                     : v1::FACE_POINT_INSIDE)
           << u << ", " << v;
     }
   }
@@ -166,10 +168,72 @@ TEST_F(FaceServiceTest, EvaluateGivesPointsNormalsOfTheFacesSideAndLocations) {
     const double z = reversed ? -1.0 : 1.0;
     EXPECT_THAT(values.normals().coordinates(),
                 ::testing::ElementsAre(0.0, 0.0, z, 0.0, 0.0, z));
-    EXPECT_THAT(answer->locations(),
-                ::testing::ElementsAre(v1::FACE_POINT_INSIDE,
-                                       v1::FACE_POINT_OUTSIDE));
+    EXPECT_THAT(
+        answer->locations(),
+        ::testing::ElementsAre(v1::FACE_POINT_INSIDE, v1::FACE_POINT_OUTSIDE));
   }
+}
+
+TEST_F(FaceServiceTest, TheMeshOfTheSquareWithAHoleKeepsToTheFace) {
+  v1::TessellateFaceRequest request;
+  *request.mutable_face() = SquareWithHole();
+  request.set_tolerance(1e-4);
+  absl::StatusOr<v1::TessellateFaceResponse> mesh =
+      client_->TessellateFace(request);
+  ASSERT_TRUE(mesh.ok()) << mesh.status();
+  const auto& xyz = mesh->vertices().coordinates();
+  const auto& uv = mesh->uv().coordinates();
+  const int vertices = mesh->vertices().coordinates_size() / 3;
+  ASSERT_GT(vertices, 20);
+  ASSERT_EQ(uv.size(), 2 * vertices);
+  ASSERT_EQ(mesh->normals().coordinates_size(), 3 * vertices);
+  for (int k = 0; k < vertices; ++k) {
+    // S(u, v) = (u, v, 0), normal +z, nothing inside the hole.
+    EXPECT_NEAR(xyz[3 * k], uv[2 * k], 1e-15);
+    EXPECT_NEAR(xyz[3 * k + 1], uv[2 * k + 1], 1e-15);
+    EXPECT_EQ(xyz[3 * k + 2], 0.0);
+    EXPECT_NEAR(mesh->normals().coordinates(3 * k + 2), 1.0, 1e-15);
+    EXPECT_GE(std::hypot(uv[2 * k] - kCentre, uv[2 * k + 1] - kCentre),
+              kRadius - 1e-12);
+  }
+  // Counter-clockwise in (u, v) (the normal's side), every edge used at
+  // most twice, V - E + F = 0 for a square with one hole, and the area
+  // between the inscribed polygon's and the square's minus the disk.
+  ASSERT_EQ(mesh->triangles_size() % 3, 0);
+  std::map<std::pair<uint32_t, uint32_t>, int> edges;
+  double area = 0.0;
+  for (int t = 0; t < mesh->triangles_size(); t += 3) {
+    const uint32_t a = mesh->triangles(t), b = mesh->triangles(t + 1),
+                   c = mesh->triangles(t + 2);
+    const double signed_area =
+        0.5 * ((uv[2 * b] - uv[2 * a]) * (uv[2 * c + 1] - uv[2 * a + 1]) -
+               (uv[2 * c] - uv[2 * a]) * (uv[2 * b + 1] - uv[2 * a + 1]));
+    EXPECT_GT(signed_area, 0.0);
+    area += signed_area;
+    for (auto [p, q] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+      ++edges[{std::min(p, q), std::max(p, q)}];
+    }
+  }
+  for (const auto& [edge, uses] : edges) EXPECT_LE(uses, 2);
+  const int faces = mesh->triangles_size() / 3;
+  EXPECT_EQ(vertices - static_cast<int>(edges.size()) + faces, 0);
+  const double exact = 1.0 - std::numbers::pi * kRadius * kRadius;
+  EXPECT_GE(area, exact - 1e-12);
+  EXPECT_LE(area, exact + 2 * std::numbers::pi * kRadius * 1e-4);
+  EXPECT_LE(mesh->deviation_bound(), 1e-4);
+  EXPECT_GT(mesh->min_angle_degrees(), 0.0);
+}
+
+TEST_F(FaceServiceTest, TessellateRefusesABadToleranceAndATinyCap) {
+  v1::TessellateFaceRequest request;
+  *request.mutable_face() = SquareWithHole();
+  ExpectInvalid(client_->TessellateFace(request).status(), "tolerance");
+  request.set_tolerance(1e-4);
+  request.set_max_vertices(10);
+  const absl::Status status = client_->TessellateFace(request).status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kResourceExhausted) << status;
+  EXPECT_THAT(std::string(status.message()),
+              ::testing::HasSubstr("max_vertices"));
 }
 
 TEST_F(FaceServiceTest, AnOpenLoopIsRefusedWithItsGap) {
@@ -187,8 +251,8 @@ TEST_F(FaceServiceTest, AnOpenLoopIsRefusedWithItsGap) {
 TEST_F(FaceServiceTest, AHoleRunningCounterClockwiseIsRefused) {
   v1::FaceAreaRequest request;
   SetPlane(request.mutable_face()->mutable_surface());
-  SetCircle(request.mutable_face()->add_holes()->add_curves(), kCentre,
-            kCentre, kRadius, /*clockwise=*/false);
+  SetCircle(request.mutable_face()->add_holes()->add_curves(), kCentre, kCentre,
+            kRadius, /*clockwise=*/false);
   ExpectInvalid(client_->FaceArea(request).status(), "face.holes[0]");
 }
 

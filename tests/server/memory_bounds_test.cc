@@ -976,8 +976,8 @@ std::vector<RpcCase> SurfaceCases() {
 // segments (a degree-1 B-spline along the square [0.01, 0.99]^2).
 v1::TrimmedSurface LatticeFace(int holes, int segments) {
   v1::TrimmedSurface face;
-  v1::ControlNet& net = *face.mutable_surface()->mutable_bezier()
-                             ->mutable_control_net();
+  v1::ControlNet& net =
+      *face.mutable_surface()->mutable_bezier()->mutable_control_net();
   net.set_dimension(3);
   net.set_count_u(2);
   net.set_count_v(2);
@@ -1007,9 +1007,9 @@ v1::TrimmedSurface LatticeFace(int holes, int segments) {
   const int per_row = static_cast<int>(std::ceil(std::sqrt(holes)));
   const double pitch = 0.9 / per_row, radius = 0.3 * pitch;
   const double s = std::sqrt(0.5);
-  const double unit[9][3] = {{1, 0, 1},  {1, -1, s}, {0, -1, 1},
+  const double unit[9][3] = {{1, 0, 1},   {1, -1, s}, {0, -1, 1},
                              {-1, -1, s}, {-1, 0, 1}, {-1, 1, s},
-                             {0, 1, 1},  {1, 1, s},  {1, 0, 1}};
+                             {0, 1, 1},   {1, 1, s},  {1, 0, 1}};
   for (int h = 0; h < holes; ++h) {
     const double cu = 0.05 + pitch * (h % per_row + 0.5);
     const double cv = 0.05 + pitch * (h / per_row + 0.5);
@@ -1047,6 +1047,13 @@ std::vector<RpcCase> FaceCases() {
             request.set_derivative_order(1);
             request.set_normals(true);
           }),
+      Case<v1::TessellateFaceRequest>("FaceService.Tessellate",
+                                      [](v1::TessellateFaceRequest& request) {
+                                        *request.mutable_face() =
+                                            LatticeFace(400, 4000);
+                                        request.set_tolerance(1e-5);
+                                        request.set_max_vertices(400'000);
+                                      }),
       Case<v1::FaceAreaRequest>("FaceService.Area",
                                 [](v1::FaceAreaRequest& request) {
                                   *request.mutable_face() =

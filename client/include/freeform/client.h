@@ -323,6 +323,10 @@ class Client {
       const v1::FaceAreaRequest& request) {
     return Unary(*faces_, &v1::FaceService::Stub::Area, request);
   }
+  absl::StatusOr<v1::TessellateFaceResponse> TessellateFace(
+      const v1::TessellateFaceRequest& request) {
+    return Unary(*faces_, &v1::FaceService::Stub::Tessellate, request);
+  }
 
   // CheckHealth asks grpc.health.v1.Health; OK means SERVING, UNAVAILABLE
   // means NOT_SERVING; other codes are transport errors.
