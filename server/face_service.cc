@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "absl/strings/str_cat.h"
 #include "freeform/core/constrained_delaunay.h"
 #include "freeform/core/face_mesh.h"
+#include "freeform/core/status.h"
 #include "freeform/core/status_macros.h"
 #include "freeform/core/trimmed_surface.h"
 #include "plan.h"
@@ -126,6 +128,20 @@ absl::StatusOr<UnaryWork> PlanEvaluate(const v1::EvaluateFaceRequest& request,
       }};
 }
 
+// The work of one surface point of the area's quadrature, in the units of
+// --max_query_work (about a multiply-add): its position and first partials.
+constexpr uint64_t kAreaWorkPerPoint = 256;
+
+// AreaError maps the core's work limit to the request's tolerance.
+absl::Status AreaError(const absl::Status& status) {
+  if (FieldPathOf(status) != "max_work") return status;
+  return ExhaustedFieldError(
+      "tolerance",
+      absl::StrCat("the area would do more work than the server's limit "
+                   "(--max_query_work) to reach this tolerance: ",
+                   FieldRuleOf(status)));
+}
+
 absl::StatusOr<UnaryWork> PlanArea(const v1::FaceAreaRequest& request,
                                    const ServiceLimits& limits,
                                    v1::FaceAreaResponse& response) {
@@ -141,15 +157,18 @@ absl::StatusOr<UnaryWork> PlanArea(const v1::FaceAreaRequest& request,
   return UnaryWork{
       .plan = {.memory_bytes = AnswerPlan(3, work_bytes, limits).memory_bytes,
                .heavy = true},
-      .run = [face = std::move(face), tolerance, &response](
+      .run = [face = std::move(face), tolerance,
+              max_points = limits.max_query_work / kAreaWorkPerPoint,
+              &response](
                  const ExecutionContext& execution) mutable -> absl::Status {
         ASSIGN_OR_RETURN(const TrimmedSurface trimmed,
                          CreateFace(std::move(face), execution.cancellation));
-        ASSIGN_OR_RETURN(const FaceAreaResult area,
-                         FaceArea(trimmed, tolerance, execution.cancellation));
-        response.set_area(area.area);
-        response.set_error_bound(area.error_bound);
-        response.set_converged(area.error_bound <= tolerance);
+        absl::StatusOr<FaceAreaResult> area =
+            FaceArea(trimmed, tolerance, execution.cancellation, max_points);
+        if (!area.ok()) return AreaError(area.status());
+        response.set_area(area->area);
+        response.set_error_bound(area->error_bound);
+        response.set_converged(area->error_bound <= tolerance);
         return absl::OkStatus();
       }};
 }

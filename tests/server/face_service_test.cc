@@ -87,6 +87,25 @@ TEST_F(FaceServiceTest, AreaOfTheSquareWithACircularHoleIsOneMinusPiRSquared) {
   EXPECT_GE(area->error_bound() + 1e-15, std::abs(area->area() - exact));
 }
 
+TEST_F(FaceServiceTest, AnAreaToleranceTheWorkCannotReachIsRefused) {
+  // A square of side 1e77 at the default absolute tolerance 1e-9: double
+  // precision resolves nothing near 1e-9 of an area of 1e154.
+  v1::FaceAreaRequest request;
+  *request.mutable_face() = SquareWithHole();
+  for (double& x : *request.mutable_face()
+                        ->mutable_surface()
+                        ->mutable_bezier()
+                        ->mutable_control_net()
+                        ->mutable_coordinates()) {
+    x *= 1e77;
+  }
+  const absl::Status status = client_->FaceArea(request).status();
+  EXPECT_EQ(status.code(), absl::StatusCode::kResourceExhausted) << status;
+  const std::vector<FieldViolation> violations = FieldViolationsOf(status);
+  ASSERT_EQ(violations.size(), 1u) << status;
+  EXPECT_EQ(violations[0].field, "tolerance");
+}
+
 TEST_F(FaceServiceTest, AWholeDomainFaceHasTheSurfacesArea) {
   v1::FaceAreaRequest request;
   SetPlane(request.mutable_face()->mutable_surface());

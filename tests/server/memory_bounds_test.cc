@@ -1057,7 +1057,7 @@ std::vector<RpcCase> FaceCases() {
       Case<v1::FaceAreaRequest>("FaceService.Area",
                                 [](v1::FaceAreaRequest& request) {
                                   *request.mutable_face() =
-                                      LatticeFace(2500, 100'000);
+                                      LatticeFace(100, 1000);
                                   request.set_tolerance(1e-9);
                                 }),
   };

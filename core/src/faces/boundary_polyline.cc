@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "absl/status/status.h"
 #include "absl/strings/str_cat.h"
@@ -238,11 +238,13 @@ std::pair<int, int> GridSides(const SurfaceDomain& d, uint64_t segments) {
   const double height = d.v_end - d.v_start;
   const double cells = std::max(1.0, 2.0 * static_cast<double>(segments));
   const double aspect = width / height;
-  const int columns = std::clamp(
-      static_cast<int>(std::ceil(std::sqrt(cells * aspect))), 1, kMaxGridSide);
-  const int rows = std::clamp(
-      static_cast<int>(std::ceil(std::sqrt(cells / aspect))), 1, kMaxGridSide);
-  return {columns, rows};
+  // Clamped as a double: an extreme aspect would not fit an int.
+  const auto side = [](double wanted) {
+    if (!(wanted >= 1.0)) return 1;
+    return static_cast<int>(
+        std::min(std::ceil(wanted), static_cast<double>(kMaxGridSide)));
+  };
+  return {side(std::sqrt(cells * aspect)), side(std::sqrt(cells / aspect))};
 }
 
 // BuildGrid sizes the grid by GridSides, coarser while its entries would

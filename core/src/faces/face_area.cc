@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/strings/str_cat.h"
 #include "faces/face_boundary.h"
 #include "faces/quadrature.h"
 #include "freeform/core/bezier.h"
@@ -43,13 +44,20 @@ std::vector<double> Breaks(absl::Span<const double> knots, double start,
 // 3D) at (u, v) pairs, and F, its integral along u.
 class AreaDensity {
  public:
+  // `cancel` is polled within the inner integrals too: one outer interval
+  // may refine its 15 inner integrals for long.
+  // At most `max_points` surface points are evaluated in all
+  // (RESOURCE_EXHAUSTED naming "max_work" beyond).
   AreaDensity(const Surface& surface, const SurfaceDomain& domain,
-              std::vector<double> u_breaks, double tolerance_per_unit_u)
+              std::vector<double> u_breaks, double tolerance_per_unit_u,
+              const CancellationToken* cancel, uint64_t max_points)
       : surface_(surface),
         domain_(domain),
         u_breaks_(std::move(u_breaks)),
         tolerance_per_unit_u_(tolerance_per_unit_u),
-        dimension_(DimensionOf(surface)) {}
+        dimension_(DimensionOf(surface)),
+        cancel_(cancel),
+        max_points_(max_points) {}
 
   // Integrals writes F(u[i], v[i]) for i < kKronrodPoints, u and v clamped
   // into the domain, F integrated from the knot u_breaks[base]: one Kronrod
@@ -110,7 +118,7 @@ class AreaDensity {
       return absl::OkStatus();
     };
     return internal::IntegrateAdaptive(along_u, span.a, span.b, target,
-                                       kMaxInnerIntervals, nullptr);
+                                       kMaxInnerIntervals, cancel_);
   }
 
   void AppendNodes(double a, double b, double v) {
@@ -124,6 +132,13 @@ class AreaDensity {
   // EvaluateDensities fills density_ at the pairs of uv_.
   absl::Status EvaluateDensities() {
     const size_t count = uv_.size() / 2;
+    evaluated_points_ += count;
+    if (evaluated_points_ > max_points_) {
+      return ExhaustedFieldError(
+          "max_work",
+          absl::StrCat("the area needs more than ", max_points_,
+                       " surface evaluations to reach the tolerance"));
+    }
     for (std::vector<double>& buffer : partials_) {
       buffer.resize(count * dimension_);
     }
@@ -161,6 +176,9 @@ class AreaDensity {
   const std::vector<double> u_breaks_;
   const double tolerance_per_unit_u_;
   const int dimension_;
+  const CancellationToken* const cancel_;
+  const uint64_t max_points_;
+  uint64_t evaluated_points_ = 0;
   std::vector<Span> spans_;
   std::vector<double> uv_;
   std::array<std::vector<double>, 3> partials_;
@@ -259,7 +277,8 @@ uint64_t FaceAreaWorkBytes(const Surface& surface, uint64_t pieces) {
 
 absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
                                         double tolerance,
-                                        const CancellationToken* cancel) {
+                                        const CancellationToken* cancel,
+                                        uint64_t max_points) {
   RETURN_IF_ERROR(ValidatePositive(tolerance, "tolerance"));
   const FaceBoundary& boundary = face.boundary();
   const SurfaceDomain& d = boundary.domain;
@@ -295,7 +314,8 @@ absl::StatusOr<FaceAreaResult> FaceArea(const TrimmedSurface& face,
   // pieces), the rest for the outer ones, all pieces' intervals refined
   // together.
   AreaDensity density(face.surface(), d, u_breaks,
-                      0.25 * tolerance / (variation * (d.u_end - d.u_start)));
+                      0.25 * tolerance / (variation * (d.u_end - d.u_start)),
+                      cancel, max_points);
   const auto integrand = [&](size_t part, double a, double b,
                              Estimate* values) {
     const TrimPiece& piece = boundary.pieces[part];

@@ -211,17 +211,22 @@ struct FaceAreaResult {
 // and every inner estimate weighted by |v'| and the outer rule's weights.
 // The work stops when error_bound is at most `tolerance` (absolute,
 // positive, finite) or after kMaxFaceAreaIntervals halvings (error_bound
-// then says how far it got). Fails with INVALID_ARGUMENT "tolerance" and with
-// the token's CANCELLED / DEADLINE_EXCEEDED.
+// then says how far it got). Fails with INVALID_ARGUMENT "tolerance",
+// RESOURCE_EXHAUSTED naming "max_work" when more than `max_points` surface
+// points would be evaluated (a tolerance the work cannot reach), and with
+// the token's CANCELLED / DEADLINE_EXCEEDED (polled in the inner integrals
+// too).
 inline constexpr size_t kMaxFaceAreaIntervals = size_t{1} << 16;
 
 // FaceAreaWorkBytes bounds the working memory of FaceArea on a face of
 // `surface` whose loops have `pieces` Bezier pieces
 // (TrimmedSurfaceWork::pieces).
 uint64_t FaceAreaWorkBytes(const Surface& surface, uint64_t pieces);
+
 absl::StatusOr<FaceAreaResult> FaceArea(
     const TrimmedSurface& face, double tolerance,
-    const CancellationToken* cancel = nullptr);
+    const CancellationToken* cancel = nullptr,
+    uint64_t max_points = UINT64_MAX);
 
 // Samples of one trim curve, in its parameter order.
 struct TrimSamples {
