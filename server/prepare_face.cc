@@ -22,11 +22,10 @@ absl::StatusOr<TrimLoop> PrepareLoop(const v1::TrimLoop& message,
   TrimLoop loop;
   loop.curves.reserve(static_cast<size_t>(message.curves_size()));
   for (int j = 0; j < message.curves_size(); ++j) {
-    ASSIGN_OR_RETURN(
-        Curve curve,
-        PrepareCurve(message.curves(j), limits,
-                     IndexedField(absl::StrCat(path, ".curves"),
-                                  static_cast<size_t>(j))));
+    ASSIGN_OR_RETURN(Curve curve,
+                     PrepareCurve(message.curves(j), limits,
+                                  IndexedField(absl::StrCat(path, ".curves"),
+                                               static_cast<size_t>(j))));
     loop.curves.push_back(std::move(curve));
   }
   return loop;
@@ -37,21 +36,20 @@ absl::StatusOr<TrimLoop> PrepareLoop(const v1::TrimLoop& message,
 absl::StatusOr<FaceRequest> PrepareFace(const v1::TrimmedSurface& message,
                                         const ServiceLimits& limits,
                                         absl::string_view field) {
-  ASSIGN_OR_RETURN(const double tolerance,
-                   Tolerance(message.has_tolerance(), message.tolerance(),
-                             kDefaultFaceTolerance,
-                             absl::StrCat(field, ".tolerance")));
   ASSIGN_OR_RETURN(
-      Surface surface,
-      PrepareSurface(message.surface(), limits, absl::StrCat(field, ".surface")));
-  FaceRequest request{
-      .parts = {.surface = std::move(surface),
-                .outer = std::nullopt,
-                .holes = {},
-                .reversed = message.reversed()},
-      .tolerance = tolerance,
-      .field = std::string(field),
-      .curve_count = 0};
+      const double tolerance,
+      Tolerance(message.has_tolerance(), message.tolerance(),
+                kDefaultFaceTolerance, absl::StrCat(field, ".tolerance")));
+  ASSIGN_OR_RETURN(Surface surface,
+                   PrepareSurface(message.surface(), limits,
+                                  absl::StrCat(field, ".surface")));
+  FaceRequest request{.parts = {.surface = std::move(surface),
+                                .outer = std::nullopt,
+                                .holes = {},
+                                .reversed = message.reversed()},
+                      .tolerance = tolerance,
+                      .field = std::string(field),
+                      .curve_count = 0};
   // Every curve has at least one control point, so the curves are bounded
   // by the control-point limit like the points themselves.
   uint64_t curves = static_cast<uint64_t>(message.outer().curves_size());
@@ -61,18 +59,17 @@ absl::StatusOr<FaceRequest> PrepareFace(const v1::TrimmedSurface& message,
   RETURN_IF_ERROR(CheckPointLimit(curves, limits, field));
   request.curve_count = curves;
   if (message.has_outer()) {
-    ASSIGN_OR_RETURN(TrimLoop outer,
-                     PrepareLoop(message.outer(), limits,
-                                 absl::StrCat(field, ".outer")));
+    ASSIGN_OR_RETURN(
+        TrimLoop outer,
+        PrepareLoop(message.outer(), limits, absl::StrCat(field, ".outer")));
     request.parts.outer = std::move(outer);
   }
   request.parts.holes.reserve(static_cast<size_t>(message.holes_size()));
   for (int i = 0; i < message.holes_size(); ++i) {
-    ASSIGN_OR_RETURN(
-        TrimLoop hole,
-        PrepareLoop(message.holes(i), limits,
-                    IndexedField(absl::StrCat(field, ".holes"),
-                                 static_cast<size_t>(i))));
+    ASSIGN_OR_RETURN(TrimLoop hole,
+                     PrepareLoop(message.holes(i), limits,
+                                 IndexedField(absl::StrCat(field, ".holes"),
+                                              static_cast<size_t>(i))));
     request.parts.holes.push_back(std::move(hole));
   }
   return request;

@@ -329,8 +329,8 @@ absl::StatusOr<SurfacePlan> PrepareSurfaceEvaluation(
   RETURN_IF_ERROR(CheckDerivativeOrder(request.derivative_order(), limits));
   ASSIGN_OR_RETURN(Surface surface, PrepareSurface(request.surface(), limits));
   return PrepareEvaluationOf(std::move(surface), request.parameters(),
-                             request.derivative_order(), request.normals(),
-                             0, limits);
+                             request.derivative_order(), request.normals(), 0,
+                             limits);
 }
 
 absl::StatusOr<SurfacePlan> PrepareEvaluationOf(

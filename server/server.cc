@@ -13,12 +13,12 @@
 
 #include "absl/strings/str_cat.h"
 #include "curve_service.h"
+#include "face_service.h"
+#include "freeform_services.h"
 #include "grpc_handoff.h"
 #include "metrics.h"
 #include "parse_errors.h"
 #include "surface_service.h"
-#include "face_service.h"
-#include "freeform_services.h"
 
 namespace freeform::server {
 namespace {

@@ -90,8 +90,8 @@ absl::Status AddMonotoneParts(const BezierCurveData& bezier, int depth,
   if (parts.size() >= limit) {
     return ExhaustedFieldError(
         loop_path, absl::StrCat("the trims would be cut into more than ", limit,
-                              " monotone parts (curves that turn often or "
-                              "have cusps)"));
+                                " monotone parts (curves that turn often or "
+                                "have cusps)"));
   }
   if (depth >= kMaxMonotoneDepth || IsMonotone(bezier)) {
     if (parts.size() >= kMaxFaceBoundarySegments) {
@@ -132,8 +132,8 @@ uint64_t MonotonePartLimit(const FaceBoundary& boundary) {
 uint64_t CrossingCheckBytes(const FaceBoundary& boundary) {
   size_t largest = 0;
   for (const TrimPiece& piece : boundary.pieces) {
-    largest = std::max(largest, piece.bezier.coordinates.size() +
-                                    piece.bezier.weights.size());
+    largest = std::max(
+        largest, piece.bezier.coordinates.size() + piece.bezier.weights.size());
   }
   // Parts grow by push_back (up to twice their count), each with its
   // control points and weights in blocks of their own (the allocator's

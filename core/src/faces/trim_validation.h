@@ -30,7 +30,8 @@ absl::Status CheckInsideDomain(const FaceBoundary& boundary,
 
 // MonotonePartLimit is the most parts CheckCrossings cuts the pieces into
 // (RESOURCE_EXHAUSTED naming the loop beyond): one per segment, 16 per
-// control point of other pieces, and 64. CrossingCheckBytes bounds the memory of those parts.
+// control point of other pieces, and 64. CrossingCheckBytes bounds the memory
+// of those parts.
 uint64_t MonotonePartLimit(const FaceBoundary& boundary);
 uint64_t CrossingCheckBytes(const FaceBoundary& boundary);
 

@@ -83,10 +83,10 @@ absl::StatusOr<TrimmedSurfaceWork> TrimmedSurfaceWorkBytes(
   // The pieces, as Create keeps them (grown by push_back: up to twice).
   uint64_t piece_bytes = 0;
   for (const internal::TrimPiece& piece : boundary.pieces) {
-    piece_bytes += sizeof(internal::TrimPiece) +
-                   (piece.bezier.coordinates.capacity() +
-                    piece.bezier.weights.capacity()) *
-                       sizeof(double);
+    piece_bytes +=
+        sizeof(internal::TrimPiece) + (piece.bezier.coordinates.capacity() +
+                                       piece.bezier.weights.capacity()) *
+                                          sizeof(double);
   }
   ASSIGN_OR_RETURN(const uint64_t polyline_bytes,
                    internal::BoundaryPolylineBytes(boundary));
@@ -129,16 +129,14 @@ absl::Status ClassifySamples(const TrimmedSurface& face,
   const size_t v_count = samples.v.size();
   ExecutionContext chunks = context;
   chunks.grain = std::min(chunks.grain, kPointsPerChunk);
-  return ParallelFor(
-      locations.size(), chunks, [&](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-          const Point2 p =
-              samples.grid
-                  ? Point2{samples.u[i / v_count], samples.v[i % v_count]}
-                  : Point2{samples.uv[2 * i], samples.uv[2 * i + 1]};
-          locations[i] = Classify(boundary, p, tolerance);
-        }
-      });
+  return ParallelFor(locations.size(), chunks, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const Point2 p =
+          samples.grid ? Point2{samples.u[i / v_count], samples.v[i % v_count]}
+                       : Point2{samples.uv[2 * i], samples.uv[2 * i + 1]};
+      locations[i] = Classify(boundary, p, tolerance);
+    }
+  });
 }
 
 void OrientFaceNormals(const TrimmedSurface& face, absl::Span<double> normals) {
