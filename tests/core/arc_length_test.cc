@@ -276,6 +276,25 @@ TEST(ParametersAtArcLengths, NeverBeforeTheStart) {
   EXPECT_GT(parameters[2], parameters[1]);
 }
 
+// A fuzzer's request: a start of 1e-300 on a domain of 1e170 came back as
+// the parameter 0 for the length 0, mapped back from the scaled copy.
+TEST(ParametersAtArcLengths, NeverBeforeATinyStartOnAHugeDomain) {
+  const std::vector<double> points = {0, 0, 1, 2, 1, 2, 1, 2};
+  const std::vector<double> knots = {0, 0, 2.5e169, 5e169, 1e170, 1e170};
+  const Curve curve = *BSplineCurve::Create(
+      {.degree = 1, .control_points = {2, points}, .knots = knots});
+  const std::vector<double> lengths = {0, 0.1, 0.2};
+  std::vector<double> parameters(3);
+  ASSERT_TRUE(ParametersAtArcLengths(curve, 1e-300, lengths, 1e-8,
+                                     absl::MakeSpan(parameters))
+                  .ok());
+  EXPECT_EQ(parameters[0], 1e-300);
+  // Along the first leg (length sqrt(5) over 2.5e169) the lengths 0.1 and
+  // 0.2 are at t = L 2.5e169 / sqrt(5).
+  EXPECT_NEAR(parameters[1], 0.1 * 2.5e169 / std::sqrt(5.0), 1e-7 * 2.5e169);
+  EXPECT_NEAR(parameters[2], 0.2 * 2.5e169 / std::sqrt(5.0), 1e-7 * 2.5e169);
+}
+
 // Equal arc-length samples of the circle have equal chords
 // 2 r sin(pi / (n - 1)).
 TEST(EqualArcLengthParameters, CircleSamplesHaveEqualChords) {

@@ -300,6 +300,33 @@ TEST(TessellationTest, PointBoundsHoldForRandomCurves) {
   EXPECT_GT(splines_checked, 100);
 }
 
+// The bound does not change under an affine change of parameter: the same
+// cubic over knots scaled from 1e-150 to 1e169 (a fuzzer's request, whose
+// derivative control points of 1 / width^2 ~ 1e-338 were subnormal and
+// gave a bound below the polyline) has the bound of its unit knots, and
+// the bound holds.
+TEST(TessellationTest, PointBoundIsTheSameAtEveryKnotScale) {
+  const std::vector<double> points = {1,   0,    0.5, 0.9, -0.3, 1.2, -1,
+                                      0.1, -0.4, -1,  0.6, -0.8, 1,   0};
+  const std::vector<double> unit = {0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1};
+  const auto view = [&](const std::vector<double>& knots) {
+    return BSplineCurveView{
+        .degree = 3,
+        .control_points = {.dimension = 2, .coordinates = points},
+        .knots = knots,
+        .weights = {}};
+  };
+  const size_t unit_bound = BSplineCurvePointBound(view(unit), 1e-3);
+  for (double scale : {1e-150, 1e-3, 1e100, 1e169}) {
+    SCOPED_TRACE(testing::Message() << "scale " << scale);
+    std::vector<double> knots = unit;
+    const double offset = scale > 1e168 ? 8.8e168 : 0.0;
+    for (double& knot : knots) knot = offset + scale * knot;
+    EXPECT_EQ(BSplineCurvePointBound(view(knots), 1e-3), unit_bound);
+    EXPECT_TRUE(ExpectBoundHolds(view(knots), 1e-3));
+  }
+}
+
 // A tolerance double precision cannot resolve is refused before any work;
 // a line is flat at any tolerance.
 TEST(TessellationTest, UnresolvableToleranceIsRefusedAtOnce) {

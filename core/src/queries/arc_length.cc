@@ -639,17 +639,21 @@ absl::StatusOr<Inverse> BuildInverse(const Curve& curve, double start,
 }
 
 // SolveAll writes the original parameter of Solve(targets(i)) into
-// parameters[i] for i < count, in chunks on the context's pool.
+// parameters[i] for i < count, in chunks on the context's pool, clamped to
+// [start, end]: mapped back from the scaled copy, a parameter of a domain
+// of 1e170 may round past a start of 1e-300.
 template <typename Targets>
-absl::Status SolveAll(const Inverse& inverse, size_t count, Targets targets,
-                      double* parameters, const ExecutionContext& context) {
+absl::Status SolveAll(const Inverse& inverse, double start, double end,
+                      size_t count, Targets targets, double* parameters,
+                      const ExecutionContext& context) {
   return ForEachChunk(count, context, [&](size_t b, size_t e) {
     SpeedIntegrator integrator;
     const TableReader reader{inverse.pieces, inverse.table, integrator};
     for (size_t i = b; i < e; ++i) {
       absl::StatusOr<double> t = Solve(reader, targets(i), inverse.tolerance);
       if (!t.ok()) return t.status();
-      parameters[i] = inverse.pieces.scaled.ToOriginal(*t);
+      parameters[i] =
+          std::clamp(inverse.pieces.scaled.ToOriginal(*t), start, end);
     }
     return absl::OkStatus();
   });
@@ -788,7 +792,7 @@ absl::Status ParametersAtArcLengths(const Curve& curve, double start,
     }
   }
   return SolveAll(
-      *inverse, lengths.size(),
+      *inverse, start, end, lengths.size(),
       [&](size_t i) { return std::min(scale.Unlength(lengths[i]), total); },
       parameters.data(), context);
 }
@@ -815,7 +819,7 @@ absl::Status EqualArcLengthParameters(const Curve& curve, double start,
     return absl::OkStatus();
   }
   return SolveAll(
-      *inverse, count - 2,
+      *inverse, start, end, count - 2,
       [&](size_t i) { return total * (static_cast<double>(i + 1) / last); },
       parameters.data() + 1, context);
 }
