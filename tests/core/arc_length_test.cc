@@ -260,17 +260,26 @@ TEST(ParametersAtArcLengths, FromAStartInsideTheDomain) {
 // Length 0 from a start inside a piece is the start itself, never before
 // it: the fuzzer's Hermite curve from 1e-6 got 9.99999999918e-07 (the
 // piece's parameter, breakpoint + u width, rounded below the start).
+// ParametersOfShortLengths returns the parameters at the lengths 0, 0.1
+// and 0.2 from `start` (tolerance 1e-8), empty when the call fails.
+std::vector<double> ParametersOfShortLengths(const Curve& curve, double start) {
+  const std::vector<double> lengths = {0, 0.1, 0.2};
+  std::vector<double> parameters(lengths.size());
+  const absl::Status status = ParametersAtArcLengths(
+      curve, start, lengths, 1e-8, absl::MakeSpan(parameters));
+  EXPECT_TRUE(status.ok()) << status;
+  if (!status.ok()) return {};
+  return parameters;
+}
+
 TEST(ParametersAtArcLengths, NeverBeforeTheStart) {
   const std::vector<double> points = {0, 0, 1, 1, 2, 0};
   const std::vector<double> tangents = {1, 0, 0, 0, -1, 0};
   const std::vector<double> nodes = {-1, 1, 3};
   const Curve curve = *HermiteCurve::Create(
       {.points = {2, points}, .tangents = {2, tangents}, .nodes = nodes});
-  const std::vector<double> lengths = {0, 0.1, 0.2};
-  std::vector<double> parameters(3);
-  ASSERT_TRUE(ParametersAtArcLengths(curve, 1e-6, lengths, 1e-8,
-                                     absl::MakeSpan(parameters))
-                  .ok());
+  const std::vector<double> parameters = ParametersOfShortLengths(curve, 1e-6);
+  ASSERT_EQ(parameters.size(), 3u);
   EXPECT_EQ(parameters[0], 1e-6);
   EXPECT_GT(parameters[1], 1e-6);
   EXPECT_GT(parameters[2], parameters[1]);
@@ -283,11 +292,9 @@ TEST(ParametersAtArcLengths, NeverBeforeATinyStartOnAHugeDomain) {
   const std::vector<double> knots = {0, 0, 2.5e169, 5e169, 1e170, 1e170};
   const Curve curve = *BSplineCurve::Create(
       {.degree = 1, .control_points = {2, points}, .knots = knots});
-  const std::vector<double> lengths = {0, 0.1, 0.2};
-  std::vector<double> parameters(3);
-  ASSERT_TRUE(ParametersAtArcLengths(curve, 1e-300, lengths, 1e-8,
-                                     absl::MakeSpan(parameters))
-                  .ok());
+  const std::vector<double> parameters =
+      ParametersOfShortLengths(curve, 1e-300);
+  ASSERT_EQ(parameters.size(), 3u);
   EXPECT_EQ(parameters[0], 1e-300);
   // Along the first leg (length sqrt(5) over 2.5e169) the lengths 0.1 and
   // 0.2 are at t = L 2.5e169 / sqrt(5).

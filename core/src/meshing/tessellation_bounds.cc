@@ -136,18 +136,21 @@ double Largest(absl::Span<const double> values) {
   return *std::max_element(values.begin(), values.end());
 }
 
-// UnitKnots maps `knots` affinely onto [0, 1]. The bound below does not
-// change under an affine change of parameter (each span's width^2 cancels
-// the second derivative's 1 / width^2), but computed on knots of 1e169 the
-// derivative's control points (1 / width^2 ~ 1e-338) are subnormal and the
-// bound falls short. Halves keep knots of opposite extreme signs finite.
-std::vector<double> UnitKnots(absl::Span<const double> knots) {
-  const double low = knots.front();
-  const double half_span = 0.5 * knots.back() - 0.5 * low;
-  std::vector<double> unit(knots.begin(), knots.end());
-  if (!(half_span > 0.0)) return unit;
-  for (double& knot : unit) knot = (0.5 * knot - 0.5 * low) / half_span;
-  return unit;
+// KnotsOfUnitSpan returns `knots` divided by the power of two at or above
+// their span, which is exact. The bound below does not change under a change
+// of parameter's scale (each span's width^2 cancels the second derivative's
+// 1 / width^2), but computed on knots 3e168 apart the derivative's control
+// points (1 / width^2 ~ 1e-338) are subnormal and the bound falls short. The
+// span is taken as twice its half, which stays finite for knots of opposite
+// extreme signs.
+std::vector<double> KnotsOfUnitSpan(absl::Span<const double> knots) {
+  const int exponent =
+      internal::ExponentAbove(0.5 * knots.back() - 0.5 * knots.front()) + 1;
+  std::vector<double> scaled(knots.size());
+  for (size_t i = 0; i < knots.size(); ++i) {
+    scaled[i] = std::ldexp(knots[i], -exponent);
+  }
+  return scaled;
 }
 
 }  // namespace
@@ -175,8 +178,8 @@ size_t BSplineCurvePointBound(const BSplineCurveView& curve, double tolerance) {
   const int p = curve.degree;
   const int d = curve.control_points.dimension;
   const size_t count = curve.control_points.size();
-  const std::vector<double> unit_knots = UnitKnots(curve.knots);
-  const absl::Span<const double> knots = unit_knots;
+  const std::vector<double> scaled_knots = KnotsOfUnitSpan(curve.knots);
+  const absl::Span<const double> knots = scaled_knots;
   const absl::Span<const double> weights = curve.weights;
   const bool rational = curve.rational();
   if (rational && !(Smallest(weights) > 0.0)) return kNoBound;

@@ -614,12 +614,14 @@ absl::Status ForEachChunk(size_t count, const ExecutionContext& context,
 }
 
 // What the inverse solves in: the pieces, their table from start to end
-// (keeping the stretches' nets) and the tolerance of each solve, half the
-// call's, in the copy's units.
+// (keeping the stretches' nets), the tolerance of each solve, half the
+// call's, in the copy's units, and [start, end] in the original parameters.
 struct Inverse {
   CurvePieces pieces;
   LengthTable table;
   double tolerance = 0.0;
+  double start = 0.0;
+  double end = 0.0;
 };
 
 absl::StatusOr<Inverse> BuildInverse(const Curve& curve, double start,
@@ -635,25 +637,26 @@ absl::StatusOr<Inverse> BuildInverse(const Curve& curve, double start,
   if (!table.ok()) return table.status();
   return Inverse{.pieces = *std::move(pieces),
                  .table = *std::move(table),
-                 .tolerance = half};
+                 .tolerance = half,
+                 .start = start,
+                 .end = end};
 }
 
 // SolveAll writes the original parameter of Solve(targets(i)) into
 // parameters[i] for i < count, in chunks on the context's pool, clamped to
-// [start, end]: mapped back from the scaled copy, a parameter of a domain
-// of 1e170 may round past a start of 1e-300.
+// the inverse's [start, end]: mapped back from the scaled copy, a parameter
+// of a domain of 1e170 may round past a start of 1e-300.
 template <typename Targets>
-absl::Status SolveAll(const Inverse& inverse, double start, double end,
-                      size_t count, Targets targets, double* parameters,
-                      const ExecutionContext& context) {
+absl::Status SolveAll(const Inverse& inverse, size_t count, Targets targets,
+                      double* parameters, const ExecutionContext& context) {
   return ForEachChunk(count, context, [&](size_t b, size_t e) {
     SpeedIntegrator integrator;
     const TableReader reader{inverse.pieces, inverse.table, integrator};
     for (size_t i = b; i < e; ++i) {
       absl::StatusOr<double> t = Solve(reader, targets(i), inverse.tolerance);
       if (!t.ok()) return t.status();
-      parameters[i] =
-          std::clamp(inverse.pieces.scaled.ToOriginal(*t), start, end);
+      parameters[i] = std::clamp(inverse.pieces.scaled.ToOriginal(*t),
+                                 inverse.start, inverse.end);
     }
     return absl::OkStatus();
   });
@@ -792,7 +795,7 @@ absl::Status ParametersAtArcLengths(const Curve& curve, double start,
     }
   }
   return SolveAll(
-      *inverse, start, end, lengths.size(),
+      *inverse, lengths.size(),
       [&](size_t i) { return std::min(scale.Unlength(lengths[i]), total); },
       parameters.data(), context);
 }
@@ -819,7 +822,7 @@ absl::Status EqualArcLengthParameters(const Curve& curve, double start,
     return absl::OkStatus();
   }
   return SolveAll(
-      *inverse, start, end, count - 2,
+      *inverse, count - 2,
       [&](size_t i) { return total * (static_cast<double>(i + 1) / last); },
       parameters.data() + 1, context);
 }
